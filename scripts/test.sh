@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Runs every test: static checks (ruff, catkin_lint, generated files), then colcon test (gtest,
+# rostest, pytest) of all packages. Results are aggregated from the JUnit files, because
+# `colcon test` exits 0 when tests fail. Exits non-zero on any failure or on zero tests.
+#   scripts/test.sh [colcon test args, e.g. --packages-select sixdof_core]
+set -uo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
+set +u
+# shellcheck disable=SC1091
+. scripts/env.sh
+set -u
+status=0
+
+echo "== ruff"
+ruff check . || status=1
+
+echo "== catkin_lint"
+catkin_lint -W2 --strict --ignore missing_directory --ignore unknown_package . || status=1
+
+rm -rf build/*/test_results
+# Each rostest starts its own master on a random port; one package at a time keeps the 2 cores sane.
+colcon test --merge-install --event-handlers console_direct- console_cohesion+ summary+ \
+  --executor sequential --ctest-args --output-on-failure -- "$@" || status=1
+
+echo "== results"
+python3 scripts/junit_summary.py build || status=1
+exit $status

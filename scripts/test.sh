@@ -16,7 +16,7 @@ echo "== ruff"
 ruff check . || status=1
 
 echo "== catkin_lint"
-catkin_lint -W2 --strict --ignore missing_directory --ignore unknown_package . || status=1
+catkin_lint -W1 --strict --ignore missing_directory --ignore unknown_package . || status=1
 
 rm -rf build/*/test_results
 # Each rostest starts its own master on a random port; one package at a time keeps the 2 cores sane.

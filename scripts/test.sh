@@ -21,7 +21,7 @@ catkin_lint -W1 --strict --ignore missing_directory --ignore unknown_package . |
 rm -rf build/*/test_results
 # Each rostest starts its own master on a random port; one package at a time keeps the 2 cores sane.
 colcon test --merge-install --event-handlers console_direct- console_cohesion+ summary+ \
-  --executor sequential --ctest-args --output-on-failure -- "$@" || status=1
+  --executor sequential "$@" --ctest-args --output-on-failure || status=1
 
 echo "== results"
 python3 scripts/junit_summary.py build || status=1

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -86,6 +87,7 @@ class ArmDriver:
         velocity_scaling: float = 0.5,
         acceleration_scaling: float = 0.5,
         approach_distance: float = 0.08,
+        grasp_fix_timeout: float = 2.0,
         node_name: str = "arm_driver",
     ) -> None:
         if not rospy.core.is_initialized():
@@ -100,6 +102,9 @@ class ArmDriver:
         self.approach_distance = check_number(approach_distance, "approach_distance")
         if self.approach_distance <= 0.0:
             raise SixdofCommanderError(f"approach_distance must be > 0, got {self.approach_distance}")
+        self.grasp_fix_timeout = check_number(grasp_fix_timeout, "grasp_fix_timeout")
+        if self.grasp_fix_timeout < 0.0:
+            raise SixdofCommanderError(f"grasp_fix_timeout must be >= 0, got {self.grasp_fix_timeout}")
         self.cartesian_step = 0.005
         self.last_failure = ""
         self._spec = self._grasp_spec(gripper_group)
@@ -200,6 +205,21 @@ class ArmDriver:
             raise SixdofCommanderError(f"simulator object '{name}': {response.status_message}")
         return response
 
+    def _wait_for_grasp_fix(self, name: str, attached: bool) -> bool:
+        """Wait (wall clock, up to grasp_fix_timeout s) until the simulator's grasp fix has attached
+        (released) the object, so that lifting (retreating) does not outrun it. A simulator without the
+        grasp fix never attaches: that is reported as a warning, the grasp may still hold by friction."""
+        end = time.monotonic() + self.grasp_fix_timeout
+        while True:
+            holder = self.get_object_state(name).attached_to
+            if bool(holder) == attached:
+                return True
+            if time.monotonic() >= end or rospy.is_shutdown():
+                state = "attached" if attached else "released"
+                rospy.logwarn(f"'{name}' not {state} by the grasp fix within {self.grasp_fix_timeout:g} s")
+                return False
+            time.sleep(0.02)
+
     # Pick and place, in the paper's stages ------------------------------------------------------------
     def grasp(self, object_name: str) -> bool:
         """'pick pose': open, move above the object, descend straight and close the gripper on it."""
@@ -218,6 +238,7 @@ class ArmDriver:
             return False
         if not self.gripper_close():
             return False
+        self._wait_for_grasp_fix(object_name, attached=True)
         if object_name in self.scene.get_known_object_names():
             if not self.arm.attach_object(object_name):
                 return self._fail(f"attaching '{object_name}' in the planning scene failed", self.scene.last_error)
@@ -254,6 +275,7 @@ class ArmDriver:
             return False
         if not self.gripper_open():
             return False
+        self._wait_for_grasp_fix(held.name, attached=False)
         if held.name in self.scene.get_attached_object_names():
             if not self.arm.detach_object(held.name):
                 return self._fail(f"detaching '{held.name}' in the planning scene failed", self.scene.last_error)

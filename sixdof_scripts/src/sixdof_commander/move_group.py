@@ -57,10 +57,15 @@ class MoveGroup:
         self._goal = GoalBuilder(self._group, self._planning_frame)
         # MoveIt reads the default scaling from the joint-limits config (0.1 when absent).
         planning = resolve(ns, "robot_description_planning")
-        self._goal.set_max_velocity_scaling_factor(rospy.get_param(f"{planning}/default_velocity_scaling_factor", 0.1))
-        self._goal.set_max_acceleration_scaling_factor(
-            rospy.get_param(f"{planning}/default_acceleration_scaling_factor", 0.1)
-        )
+        for kind, setter in (
+            ("velocity", self._goal.set_max_velocity_scaling_factor),
+            ("acceleration", self._goal.set_max_acceleration_scaling_factor),
+        ):
+            param = f"{planning}/default_{kind}_scaling_factor"
+            try:
+                setter(rospy.get_param(param, 0.1))
+            except SixdofCommanderError as err:
+                raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
         self._last_error = error_code(MoveItErrorCodes.SUCCESS, "")
 
         self._move_action = actionlib.SimpleActionClient(resolve(ns, "move_group"), MoveGroupAction)

@@ -16,10 +16,12 @@ from sixdof_msgs.msg import (
     Constraints,
     JointConstraint,
     MotionPlanRequest,
+    MoveGroupGoal,
     OrientationConstraint,
     PositionConstraint,
     RobotState,
 )
+from sixdof_msgs.srv import GetCartesianPathRequest
 
 from .exceptions import SixdofCommanderError
 from .robot_model import Group
@@ -350,6 +352,41 @@ class GoalBuilder:
         request.group_name = self.group.name
         request.num_planning_attempts = self.num_planning_attempts
         request.allowed_planning_time = self.planning_time
+        request.max_velocity_scaling_factor = self.max_velocity_scaling_factor
+        request.max_acceleration_scaling_factor = self.max_acceleration_scaling_factor
+        return request
+
+    def move_group_goal(self) -> MoveGroupGoal:
+        """The move_group action goal of go(): plan and execute, in the planner's current scene."""
+        goal = MoveGroupGoal()
+        goal.request = self.motion_plan_request()
+        goal.planning_options.plan_only = False
+        goal.planning_options.planning_scene_diff.is_diff = True
+        goal.planning_options.planning_scene_diff.robot_state.is_diff = True
+        return goal
+
+    def cartesian_path_request(
+        self, waypoints: Sequence[Pose], eef_step: float, jump_threshold: float, avoid_collisions: bool
+    ) -> GetCartesianPathRequest:
+        """The compute_cartesian_path request for the end-effector link through waypoints."""
+        if isinstance(waypoints, Pose | PoseStamped) or not isinstance(waypoints, Sequence) or not waypoints:
+            raise SixdofCommanderError("waypoints must be a non-empty list of geometry_msgs/Pose")
+        request = GetCartesianPathRequest()
+        request.header.frame_id = self.planning_frame
+        request.start_state = self.current_start_state()
+        request.group_name = self.group.name
+        request.link_name = self.end_effector_link
+        for i, waypoint in enumerate(waypoints):
+            if not isinstance(waypoint, Pose):
+                raise SixdofCommanderError(f"waypoint {i} must be a geometry_msgs/Pose, got {type(waypoint).__name__}")
+            request.waypoints.append(pose_stamped_from_target(waypoint, self.planning_frame, f"waypoint {i}").pose)
+        request.max_step = check_positive(eef_step, "eef_step")
+        request.jump_threshold = check_number(jump_threshold, "jump_threshold")
+        if request.jump_threshold < 0.0:
+            raise SixdofCommanderError(f"jump_threshold must be >= 0 (0: no check), got {request.jump_threshold}")
+        if not isinstance(avoid_collisions, bool):
+            raise SixdofCommanderError(f"avoid_collisions must be True or False, got {avoid_collisions!r}")
+        request.avoid_collisions = avoid_collisions
         request.max_velocity_scaling_factor = self.max_velocity_scaling_factor
         request.max_acceleration_scaling_factor = self.max_acceleration_scaling_factor
         return request

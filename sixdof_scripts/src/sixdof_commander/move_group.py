@@ -13,16 +13,15 @@ from sixdof_msgs.msg import (
     ExecuteTrajectoryAction,
     ExecuteTrajectoryGoal,
     MoveGroupAction,
-    MoveGroupGoal,
     MoveItErrorCodes,
     RobotState,
     RobotTrajectory,
 )
-from sixdof_msgs.srv import GetCartesianPath, GetCartesianPathRequest, GetMotionPlan, GetPositionFK
+from sixdof_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK
 
 from ._ros import JointStateMonitor, ServerWaiter, load_robot_model, require_node, resolve
 from .exceptions import SixdofCommanderError
-from .goals import GoalBuilder, check_number, check_positive, pose_stamped_from_target
+from .goals import GoalBuilder
 from .planning_scene import PlanningScene
 from .robot_model import RobotDescription, SemanticDescription, resolve_group
 from .transforms import rpy_from_quaternion
@@ -251,12 +250,7 @@ class MoveGroup:
 
     def go(self, wait: bool = True) -> bool:
         """Plan to the target and execute (move_group action). Without wait, returns once sent."""
-        goal = MoveGroupGoal()
-        goal.request = self._goal.motion_plan_request()
-        goal.planning_options.plan_only = False
-        goal.planning_options.planning_scene_diff.is_diff = True
-        goal.planning_options.planning_scene_diff.robot_state.is_diff = True
-        return self._run_action(self._move_action, goal, "move_group", wait)
+        return self._run_action(self._move_action, self._goal.move_group_goal(), "move_group", wait)
 
     def execute(self, trajectory: RobotTrajectory, wait: bool = True) -> bool:
         """Execute a planned trajectory (execute_trajectory action). Without wait, returns once sent."""
@@ -336,24 +330,7 @@ class MoveGroup:
     ) -> tuple[RobotTrajectory, float]:
         """Straight-line path of the end-effector link through waypoints (Poses in the planning frame),
         interpolated every eef_step metres: (trajectory, fraction of the path achieved; -1 on error)."""
-        if isinstance(waypoints, Pose | PoseStamped) or not isinstance(waypoints, Sequence) or not waypoints:
-            raise SixdofCommanderError("waypoints must be a non-empty list of geometry_msgs/Pose")
-        request = GetCartesianPathRequest()
-        request.header.frame_id = self._planning_frame
-        request.start_state = self._goal.current_start_state()
-        request.group_name = self._group.name
-        request.link_name = self._goal.end_effector_link
-        for i, waypoint in enumerate(waypoints):
-            if not isinstance(waypoint, Pose):
-                raise SixdofCommanderError(f"waypoint {i} must be a geometry_msgs/Pose, got {type(waypoint).__name__}")
-            request.waypoints.append(pose_stamped_from_target(waypoint, self._planning_frame, f"waypoint {i}").pose)
-        request.max_step = check_positive(eef_step, "eef_step")
-        request.jump_threshold = check_number(jump_threshold, "jump_threshold")
-        if request.jump_threshold < 0.0:
-            raise SixdofCommanderError(f"jump_threshold must be >= 0 (0: no check), got {request.jump_threshold}")
-        request.avoid_collisions = bool(avoid_collisions)
-        request.max_velocity_scaling_factor = self._goal.max_velocity_scaling_factor
-        request.max_acceleration_scaling_factor = self._goal.max_acceleration_scaling_factor
+        request = self._goal.cartesian_path_request(waypoints, eef_step, jump_threshold, avoid_collisions)
         try:
             response = self._cartesian_service(request)
         except (rospy.ServiceException, rospy.ROSException) as err:

@@ -49,6 +49,73 @@ def _check_size(size: Sequence[float], what: str) -> list[float]:
     return [check_positive(v, f"{what}[{i}]") for i, v in enumerate(size)]
 
 
+def _identity() -> Pose:
+    pose = Pose()
+    pose.orientation.w = 1.0
+    return pose
+
+
+def collision_object(name: str, pose: object, planning_frame: str) -> CollisionObject:
+    """An ADD CollisionObject without shapes, at pose (empty frame: the planning frame)."""
+    stamped = pose_stamped_from_target(pose, planning_frame, f"pose of '{name}'")
+    obj = CollisionObject()
+    obj.header = stamped.header
+    obj.id = _check_name(name)
+    obj.pose = stamped.pose
+    obj.operation = CollisionObject.ADD
+    return obj
+
+
+def primitive_object(
+    name: str, pose: object, shape_type: int, dimensions: Sequence[float], planning_frame: str
+) -> CollisionObject:
+    """An ADD CollisionObject of one solid primitive centred at pose."""
+    obj = collision_object(name, pose, planning_frame)
+    obj.primitives.append(SolidPrimitive(type=shape_type, dimensions=list(dimensions)))
+    obj.primitive_poses.append(_identity())
+    return obj
+
+
+def removal(name: str, planning_frame: str) -> CollisionObject:
+    """A REMOVE CollisionObject."""
+    obj = CollisionObject()
+    obj.id = _check_name(name)
+    obj.header.frame_id = planning_frame
+    obj.operation = CollisionObject.REMOVE
+    return obj
+
+
+def attach_request(name: str, link: str, touch_links: Sequence[str]) -> AttachedCollisionObject:
+    """Attach the existing world object `name` to `link` (no shapes: the planner moves it from the world)."""
+    attached = AttachedCollisionObject()
+    attached.link_name = link
+    attached.object.id = _check_name(name)
+    attached.object.header.frame_id = link
+    attached.object.operation = CollisionObject.ADD
+    attached.touch_links = list(touch_links)
+    return attached
+
+
+def detach_request(name: str) -> AttachedCollisionObject:
+    """Detach `name` (every attached object when empty) back into the world."""
+    attached = AttachedCollisionObject()
+    attached.object.id = name
+    attached.object.operation = CollisionObject.REMOVE
+    return attached
+
+
+def scene_diff(
+    world_objects: Sequence[CollisionObject] = (), attached: Sequence[AttachedCollisionObject] = ()
+) -> SceneMsg:
+    """A planning-scene diff carrying world-object and attached-object changes."""
+    diff = SceneMsg()
+    diff.is_diff = True
+    diff.robot_state.is_diff = True
+    diff.world.collision_objects = list(world_objects)
+    diff.robot_state.attached_collision_objects = list(attached)
+    return diff
+
+
 class PlanningScene:
     """The move_group node's planning scene, through its apply_planning_scene/get_planning_scene services.
 
@@ -68,40 +135,22 @@ class PlanningScene:
         self._get = rospy.ServiceProxy(resolve(ns, "get_planning_scene"), GetPlanningScene)
         self.last_error = MoveItErrorCodes()
 
-    def _object(self, name: str, pose: object) -> CollisionObject:
-        stamped = pose_stamped_from_target(pose, self._planning_frame, f"pose of '{name}'")
-        obj = CollisionObject()
-        obj.header = stamped.header
-        obj.id = _check_name(name)
-        obj.pose = stamped.pose
-        obj.operation = CollisionObject.ADD
-        return obj
-
-    def _add_primitive(self, name: str, pose: object, shape_type: int, dimensions: list[float]) -> bool:
-        obj = self._object(name, pose)
-        obj.primitives.append(SolidPrimitive(type=shape_type, dimensions=dimensions))
-        identity = Pose()
-        identity.orientation.w = 1.0
-        obj.primitive_poses.append(identity)
-        return self._apply_diff(world_objects=[obj])
-
     def _apply_diff(
         self,
         world_objects: Sequence[CollisionObject] = (),
         attached: Sequence[AttachedCollisionObject] = (),
     ) -> bool:
-        diff = SceneMsg()
-        diff.is_diff = True
-        diff.robot_state.is_diff = True
-        diff.world.collision_objects = list(world_objects)
-        diff.robot_state.attached_collision_objects = list(attached)
         try:
-            response = self._apply(diff)
+            response = self._apply(scene_diff(world_objects, attached))
         except (rospy.ServiceException, rospy.ROSException) as err:
             self.last_error = MoveItErrorCodes(val=MoveItErrorCodes.COMMUNICATION_FAILURE, message=str(err))
             return False
         self.last_error = response.error_code
         return bool(response.success)
+
+    def _add_primitive(self, name: str, pose: object, shape_type: int, dimensions: list[float]) -> bool:
+        obj = primitive_object(name, pose, shape_type, dimensions, self._planning_frame)
+        return self._apply_diff(world_objects=[obj])
 
     def add_box(self, name: str, pose: object, size: Sequence[float] = (1.0, 1.0, 1.0)) -> bool:
         """Add (or replace) a box of edge lengths size (x, y, z), centred at pose."""
@@ -119,24 +168,15 @@ class PlanningScene:
     def add_mesh(self, name: str, pose: object, filename: str, size: Sequence[float] = (1.0, 1.0, 1.0)) -> bool:
         """Add (or replace) an STL mesh (a path or package:// URI), each axis scaled by size."""
         scale = _check_size(size, "mesh scale")
-        obj = self._object(name, pose)
+        obj = collision_object(name, pose, self._planning_frame)
         obj.meshes.append(load_stl(resolve_resource(filename), scale))
-        identity = Pose()
-        identity.orientation.w = 1.0
-        obj.mesh_poses.append(identity)
+        obj.mesh_poses.append(_identity())
         return self._apply_diff(world_objects=[obj])
 
     def remove_world_object(self, name: str | None = None) -> bool:
         """Remove a world object (every world object with no name)."""
-        names = [_check_name(name)] if name is not None else self.get_known_object_names()
-        removals = []
-        for object_id in names:
-            obj = CollisionObject()
-            obj.id = object_id
-            obj.header.frame_id = self._planning_frame
-            obj.operation = CollisionObject.REMOVE
-            removals.append(obj)
-        return self._apply_diff(world_objects=removals)
+        names = [name] if name is not None else self.get_known_object_names()
+        return self._apply_diff(world_objects=[removal(n, self._planning_frame) for n in names])
 
     def attach_object(self, name: str, link: str, touch_links: Sequence[str] | None = None) -> bool:
         """Attach the world object `name` rigidly to `link` at its current pose. touch_links (default:
@@ -145,20 +185,11 @@ class PlanningScene:
         unknown = [lk for lk in links if lk not in self._urdf.links]
         if unknown:
             raise SixdofCommanderError(f"touch links {unknown} are not links of the robot")
-        attached = AttachedCollisionObject()
-        attached.link_name = link
-        attached.object.id = _check_name(name)
-        attached.object.header.frame_id = link
-        attached.object.operation = CollisionObject.ADD
-        attached.touch_links = links
-        return self._apply_diff(attached=[attached])
+        return self._apply_diff(attached=[attach_request(name, link, links)])
 
     def detach_object(self, name: str = "") -> bool:
         """Detach `name` (every attached object when empty) and put it back into the world."""
-        attached = AttachedCollisionObject()
-        attached.object.id = name
-        attached.object.operation = CollisionObject.REMOVE
-        return self._apply_diff(attached=[attached])
+        return self._apply_diff(attached=[detach_request(name)])
 
     def _scene(self) -> SceneMsg:
         try:

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped
 from sixdof_commander import SixdofCommanderError
-from sixdof_commander.goals import pose_stamped_from_target
+from sixdof_commander.goals import GoalBuilder, pose_stamped_from_target
+from sixdof_commander.robot_model import resolve_group
 from sixdof_commander.transforms import quaternion_from_rpy
 
 
@@ -303,3 +304,17 @@ def test_end_effector_link_must_exist(builder, urdf):
     assert builder.goal_constraints().position_constraints[0].link_name == "tcp"
     with pytest.raises(SixdofCommanderError, match="end-effector link 'hand' is not a link"):
         builder.set_end_effector_link("hand", urdf.links)
+
+
+def test_gripper_named_state_with_a_mimic_joint_targets_the_active_joint(urdf, srdf):
+    gripper = GoalBuilder(resolve_group(urdf, srdf, "gripper"), "base_link")
+    gripper.set_named_target("open")
+    assert gripper.joint_target == {"finger1_joint": 0.04}
+    (constraint,) = gripper.goal_constraints().joint_constraints
+    assert (constraint.joint_name, constraint.position) == ("finger1_joint", 0.04)
+
+
+def test_mimic_joint_in_a_dict_target_is_rejected(urdf, srdf):
+    gripper = GoalBuilder(resolve_group(urdf, srdf, "gripper"), "base_link")
+    with pytest.raises(SixdofCommanderError, match="'finger2_joint' mimics 'finger1_joint' .* set that one instead"):
+        gripper.set_joint_value_target({"finger2_joint": 0.01})

@@ -31,7 +31,11 @@ def test_gripper_group_moves_one_joint_the_other_mimics(urdf, srdf):
     gripper = resolve_group(urdf, srdf, "gripper")
     assert gripper.joint_names == ["finger1_joint"]
     assert gripper.links == ("finger1", "finger2")
-    assert gripper.named_states == {"open": {"finger1_joint": 0.04}, "close": {"finger1_joint": 0.0}}
+    assert gripper.named_states == {
+        "open": {"finger1_joint": 0.04, "finger2_joint": 0.04},
+        "close": {"finger1_joint": 0.0},
+    }
+    assert [j.name for j in gripper.all_joints] == ["finger1_joint", "finger2_joint"]
 
 
 def test_subgroups_are_merged(urdf, srdf):

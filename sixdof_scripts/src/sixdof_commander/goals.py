@@ -214,6 +214,12 @@ class GoalBuilder:
         """values: a list in the group's joint order, or a dict name -> value (others from `current`)."""
         names = self.group.joint_names
         if isinstance(values, Mapping):
+            mimics = self._mimic_joints()
+            for name in values:
+                if name in mimics:
+                    raise SixdofCommanderError(
+                        f"joint '{name}' mimics '{mimics[name]}' in group '{self.group.name}': set that one instead"
+                    )
             unknown = sorted(str(k) for k in values if k not in names)
             if unknown:
                 raise SixdofCommanderError(
@@ -258,7 +264,14 @@ class GoalBuilder:
         )
 
     def set_named_target(self, name: str, current: Mapping[str, float] | None = None) -> None:
-        self.set_joint_value_target(self.named_target_values(name), current)
+        # SRDF states may list mimic joints too (MoveIt accepts them); their values follow the active joint.
+        values = self.named_target_values(name)
+        mimics = self._mimic_joints()
+        self.set_joint_value_target({k: v for k, v in values.items() if k not in mimics}, current)
+
+    def _mimic_joints(self) -> dict[str, str]:
+        """Mimic joints of the group -> the joint each follows."""
+        return {j.name: j.mimic for j in self.group.all_joints if j.mimic is not None}
 
     def remember_joint_values(self, name: str, values: Sequence[float]) -> None:
         items = _check_sequence(values, "remembered joint values")

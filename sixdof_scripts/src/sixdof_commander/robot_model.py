@@ -16,9 +16,9 @@ from .exceptions import SixdofCommanderError
 from .transforms import homogeneous, matrix_from_rpy
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Joint:
-    """One URDF joint. lower/upper are -inf/inf for continuous joints."""
+    """One URDF joint (compared by identity). lower/upper are -inf/inf for continuous joints."""
 
     name: str
     type: str
@@ -133,6 +133,7 @@ class Group:
 
     name: str
     joints: tuple[Joint, ...]  # active joints, in order
+    all_joints: tuple[Joint, ...]  # every joint of the group, fixed and mimic ones included
     links: tuple[str, ...]
     tip_link: str
     end_effector_link: str
@@ -320,6 +321,7 @@ def resolve_group(urdf: RobotDescription, srdf: SemanticDescription, name: str) 
     return Group(
         name=name,
         joints=tuple(active),
+        all_joints=tuple(dict.fromkeys(joints)),
         links=tuple(dict.fromkeys(links)),
         tip_link=tip,
         end_effector_link=eef_link,

@@ -60,3 +60,17 @@ def test_describe_error_names_the_code():
 def test_api_needs_an_initialised_node(make):
     with pytest.raises(SixdofCommanderError, match=r"rospy.init_node\(\) must be called"):
         make()
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"velocity_scaling": 0.0}, r"velocity_scaling must be in \(0, 1\]"),
+        ({"acceleration_scaling": 1.5}, r"acceleration_scaling must be in \(0, 1\]"),
+        ({"approach_distance": 0.0}, "approach_distance must be > 0"),
+        ({"grasp_fix_timeout": -1.0}, "grasp_fix_timeout must be >= 0"),
+    ],
+)
+def test_arm_driver_arguments_are_checked_before_connecting(kwargs, message):
+    with pytest.raises(SixdofCommanderError, match=message):
+        ArmDriver(**kwargs)

@@ -90,21 +90,24 @@ class ArmDriver:
         grasp_fix_timeout: float = 2.0,
         node_name: str = "arm_driver",
     ) -> None:
-        if not rospy.core.is_initialized():
-            rospy.init_node(node_name, anonymous=True)
-        self._ns = ns
-        self._wait = wait_for_servers
-        self.arm = MoveGroup(group_name, ns=ns, wait_for_servers=wait_for_servers)
-        self.arm.set_max_velocity_scaling_factor(check_scaling_factor(velocity_scaling, "velocity_scaling"))
-        self.arm.set_max_acceleration_scaling_factor(check_scaling_factor(acceleration_scaling, "acceleration_scaling"))
-        self.gripper = Gripper(ns=ns, group_name=gripper_group, wait_for_servers=wait_for_servers)
-        self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
+        # Arguments first: misuse fails before any waiting for servers.
+        velocity = check_scaling_factor(velocity_scaling, "velocity_scaling")
+        acceleration = check_scaling_factor(acceleration_scaling, "acceleration_scaling")
         self.approach_distance = check_number(approach_distance, "approach_distance")
         if self.approach_distance <= 0.0:
             raise SixdofCommanderError(f"approach_distance must be > 0, got {self.approach_distance}")
         self.grasp_fix_timeout = check_number(grasp_fix_timeout, "grasp_fix_timeout")
         if self.grasp_fix_timeout < 0.0:
             raise SixdofCommanderError(f"grasp_fix_timeout must be >= 0, got {self.grasp_fix_timeout}")
+        if not rospy.core.is_initialized():
+            rospy.init_node(node_name, anonymous=True)
+        self._ns = ns
+        self._wait = wait_for_servers
+        self.arm = MoveGroup(group_name, ns=ns, wait_for_servers=wait_for_servers)
+        self.arm.set_max_velocity_scaling_factor(velocity)
+        self.arm.set_max_acceleration_scaling_factor(acceleration)
+        self.gripper = Gripper(ns=ns, group_name=gripper_group, wait_for_servers=wait_for_servers)
+        self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
         self.cartesian_step = 0.005
         self.last_failure = ""
         self._spec = self._grasp_spec(gripper_group)

@@ -1,0 +1,312 @@
+"""ArmDriver: the paper's script helper (moveto_xyzrpy, moveto_named, gripper, pick and place)."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import rospy
+from geometry_msgs.msg import Pose
+
+from sixdof_msgs.msg import MoveItErrorCodes
+from sixdof_msgs.srv import GetObjectState
+
+from ._ros import ServerWaiter, resolve
+from .exceptions import SixdofCommanderError
+from .goals import check_number, check_scaling_factor
+from .grasping import (
+    GraspSpec,
+    grasp_tcp_pose,
+    object_geometry,
+    place_tcp_pose,
+    pose_matrix,
+    raised,
+    tip_pose,
+)
+from .gripper import Gripper
+from .move_group import MoveGroup
+from .planning_scene import PlanningScene
+from .robot_model import resolve_group
+from .transforms import quaternion_from_matrix
+
+ERROR_NAMES = {
+    value: name for name, value in vars(MoveItErrorCodes).items() if name.isupper() and isinstance(value, int)
+}
+
+
+def rad(degrees: Sequence[float]) -> list[float]:
+    """Degrees to radians, as a plain list (so that `xyz + rad(rpy)` concatenates)."""
+    if isinstance(degrees, str) or not isinstance(degrees, Sequence | np.ndarray):
+        raise SixdofCommanderError(f"rad() needs a list of angles in degrees, got {type(degrees).__name__}")
+    return [math.radians(check_number(v, f"angle {i}")) for i, v in enumerate(degrees)]
+
+
+def pose_from_matrix(matrix: np.ndarray) -> Pose:
+    """geometry_msgs/Pose of a 4x4 transform."""
+    pose = Pose()
+    pose.position.x, pose.position.y, pose.position.z = (float(v) for v in matrix[:3, 3])
+    q = quaternion_from_matrix(matrix[:3, :3])
+    pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
+    return pose
+
+
+def matrix_from_pose(pose: Pose) -> np.ndarray:
+    """4x4 transform of a geometry_msgs/Pose."""
+    o = pose.orientation
+    return pose_matrix((pose.position.x, pose.position.y, pose.position.z), (o.x, o.y, o.z, o.w))
+
+
+def describe_error(code: MoveItErrorCodes) -> str:
+    """'NAME (val): message' of an error code."""
+    text = f"{ERROR_NAMES.get(code.val, 'UNKNOWN')} ({code.val})"
+    return f"{text}: {code.message}" if code.message else text
+
+
+@dataclass
+class _Held:
+    name: str
+    height: float
+
+
+class ArmDriver:
+    """Moves the arm and the gripper the way the paper's script does, and picks and places objects.
+
+    Motions return True on success and False on planning/execution failure; `last_failure` then says
+    what failed. Misuse raises SixdofCommanderError.
+    """
+
+    def __init__(
+        self,
+        group_name: str = "arm",
+        gripper_group: str = "gripper",
+        ns: str = "",
+        wait_for_servers: float = 5.0,
+        velocity_scaling: float = 0.5,
+        acceleration_scaling: float = 0.5,
+        approach_distance: float = 0.08,
+        grasp_fix_timeout: float = 2.0,
+        node_name: str = "arm_driver",
+    ) -> None:
+        # Arguments first: misuse fails before any waiting for servers.
+        velocity = check_scaling_factor(velocity_scaling, "velocity_scaling")
+        acceleration = check_scaling_factor(acceleration_scaling, "acceleration_scaling")
+        self.approach_distance = check_number(approach_distance, "approach_distance")
+        if self.approach_distance <= 0.0:
+            raise SixdofCommanderError(f"approach_distance must be > 0, got {self.approach_distance}")
+        self.grasp_fix_timeout = check_number(grasp_fix_timeout, "grasp_fix_timeout")
+        if self.grasp_fix_timeout < 0.0:
+            raise SixdofCommanderError(f"grasp_fix_timeout must be >= 0, got {self.grasp_fix_timeout}")
+        if not rospy.core.is_initialized():
+            rospy.init_node(node_name, anonymous=True)
+        self._ns = ns
+        self._wait = wait_for_servers
+        self.arm = MoveGroup(group_name, ns=ns, wait_for_servers=wait_for_servers)
+        self.arm.set_max_velocity_scaling_factor(velocity)
+        self.arm.set_max_acceleration_scaling_factor(acceleration)
+        self.gripper = Gripper(ns=ns, group_name=gripper_group, wait_for_servers=wait_for_servers)
+        self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
+        self.cartesian_step = 0.005
+        self.last_failure = ""
+        self._spec = self._grasp_spec(gripper_group)
+        self._object_state = None
+        self._held: _Held | None = None
+        self._object_in_tcp: np.ndarray | None = None
+
+    rad = staticmethod(rad)
+
+    def _grasp_spec(self, gripper_group: str) -> GraspSpec:
+        urdf, srdf = self.arm.robot_description, self.arm.semantic_description
+        tip = self.arm.get_end_effector_link()
+        gripper = resolve_group(urdf, srdf, gripper_group)
+        finger = gripper.joints[0]
+        # The grasp centre: a link named 'tcp' fixed below the tip (design.md); the tip itself otherwise.
+        tcp_in_tip = urdf.fixed_transform(tip, "tcp") if "tcp" in urdf.links else np.eye(4)
+        finger_frame = urdf.chain_transform(tip, finger.child)
+        axis = finger_frame[:3, :3] @ np.asarray(finger.axis, dtype=float)
+        return GraspSpec(tcp_in_tip=tcp_in_tip, finger_axis=axis, max_width=2.0 * self.gripper.open_position)
+
+    def _fail(self, what: str, code: MoveItErrorCodes | None = None) -> bool:
+        self.last_failure = f"{what}: {describe_error(code)}" if code is not None else what
+        rospy.logerr(self.last_failure)
+        return False
+
+    # The paper's interface ---------------------------------------------------------------------------
+    def moveto_xyzrpy(self, xyzrpy: Sequence[float]) -> bool:
+        """Plan and move the tip link (link6) to [x, y, z, roll, pitch, yaw] (metres, radians, fixed axes)
+        in the planning frame."""
+        if isinstance(xyzrpy, str) or not isinstance(xyzrpy, Sequence | np.ndarray) or len(xyzrpy) != 6:
+            raise SixdofCommanderError(f"moveto_xyzrpy needs [x, y, z, roll, pitch, yaw] (6 numbers), got {xyzrpy!r}")
+        values = list(xyzrpy)
+        self.arm.set_pose_target(values)
+        if not self.arm.go(wait=True):
+            return self._fail(f"moving to xyzrpy {[round(v, 4) for v in values]} failed", self.arm.last_error)
+        return True
+
+    def moveto_pose(self, pose: Pose) -> bool:
+        """Plan and move the tip link to a Pose in the planning frame."""
+        self.arm.set_pose_target(pose)
+        if not self.arm.go(wait=True):
+            return self._fail("moving to pose failed", self.arm.last_error)
+        return True
+
+    def moveto_named(self, name: str) -> bool:
+        """Plan and move to a named state of the arm group (the SRDF's group states)."""
+        self.arm.set_named_target(name)
+        if not self.arm.go(wait=True):
+            return self._fail(f"moving to named pose '{name}' failed", self.arm.last_error)
+        return True
+
+    def gripper_open(self) -> bool:
+        """Open the gripper; True when the fingers reached the 'open' position."""
+        result = self.gripper.open()
+        if not result.reached_goal:
+            return self._fail(f"gripper did not open (position {result.position:.4f}, stalled {result.stalled})")
+        return True
+
+    def gripper_close(self) -> bool:
+        """Close the gripper; True when it stopped on something (did not close on empty air)."""
+        result = self.gripper.close()
+        if result.position <= self.gripper.close_position + 0.001:
+            return self._fail(f"gripper closed on nothing (position {result.position:.4f})")
+        return True
+
+    # Cartesian moves ---------------------------------------------------------------------------------
+    def move_straight(self, tip_target: np.ndarray, what: str, avoid_collisions: bool) -> bool:
+        """Straight-line move of the tip link to a 4x4 pose; the whole path must be feasible."""
+        self.arm.set_start_state_to_current_state()
+        trajectory, fraction = self.arm.compute_cartesian_path(
+            [pose_from_matrix(tip_target)], self.cartesian_step, 0.0, avoid_collisions
+        )
+        if fraction < 1.0 - 1e-6:
+            return self._fail(
+                f"{what}: Cartesian path only {max(fraction, 0.0) * 100:.0f}% feasible", self.arm.last_error
+            )
+        if not self.arm.execute(trajectory, wait=True):
+            return self._fail(f"{what}: execution failed", self.arm.last_error)
+        return True
+
+    def _current_tip(self) -> np.ndarray:
+        return matrix_from_pose(self.arm.get_current_pose().pose)
+
+    # Simulator objects -------------------------------------------------------------------------------
+    def get_object_state(self, name: str) -> GetObjectState._response_class:
+        """The simulator's state of an object (sixdof_sim/get_object_state); unknown objects raise."""
+        if self._object_state is None:
+            service = resolve(self._ns, "sixdof_sim/get_object_state")
+            waiter = ServerWaiter(self._wait)
+            waiter.service(service)
+            waiter.check("ArmDriver")
+            self._object_state = rospy.ServiceProxy(service, GetObjectState)
+        try:
+            response = self._object_state(name)
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise SixdofCommanderError(f"sixdof_sim/get_object_state failed: {err}") from err
+        if not response.success:
+            raise SixdofCommanderError(f"simulator object '{name}': {response.status_message}")
+        return response
+
+    def _wait_for_grasp_fix(self, name: str, attached: bool) -> bool:
+        """Wait (wall clock, up to grasp_fix_timeout s) until the simulator's grasp fix has attached
+        (released) the object, so that lifting (retreating) does not outrun it. A simulator without the
+        grasp fix never attaches: that is reported as a warning, the grasp may still hold by friction."""
+        end = time.monotonic() + self.grasp_fix_timeout
+        while True:
+            holder = self.get_object_state(name).attached_to
+            if bool(holder) == attached:
+                return True
+            if time.monotonic() >= end or rospy.is_shutdown():
+                state = "attached" if attached else "released"
+                rospy.logwarn(f"'{name}' not {state} by the grasp fix within {self.grasp_fix_timeout:g} s")
+                return False
+            time.sleep(0.02)
+
+    # Pick and place, in the paper's stages ------------------------------------------------------------
+    def grasp(self, object_name: str) -> bool:
+        """'pick pose': open, move above the object, descend straight and close the gripper on it."""
+        if self._held is not None:
+            raise SixdofCommanderError(f"already holding '{self._held.name}': place it first")
+        state = self.get_object_state(object_name)
+        geometry = object_geometry(matrix_from_pose(state.object.pose), state.object.shape)
+        tcp, _ = grasp_tcp_pose(geometry, self._spec)
+        grasp_tip = tip_pose(tcp, self._spec)
+        if not self.gripper_open():
+            return False
+        if not self.moveto_pose(pose_from_matrix(raised(grasp_tip, self.approach_distance))):
+            return False
+        # Into contact: the fingers straddle the object, which MoveIt's pick also allows.
+        if not self.move_straight(grasp_tip, "approach", avoid_collisions=False):
+            return False
+        if not self.gripper_close():
+            return False
+        self._wait_for_grasp_fix(object_name, attached=True)
+        if object_name in self.scene.get_known_object_names():
+            if not self.arm.attach_object(object_name):
+                return self._fail(f"attaching '{object_name}' in the planning scene failed", self.scene.last_error)
+        self._held = _Held(name=object_name, height=geometry.height)
+        return True
+
+    def lift(self) -> bool:
+        """'after pick pose': lift the grasped object straight up by the approach distance."""
+        held = self._require_held("lift")
+        # Leaving the support surface: the object starts in contact with it.
+        if not self.move_straight(raised(self._current_tip(), self.approach_distance), "lift", avoid_collisions=False):
+            return False
+        # Where the object really sits in the hand (it may have shifted while closing and lifting).
+        obj = matrix_from_pose(self.get_object_state(held.name).object.pose)
+        tcp = self._current_tip() @ self._spec.tcp_in_tip
+        self._object_in_tcp = np.linalg.inv(tcp) @ obj[:, 3]
+        return True
+
+    def pick(self, object_name: str) -> bool:
+        """Grasp the simulator object from the top and lift it."""
+        return self.grasp(object_name) and self.lift()
+
+    def release_at(self, position: Sequence[float]) -> bool:
+        """'place pose': carry the held object above position [x, y, z] (its centre), descend and open."""
+        held = self._require_held("place")
+        target = self._check_position(position, held)
+        if self._object_in_tcp is None:
+            raise SixdofCommanderError("place: lift() the object first (its position in the hand is unknown)")
+        tcp = place_tcp_pose(target, self._object_in_tcp, self._spec.clearance)
+        place_tip = tip_pose(tcp, self._spec)
+        if not self.moveto_pose(pose_from_matrix(raised(place_tip, self.approach_distance))):
+            return False
+        if not self.move_straight(place_tip, "place descent", avoid_collisions=False):
+            return False
+        if not self.gripper_open():
+            return False
+        self._wait_for_grasp_fix(held.name, attached=False)
+        if held.name in self.scene.get_attached_object_names():
+            if not self.arm.detach_object(held.name):
+                return self._fail(f"detaching '{held.name}' in the planning scene failed", self.scene.last_error)
+        self._held = None
+        self._object_in_tcp = None
+        return True
+
+    def retreat(self) -> bool:
+        """'after place pose': move the open gripper straight up by the approach distance."""
+        return self.move_straight(
+            raised(self._current_tip(), self.approach_distance), "retreat", avoid_collisions=False
+        )
+
+    def place(self, position: Sequence[float]) -> bool:
+        """Put the held object down with its centre at [x, y, z] ([x, y]: resting on the table at z = 0)
+        and retreat."""
+        return self.release_at(position) and self.retreat()
+
+    def _require_held(self, what: str) -> _Held:
+        if self._held is None:
+            raise SixdofCommanderError(f"{what}: no object is held (pick one first)")
+        return self._held
+
+    @staticmethod
+    def _check_position(position: Sequence[float], held: _Held) -> np.ndarray:
+        if isinstance(position, str) or not isinstance(position, Sequence | np.ndarray) or len(position) not in (2, 3):
+            raise SixdofCommanderError(f"place position must be [x, y] or [x, y, z], got {position!r}")
+        values = [check_number(v, f"place position element {i}") for i, v in enumerate(position)]
+        if len(values) == 2:
+            values.append(held.height / 2.0)
+        return np.array(values)

@@ -1,0 +1,91 @@
+"""Gripper: open/close/set_position through the simulator's gripper_controller/gripper_cmd action."""
+
+from __future__ import annotations
+
+import actionlib
+
+from sixdof_msgs.msg import GripperCommandAction, GripperCommandGoal, GripperCommandResult
+
+from ._ros import ServerWaiter, load_robot_model, require_node, resolve
+from .exceptions import SixdofCommanderError
+from .goals import check_number
+from .robot_model import resolve_group
+
+
+class Gripper:
+    """A parallel gripper. Positions are finger openings (each finger's distance from the centre, metres)
+    of the group's actuated joint; open()/close() use the SRDF states 'open' and 'close' of the group."""
+
+    def __init__(
+        self,
+        ns: str = "",
+        group_name: str = "gripper",
+        action_name: str = "gripper_controller/gripper_cmd",
+        wait_for_servers: float = 5.0,
+    ) -> None:
+        require_node()
+        urdf, srdf = load_robot_model(ns)
+        group = resolve_group(urdf, srdf, group_name)
+        if len(group.joints) != 1:
+            raise SixdofCommanderError(
+                f"gripper group '{group_name}' must have one actuated joint (others mimic it), has {group.joint_names}"
+            )
+        self._joint = group.joints[0]
+        self._group = group
+        self._positions = {}
+        for state in ("open", "close"):
+            if state not in group.named_states or self._joint.name not in group.named_states[state]:
+                raise SixdofCommanderError(
+                    f"the SRDF has no state '{state}' of group '{group_name}' with joint '{self._joint.name}'"
+                )
+            self._positions[state] = group.named_states[state][self._joint.name]
+        self._client = actionlib.SimpleActionClient(resolve(ns, action_name), GripperCommandAction)
+        waiter = ServerWaiter(wait_for_servers)
+        waiter.action(self._client, resolve(ns, action_name))
+        waiter.check("Gripper")
+
+    @property
+    def joint_name(self) -> str:
+        """The actuated finger joint."""
+        return self._joint.name
+
+    @property
+    def open_position(self) -> float:
+        """Finger position of the SRDF state 'open'."""
+        return self._positions["open"]
+
+    @property
+    def close_position(self) -> float:
+        """Finger position of the SRDF state 'close'."""
+        return self._positions["close"]
+
+    def open(self, max_effort: float = 0.0) -> GripperCommandResult:
+        """Move the fingers to the 'open' state; the action result."""
+        return self.set_position(self.open_position, max_effort)
+
+    def close(self, max_effort: float = 0.0) -> GripperCommandResult:
+        """Close the fingers towards the 'close' state (they stall on a grasped object); the action result."""
+        return self.set_position(self.close_position, max_effort)
+
+    def set_position(self, position: float, max_effort: float = 0.0) -> GripperCommandResult:
+        """Move the fingers to `position` (within the joint's URDF limits) with at most max_effort newtons
+        (0: the joint's effort limit); waits for and returns the result (position, effort, stalled,
+        reached_goal)."""
+        value = check_number(position, "gripper position")
+        if not self._joint.lower <= value <= self._joint.upper:
+            raise SixdofCommanderError(
+                f"gripper position {value:.6g} is outside the limits [{self._joint.lower:.6g}, "
+                f"{self._joint.upper:.6g}] of '{self._joint.name}'"
+            )
+        effort = check_number(max_effort, "gripper max_effort")
+        if effort < 0.0:
+            raise SixdofCommanderError(f"gripper max_effort must be >= 0 (0: the joint's limit), got {effort}")
+        goal = GripperCommandGoal()
+        goal.command.position = value
+        goal.command.max_effort = effort
+        self._client.send_goal(goal)
+        self._client.wait_for_result()
+        result = self._client.get_result()
+        if result is None:
+            raise SixdofCommanderError(f"gripper command got no result (goal status {self._client.get_state()})")
+        return result

@@ -1,0 +1,130 @@
+"""URDF/SRDF parsing (xml.etree): groups, joint order, limits, named states, end effectors, touch links."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from sixdof_commander import SixdofCommanderError
+from sixdof_commander.planning_scene import default_touch_links
+from sixdof_commander.robot_model import parse_srdf, parse_urdf, resolve_group
+
+REPO_URDF = Path(__file__).resolve().parents[2] / "sixdof_description" / "urdf" / "sixdof.urdf"
+
+
+def test_arm_group_from_chain(arm):
+    assert arm.joint_names == [f"joint{i}" for i in range(1, 7)]
+    assert arm.tip_link == "link6"
+    assert arm.end_effector_link == "link6"
+    assert arm.end_effector_group == "gripper"
+    assert arm.links == tuple(f"link{i}" for i in range(1, 7))
+
+
+def test_limits_from_urdf(arm):
+    limits = {j.name: (j.lower, j.upper) for j in arm.joints}
+    assert limits["joint2"] == (-1.92, 1.92)
+    assert limits["joint3"] == (-2.6, 2.6)
+    assert limits["joint6"] == (-6.28319, 6.28319)
+
+
+def test_gripper_group_moves_one_joint_the_other_mimics(urdf, srdf):
+    gripper = resolve_group(urdf, srdf, "gripper")
+    assert gripper.joint_names == ["finger1_joint"]
+    assert gripper.links == ("finger1", "finger2")
+    assert gripper.named_states == {
+        "open": {"finger1_joint": 0.04, "finger2_joint": 0.04},
+        "close": {"finger1_joint": 0.0},
+    }
+    assert [j.name for j in gripper.all_joints] == ["finger1_joint", "finger2_joint"]
+
+
+def test_subgroups_are_merged(urdf, srdf):
+    both = resolve_group(urdf, srdf, "both")
+    assert both.joint_names == [f"joint{i}" for i in range(1, 7)] + ["finger1_joint"]
+
+
+def test_named_states_per_group(srdf):
+    assert sorted(srdf.group_states["arm"]) == ["home pose", "pick pose"]
+    assert srdf.group_states["arm"]["home pose"]["joint5"] == 1.5708
+    assert srdf.end_effectors[0].name == "hand" and srdf.end_effectors[0].parent_link == "link6"
+
+
+def test_fixed_transform_link6_to_tcp(urdf):
+    transform = urdf.fixed_transform("link6", "tcp")
+    np.testing.assert_allclose(transform[:3, 3], [0.0, 0.0, 0.1])
+    np.testing.assert_allclose(transform[:3, :3], np.eye(3))
+    with pytest.raises(SixdofCommanderError, match="moving joint 'joint6'"):
+        urdf.fixed_transform("link5", "tcp")
+
+
+def test_default_touch_links_are_the_hand(urdf, srdf):
+    assert default_touch_links(urdf, srdf, "link6") == ["link6", "palm", "tcp", "finger1", "finger2"]
+    assert default_touch_links(urdf, srdf, "link3") == ["link3"]
+    with pytest.raises(SixdofCommanderError, match="link 'hand' is not a link"):
+        default_touch_links(urdf, srdf, "hand")
+
+
+def test_unknown_group_is_rejected_naming_the_known_ones(urdf, srdf):
+    with pytest.raises(SixdofCommanderError, match=r"no group 'manipulator'; groups: \['arm', 'both', 'gripper'\]"):
+        resolve_group(urdf, srdf, "manipulator")
+
+
+@pytest.mark.parametrize(
+    ("srdf_text", "message"),
+    [
+        ("<robot><group name='g'><joint name='nope'/></group></robot>", "names joint 'nope', which is not in"),
+        ("<robot><group name='g'><chain base_link='link3' tip_link='link1'/></group></robot>", "not below link"),
+        (
+            "<robot><group name='g'><joint name='joint1'/></group>"
+            "<group_state name='s' group='g'><joint name='joint2' value='0'/></group_state></robot>",
+            r"state 's' of group 'g' names joints \['joint2'\]",
+        ),
+        ("<robot><group name='g'><group name='g'/></group></robot>", "contains itself"),
+    ],
+)
+def test_inconsistent_srdf_is_rejected(urdf, srdf_text, message):
+    with pytest.raises(SixdofCommanderError, match=message):
+        resolve_group(urdf, parse_srdf(srdf_text), "g")
+
+
+@pytest.mark.parametrize(
+    ("text", "parser", "message"),
+    [
+        ("<robot><link", parse_urdf, "cannot parse the URDF"),
+        ("<model/>", parse_urdf, r"root element is <model>"),
+        ("<robot><link name='a'/><link name='b'/></robot>", parse_urdf, "exactly one root link"),
+        ("<robot><group_state group='arm'/></robot>", parse_srdf, "has no 'name' attribute"),
+        (
+            "<robot><group_state name='x' group='a'><joint name='j' value='a'/></group_state></robot>",
+            parse_srdf,
+            "joint 'j' value must be 1 numbers, got 'a'",
+        ),
+        (
+            "<robot><group_state name='x' group='a'><joint name='j'/></group_state></robot>",
+            parse_srdf,
+            "joint 'j' value has no 'value' attribute",
+        ),
+        (
+            "<robot><link name='a'/><link name='b'/><joint name='j' type='revolute'><parent link='a'/>"
+            "<child link='b'/><limit lower='x'/></joint></robot>",
+            parse_urdf,
+            "limit lower must be 1 numbers",
+        ),
+    ],
+)
+def test_malformed_documents_are_rejected(text, parser, message):
+    with pytest.raises(SixdofCommanderError, match=message):
+        parser(text)
+
+
+def test_repository_urdf_has_the_design_joints():
+    urdf = parse_urdf(REPO_URDF.read_text())
+    assert urdf.root_link == "base_link"
+    chain = [j.name for j in urdf.chain("base_link", "link6")]
+    assert chain == [f"joint{i}" for i in range(1, 7)]
+    assert (urdf.joints["joint2"].lower, urdf.joints["joint2"].upper) == (-1.92, 1.92)
+    assert urdf.joints["joint6"].upper == pytest.approx(2 * math.pi, abs=1e-4)
+    assert urdf.joints["finger2_joint"].mimic == "finger1_joint"
+    # The grasp centre is rigidly on link6's z axis (design.md).
+    tcp = urdf.fixed_transform("link6", "tcp")
+    assert tcp[0, 3] == pytest.approx(0.0) and tcp[1, 3] == pytest.approx(0.0) and tcp[2, 3] > 0.0

@@ -111,7 +111,9 @@ def mass_properties(mesh: trimesh.Trimesh, density: float) -> tuple[float, np.nd
         raise cad.DesignError("a link solid is not a closed volume; cannot compute its mass properties")
     m = trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)
     m.density = density
-    return float(m.mass), np.asarray(m.center_mass), np.asarray(m.moment_inertia)
+    # Snapped to absolute grids (1 ug, 1 nm, 1e-12 kg m^2) so summation noise such as 1e-20 products of
+    # inertia never reaches the committed URDF.
+    return round(float(m.mass), 9), np.round(m.center_mass, 9) + 0.0, np.round(m.moment_inertia, 12) + 0.0
 
 
 def gripper_offsets(design: dict) -> dict:
@@ -119,7 +121,8 @@ def gripper_offsets(design: dict) -> dict:
     pad_lo, pad_hi = cad.pad_span(g["finger"], g["pad"])
     palm_z = float(g["palm"]["offset_z"])
     finger_z = float(g["palm"]["height_z"])
-    return {"palm_z": palm_z, "finger_z": finger_z, "tcp_z": palm_z + finger_z + (pad_lo + pad_hi) / 2.0}
+    tcp_z = round(palm_z + finger_z + (pad_lo + pad_hi) / 2.0, 9)
+    return {"palm_z": palm_z, "finger_z": finger_z, "tcp_z": tcp_z}
 
 
 def build_links(design: dict) -> dict:

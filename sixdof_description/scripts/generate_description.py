@@ -12,7 +12,8 @@ from pathlib import Path
 
 import rospkg
 
-from sixdof_description.generator import GENERATED_FILES, generate_files, write_files
+from sixdof_description.cad import DesignError
+from sixdof_description.generator import generate_files, write_files
 
 
 def package_dir() -> Path:
@@ -33,8 +34,11 @@ def main() -> int:
     out = args.output_dir or pkg
     srdf = out / "config" / "sixdof.srdf"
     previous = srdf.read_text(encoding="utf-8") if srdf.is_file() else None
-    files = generate_files(pkg / "config" / "design.yaml", previous)
-    assert sorted(files) == sorted(GENERATED_FILES)
+    try:
+        files = generate_files(pkg / "config" / "design.yaml", previous)
+    except DesignError as error:
+        print(f"generate_description.py: {error}", file=sys.stderr)
+        return 2
     if args.check:
         stale = [rel for rel, data in files.items() if not (out / rel).is_file() or (out / rel).read_bytes() != data]
         for rel in stale:

@@ -65,3 +65,13 @@ def test_unreachable_named_state_is_an_error(pkg, tmp_path):
     bad.write_text(yaml.safe_dump(design), encoding="utf-8")
     with pytest.raises(cad.DesignError, match="pick pose.*unreachable"):
         generate_files(bad, None)
+
+
+def test_missing_nested_parameter_is_named(pkg, tmp_path):
+    with open(pkg / "config" / "design.yaml", encoding="utf-8") as f:
+        design = yaml.safe_load(f)
+    del design["links"]["link2"]["elbow_r"]
+    bad = tmp_path / "design.yaml"
+    bad.write_text(yaml.safe_dump(design), encoding="utf-8")
+    with pytest.raises(cad.DesignError, match="elbow_r"):
+        generate_files(bad, None)

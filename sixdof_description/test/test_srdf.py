@@ -5,8 +5,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import trimesh
 from conftest import urdf_chain
 
+from sixdof_description import cad
 from sixdof_description.generator import build_robot, load_design, render_srdf
 from sixdof_description.kinematics import fk, frame, pose_error
 
@@ -109,3 +111,68 @@ def test_regeneration_keeps_hand_written_entries(pkg):
     assert regenerated.count('name="home pose"') == 1
     assert render_srdf(robot, regenerated) == regenerated
     np.testing.assert_equal(render_srdf(robot, base), base)
+
+
+def _link_frames(robot, q_arm, finger):
+    """Every link's pose in base_link at arm joints q_arm and finger opening `finger`."""
+    values = dict(zip(ARM, q_arm, strict=True))
+    values.update({"finger1_joint": finger, "finger2_joint": finger})
+    frames = {}
+    for link in robot.link_map:
+        if link == "base_link":
+            continue
+        kchain, specs = urdf_chain(robot, "base_link", link)
+        frames[link] = fk(kchain, [values[s.name] for s in specs])
+    return frames
+
+
+@pytest.mark.parametrize("state", ARM_STATES)
+def test_named_states_keep_the_robot_above_the_table(pkg, srdf, robot, state):
+    """Collision hulls of all moving links stay above z = 0; at 'pick pose' the open fingers clear the cube."""
+    q = [_states(srdf, "arm")[state][j] for j in ARM]
+    frames = _link_frames(robot, q, 0.04)
+    lowest = {}
+    for link, f in frames.items():
+        if robot.link_map[link].collision is None:
+            continue
+        hull = trimesh.load(pkg / "meshes" / "collision" / f"{link}.stl")
+        rot = np.array([[f.M[r, c] for c in range(3)] for r in range(3)])
+        points = hull.vertices @ rot.T + np.array([f.p[0], f.p[1], f.p[2]])
+        lowest[link] = points[:, 2].min()
+    assert min(lowest.values()) > 0.0, lowest
+    if state == "pick pose":
+        cube_top = 0.04
+        assert min(lowest["finger1"], lowest["finger2"]) > cube_top
+
+
+def _placed_hulls(pkg, robot, q_arm, finger):
+    hulls = {"base_link": trimesh.load(pkg / "meshes" / "collision" / "base_link.stl")}
+    for link, f in _link_frames(robot, q_arm, finger).items():
+        if robot.link_map[link].collision is None:
+            continue
+        transform = np.eye(4)
+        transform[:3, :3] = [[f.M[r, c] for c in range(3)] for r in range(3)]
+        transform[:3, 3] = [f.p[0], f.p[1], f.p[2]]
+        hulls[link] = trimesh.load(pkg / "meshes" / "collision" / f"{link}.stl")
+        hulls[link].apply_transform(transform)
+    return hulls
+
+
+@pytest.mark.parametrize("state", ARM_STATES)
+@pytest.mark.parametrize("gripper", ["open", "close"])
+def test_named_states_are_free_of_self_collision(pkg, srdf, robot, state, gripper):
+    """Collision hulls of links not allowed to touch do not overlap (manifold intersection volume)."""
+    allowed = {frozenset((d.get("link1"), d.get("link2"))) for d in srdf.findall("disable_collisions")}
+    q = [_states(srdf, "arm")[state][j] for j in ARM]
+    finger = _states(srdf, "gripper")[gripper]["finger1_joint"]
+    hulls = _placed_hulls(pkg, robot, q, finger)
+    names = sorted(hulls)
+    overlaps = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            if frozenset((a, b)) in allowed:
+                continue
+            volume = (cad.to_manifold(hulls[a]) ^ cad.to_manifold(hulls[b])).volume()
+            if volume > 1e-9:
+                overlaps.append((a, b, volume))
+    assert not overlaps

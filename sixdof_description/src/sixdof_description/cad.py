@@ -109,7 +109,8 @@ def hull(points_or_meshes) -> trimesh.Trimesh:
     return trimesh.convex.convex_hull(np.round(points, 9))
 
 
-def _manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold:
+def to_manifold(mesh: trimesh.Trimesh) -> manifold3d.Manifold:
+    """The mesh as a manifold3d solid (double precision); DesignError if it is not a closed manifold."""
     solid = manifold3d.Manifold(
         mesh=manifold3d.Mesh64(vert_properties=np.array(mesh.vertices.view(np.ndarray), dtype=np.float64, order="C"),
                                tri_verts=np.array(mesh.faces.view(np.ndarray), dtype=np.uint64, order="C")))
@@ -127,12 +128,12 @@ def _trimesh(solid: manifold3d.Manifold) -> trimesh.Trimesh:
 
 
 def union(meshes: Sequence[trimesh.Trimesh]) -> trimesh.Trimesh:
-    return _trimesh(manifold3d.Manifold.batch_boolean([_manifold(m) for m in meshes], manifold3d.OpType.Add))
+    return _trimesh(manifold3d.Manifold.batch_boolean([to_manifold(m) for m in meshes], manifold3d.OpType.Add))
 
 
 def difference(a: trimesh.Trimesh, b: Sequence[trimesh.Trimesh]) -> trimesh.Trimesh:
-    cutter = manifold3d.Manifold.batch_boolean([_manifold(m) for m in b], manifold3d.OpType.Add)
-    return _trimesh(_manifold(a) - cutter)
+    cutter = manifold3d.Manifold.batch_boolean([to_manifold(m) for m in b], manifold3d.OpType.Add)
+    return _trimesh(to_manifold(a) - cutter)
 
 
 def quantize(mesh: trimesh.Trimesh) -> trimesh.Trimesh:

@@ -469,7 +469,10 @@ def stl_bytes(mesh: trimesh.Trimesh) -> bytes:
 
 def generate_files(design_path: Path, previous_srdf: str | None) -> dict:
     """All generated files as {package-relative path: bytes}."""
-    robot = build_robot(load_design(design_path))
+    try:
+        robot = build_robot(load_design(design_path))
+    except KeyError as missing:
+        raise cad.DesignError(f"{design_path}: missing design parameter {missing}") from missing
     files = {
         "urdf/sixdof.urdf": render_urdf(robot).encode(),
         "config/sixdof.srdf": render_srdf(robot, previous_srdf).encode(),

@@ -18,7 +18,8 @@ using sixdof_core::PlacedShape;
 using sixdof_core::Shape;
 using sixdof_core::WorldObject;
 
-WorldObject object(const std::string& id, Shape::Type type, const Eigen::Vector3d& position, const Eigen::Vector3d& dims) {
+WorldObject object(const std::string& id, Shape::Type type, const Eigen::Vector3d& position,
+                   const Eigen::Vector3d& dims) {
   WorldObject o;
   o.id = id;
   o.pose.translation() = position;
@@ -94,12 +95,13 @@ int main(int argc, char** argv) {
 
   volatile bool sink = false;
   const double full = rate(seconds, [&](long i) { sink = scene.isColliding(states[i & 4095]); });
-  const double self = rate(seconds / 2, [&](long i) { sink = scene.isColliding(states[i & 4095], CollisionScope::kSelf); });
+  const double self =
+      rate(seconds / 2, [&](long i) { sink = scene.isColliding(states[i & 4095], CollisionScope::kSelf); });
   const double report = rate(seconds / 2, [&](long i) { sink = scene.checkCollision(states[i & 4095]).colliding; });
   const double dist = rate(seconds / 2, [&](long i) { sink = scene.distance(states[i & 4095]).found; });
   (void)sink;
-  std::printf("links %zu, world objects %zu, colliding states %.1f%%\n", scene.numLinks(), scene.worldObjectIds().size(),
-              100.0 * colliding / states.size());
+  std::printf("links %zu, world objects %zu, colliding states %.1f%%\n", scene.numLinks(),
+              scene.worldObjectIds().size(), 100.0 * colliding / states.size());
   std::printf("isColliding (self + world): %.0f checks/s (target >= 50000)\n", full);
   std::printf("isColliding (self only):    %.0f checks/s\n", self);
   std::printf("checkCollision (report):    %.0f checks/s\n", report);

@@ -28,7 +28,8 @@ void collectNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& pa
       const aiFace& face = mesh->mFaces[f];
       // Points and lines (possible in DAE files) carry no volume for collision.
       if (face.mNumIndices != 3) continue;
-      out->triangles.push_back({offset + static_cast<int>(face.mIndices[0]), offset + static_cast<int>(face.mIndices[1]),
+      out->triangles.push_back({offset + static_cast<int>(face.mIndices[0]),
+                                offset + static_cast<int>(face.mIndices[1]),
                                 offset + static_cast<int>(face.mIndices[2])});
     }
   }

@@ -320,7 +320,11 @@ struct CollisionScene::Impl {
         tag->shape = static_cast<int>(s);
         tag->tf = world[w].pose * shape.origin;
         tag->aabb = worldAabb(*shape.geometry, tag->tf);
-        auto object = std::make_unique<fcl::CollisionObjectd>(shape.geometry, tag->tf);
+        // The tree holds a private box proxy of the shape's world AABB: tight bounds for any rotation,
+        // and FCL's CollisionObject never touches the (possibly shared, cached) real geometry.
+        auto proxy = std::make_shared<fcl::Boxd>(tag->aabb.max_ - tag->aabb.min_);
+        auto object = std::make_unique<fcl::CollisionObjectd>(proxy, Eigen::Isometry3d(Eigen::Translation3d(
+                                                                          tag->aabb.center())));
         object->setUserData(tag.get());
         objects.push_back(object.get());
         world_tags.push_back(std::move(tag));
@@ -364,9 +368,6 @@ struct CollisionScene::Impl {
     bool colliding = false;
     bool done = false;
     std::size_t pairs = 0;
-    int robot_body = 0;
-    int robot_shape = 0;
-    const fcl::CollisionObjectd* probe = nullptr;
     std::map<std::pair<int, int>, std::size_t> world_pair_contacts;
   };
 
@@ -423,44 +424,45 @@ struct CollisionScene::Impl {
     }
   }
 
-  static bool worldCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
-    auto* q = static_cast<Query*>(data);
-    const Impl& scene = *q->scene;
-    const fcl::CollisionObjectd* other = o1 == q->probe ? o2 : o1;
-    const auto* tag = static_cast<const WorldShapeTag*>(other->getUserData());
-    if (!scene.robot_world_checked[q->robot_body * scene.world.size() + tag->body]) return false;
-    const ShapePose& pose = (*q->poses)[scene.shape_offset[q->robot_body] + q->robot_shape];
-    if (!pose.aabb.overlap(tag->aabb)) return false;
-    const Body& rb = scene.robot(q->robot_body);
-    const Body& wb = scene.world[tag->body];
+  // Robot shape r/s against the world shape of `tag` (broad phase already passed).
+  bool worldPair(Query* q, int r, int s, const WorldShapeTag& tag) const {
+    if (!robot_world_checked[r * world.size() + tag.body]) return false;
+    const ShapePose& pose = (*q->poses)[shape_offset[r] + s];
+    if (!pose.aabb.overlap(tag.aabb)) return false;
+    const Body& rb = robot(r);
+    const Body& wb = world[tag.body];
     std::vector<fcl::Contactd> contacts;
-    if (!narrowPhase(rb.shapes[q->robot_shape], pose.tf, wb.shapes[tag->shape], tag->tf,
-                     q->request->max_contacts_per_pair, q->report ? &contacts : nullptr)) {
+    if (!narrowPhase(rb.shapes[s], pose.tf, wb.shapes[tag.shape], tag.tf, q->request->max_contacts_per_pair,
+                     q->report ? &contacts : nullptr)) {
       return false;
     }
     if (!q->report) {
-      scene.finishPair(q);
+      finishPair(q);
       return true;
     }
-    auto [it, first] = q->world_pair_contacts.emplace(std::make_pair(q->robot_body, tag->body), 0);
+    auto [it, first] = q->world_pair_contacts.emplace(std::make_pair(r, tag.body), 0);
     record(q, rb, wb, contacts, &it->second);
-    if (first) scene.finishPair(q);
+    if (first) finishPair(q);
     return q->done;
+  }
+
+  // Walks the world's AABB tree read-only (the manager's own query API would build a temporary
+  // fcl::CollisionObject, which recomputes the shared geometry's local AABB: a write on every query).
+  bool visitWorld(Query* q, int r, int s, const fcl::detail::NodeBase<fcl::AABBd>* node) const {
+    if (node == nullptr || !node->bv.overlap((*q->poses)[shape_offset[r] + s].aabb)) return false;
+    if (node->isLeaf()) {
+      const auto* object = static_cast<const fcl::CollisionObjectd*>(node->data);
+      return worldPair(q, r, s, *static_cast<const WorldShapeTag*>(object->getUserData()));
+    }
+    return visitWorld(q, r, s, node->children[0]) || visitWorld(q, r, s, node->children[1]);
   }
 
   void worldCollision(Query* q) const {
     if (world.empty()) return;
-    const auto& sp = *q->poses;
+    const auto* root = manager->getTree().getRoot();
     for (int r = 0, n = robotCount(); r < n && !q->done; ++r) {
       if (!robot_has_world_pair[r]) continue;
-      const Body& body = robot(r);
-      for (std::size_t s = 0; s < body.shapes.size() && !q->done; ++s) {
-        fcl::CollisionObjectd probe(body.shapes[s].geometry, sp[shape_offset[r] + s].tf);
-        q->robot_body = r;
-        q->robot_shape = static_cast<int>(s);
-        q->probe = &probe;
-        manager->collide(&probe, q, &Impl::worldCallback);
-      }
+      for (std::size_t s = 0; s < robot(r).shapes.size() && !q->done; ++s) visitWorld(q, r, static_cast<int>(s), root);
     }
   }
 

@@ -141,6 +141,8 @@ class Solver {
     for (Eigen::Index j = 0; j < m; ++j) {
       if (std::abs(d1[j]) > 1e-12) x = std::min(x, std::pow(limits_.velocity[j] / d1[j], 2));
     }
+    // On a straight segment any x allows u = 0.
+    if (d2.isZero()) return x;
     // u must lie in every joint's band [(-A - b x) / a, (A - b x) / a]; bands with a = 0 bound x directly.
     for (Eigen::Index j = 0; j < m; ++j) {
       const double aj = d1[j], bj = d2[j], Aj = limits_.acceleration[j];
@@ -186,21 +188,45 @@ class Solver {
     return ok;
   }
 
-  // Largest x_i <= limit from which interval i can reach some x_{i+1} <= next_upper. The feasible x_i
-  // form an interval containing 0 (projection of a convex set through (0, 0)), so bisection finds it.
-  double maxStart(std::size_t i, double limit, double next_upper) const {
-    auto feasible = [&](double x) {
-      double lo = 0.0, hi = next_upper;
-      return transition(i, x, &lo, &hi);
+  // Largest x_i <= limit from which interval i can reach some x_{i+1} in [0, next_upper]. Every joint
+  // constraint reads -A <= p x_{i+1} + r x_i <= A, i.e. bounds x_{i+1} between lines in x_i; the answer
+  // is the largest x_i where every lower line stays under every upper line (a 2-D LP solved exactly).
+  double maxStart(std::size_t i, double limit, double next_upper) {
+    if (limit == 0.0) return 0.0;
+    const double h = 2.0 * step(i);
+    const Eigen::VectorXd& a0 = ends_[i].d1[0];
+    const Eigen::VectorXd& b0 = ends_[i].d2[0];
+    const Eigen::VectorXd& a1 = ends_[i].d1[1];
+    const Eigen::VectorXd& b1 = ends_[i].d2[1];
+    // Lines x_{i+1} = c + m x_i.
+    std::vector<std::pair<double, double>>& lower = lower_lines_;
+    std::vector<std::pair<double, double>>& upper = upper_lines_;
+    lower.assign(1, {0.0, 0.0});
+    upper.assign(1, {next_upper, 0.0});
+    double best = limit;
+    auto add = [&](double p, double r, double A) {
+      if (std::abs(p) < 1e-14) {
+        if (std::abs(r) > 1e-14) best = std::min(best, A / std::abs(r));
+        return;
+      }
+      std::pair<double, double> lo{-A / p, -r / p}, hi{A / p, -r / p};
+      if (p < 0.0) std::swap(lo, hi);
+      lower.push_back(lo);
+      upper.push_back(hi);
     };
-    // The limit is finite: the unit tangent has a component of at least 1/sqrt(joints).
-    if (limit == 0.0 || feasible(limit)) return limit;
-    double good = 0.0, bad = limit;
-    for (int iteration = 0; iteration < 60 && bad - good > 1e-12 * (1.0 + bad); ++iteration) {
-      const double mid = 0.5 * (good + bad);
-      (feasible(mid) ? good : bad) = mid;
+    for (Eigen::Index j = 0; j < a0.size(); ++j) {
+      const double A = limits_.acceleration[j];
+      add(a0[j] / h, b0[j] - a0[j] / h, A);
+      add(a1[j] / h + b1[j], -a1[j] / h, A);
     }
-    return good;
+    for (const auto& [lc, lm] : lower) {
+      for (const auto& [hc, hm] : upper) {
+        // lc + lm x <= hc + hm x; it holds at x = 0 ((0, 0) is feasible), so only a rising gap bounds x.
+        const double slope = lm - hm;
+        if (slope > 1e-14) best = std::min(best, (hc - lc) / slope);
+      }
+    }
+    return std::max(0.0, best);
   }
 
   static std::vector<double> toStd(const Eigen::VectorXd& v) {
@@ -232,6 +258,8 @@ class Solver {
   std::vector<IntervalEnds> ends_;
   std::vector<double> x_;
   std::vector<double> u_;
+  std::vector<std::pair<double, double>> lower_lines_;  // maxStart's scratch space
+  std::vector<std::pair<double, double>> upper_lines_;
 };
 
 std::string checkInputs(const std::vector<std::string>& names, const std::vector<std::vector<double>>& waypoints,

@@ -1,6 +1,8 @@
 #include "sixdof_core/collision.h"
 
+#include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fcl/fcl.h>
 #include <map>
@@ -71,41 +73,59 @@ std::string describe(const Shape& shape) {
 SceneStatus error(SceneStatusCode code, const std::string& message) { return SceneStatus{code, message}; }
 
 GeometryPtr meshGeometry(const MeshData& mesh, double scale, double padding) {
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const auto& v : mesh.vertices) centroid += v;
-  centroid /= static_cast<double>(mesh.vertices.size());
-  // Padding pushes each vertex away from the centroid: exact for spheres, a close outer bound for convex
-  // collision meshes (what the CAD model provides).
   auto vertices = std::make_shared<std::vector<Eigen::Vector3d>>();
   vertices->reserve(mesh.vertices.size());
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& v : mesh.vertices) {
-    Eigen::Vector3d p = v * scale;
-    const Eigen::Vector3d dir = p - centroid * scale;
-    if (padding > 0.0 && dir.norm() > 1e-12) p += dir.normalized() * padding;
-    vertices->push_back(p);
+    vertices->push_back(v * scale);
+    centroid += v * scale;
+  }
+  centroid /= static_cast<double>(mesh.vertices.size());
+  // Convex meshes get outward winding from the centroid; other meshes keep the file's winding.
+  std::vector<std::array<int, 3>> triangles = mesh.triangles;
+  if (mesh.convex) {
+    for (auto& t : triangles) {
+      const Eigen::Vector3d& a = (*vertices)[t[0]];
+      const Eigen::Vector3d n = ((*vertices)[t[1]] - a).cross((*vertices)[t[2]] - a);
+      if (n.dot(a - centroid) < 0.0) std::swap(t[1], t[2]);
+    }
+  }
+  if (padding > 0.0) {
+    // Each vertex moves so that every incident face plane moves out by the padding (least squares over
+    // the face normals: exact where at most three planes meet, as on boxes and CAD hulls), so the padded
+    // mesh contains the surface offset by the padding instead of shrinking towards the corners.
+    std::vector<Eigen::Matrix3d> normal_sum(vertices->size(), Eigen::Matrix3d::Zero());
+    std::vector<Eigen::Vector3d> rhs(vertices->size(), Eigen::Vector3d::Zero());
+    for (const auto& t : triangles) {
+      const Eigen::Vector3d& a = (*vertices)[t[0]];
+      Eigen::Vector3d n = ((*vertices)[t[1]] - a).cross((*vertices)[t[2]] - a);
+      if (n.norm() < 1e-15) continue;
+      n.normalize();
+      for (int k : t) {
+        normal_sum[k] += n * n.transpose();
+        rhs[k] += n;
+      }
+    }
+    for (std::size_t k = 0; k < vertices->size(); ++k) {
+      Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix3d> solver(normal_sum[k]);
+      solver.setThreshold(1e-6);
+      (*vertices)[k] += padding * solver.solve(rhs[k]);
+    }
   }
   if (mesh.convex) {
     auto faces = std::make_shared<std::vector<int>>();
-    faces->reserve(mesh.triangles.size() * 4);
-    for (const auto& t : mesh.triangles) {
-      const Eigen::Vector3d& a = (*vertices)[t[0]];
-      const Eigen::Vector3d n = ((*vertices)[t[1]] - a).cross((*vertices)[t[2]] - a);
-      const bool outward = n.dot(a - centroid * scale) >= 0.0;
-      faces->push_back(3);
-      faces->push_back(t[0]);
-      faces->push_back(outward ? t[1] : t[2]);
-      faces->push_back(outward ? t[2] : t[1]);
-    }
-    auto convex = std::make_shared<fcl::Convexd>(vertices, static_cast<int>(mesh.triangles.size()), faces);
+    faces->reserve(triangles.size() * 4);
+    for (const auto& t : triangles) faces->insert(faces->end(), {3, t[0], t[1], t[2]});
+    auto convex = std::make_shared<fcl::Convexd>(vertices, static_cast<int>(triangles.size()), faces);
     convex->computeLocalAABB();
     return convex;
   }
   auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices->size()));
-  bvh->addSubModel(*vertices, triangles);
+  std::vector<fcl::Triangle> fcl_triangles;
+  fcl_triangles.reserve(triangles.size());
+  for (const auto& t : triangles) fcl_triangles.emplace_back(t[0], t[1], t[2]);
+  bvh->beginModel(static_cast<int>(fcl_triangles.size()), static_cast<int>(vertices->size()));
+  bvh->addSubModel(*vertices, fcl_triangles);
   bvh->endModel();
   bvh->computeLocalAABB();
   return bvh;

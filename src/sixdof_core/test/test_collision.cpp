@@ -418,6 +418,26 @@ TEST(CollisionScene, PaddingAndScaleGrowLinks) {
   EXPECT_EQ(scene.setLinkScale("probe", 0.0).code, SceneStatusCode::kInvalidValue);
   EXPECT_TRUE(std::isnan(scene.linkPadding("nope")));
 
+  // A padded convex mesh link grows by the padding on every face (corners move out diagonally).
+  LinkGeometry cube_link;
+  cube_link.link_name = "cube_link";
+  cube_link.shapes.push_back(PlacedShape{mesh(writeCubeObj("padded_cube.obj")), Eigen::Isometry3d::Identity()});
+  CollisionScene cube_scene({cube_link}, {});
+  ASSERT_TRUE(cube_scene.addWorldObject(object("ball", sphere(0.05), at(0.3, 0, 0))).ok());
+  const std::vector<Eigen::Isometry3d> origin = {at(0, 0, 0)};
+  const Eigen::Isometry3d facing_face = at(0.3, 0, 0), facing_corner = at(-0.3, -0.3, -0.3);
+  auto gapTo = [&](const Eigen::Isometry3d& ball_pose) {
+    EXPECT_TRUE(cube_scene.moveWorldObject("ball", ball_pose).ok());
+    return cube_scene.distance(origin).distance;
+  };
+  const double corner_gap = std::sqrt(3.0) * 0.2 - 0.05;
+  EXPECT_NEAR(gapTo(facing_face), 0.15, kDistanceTolerance);
+  EXPECT_NEAR(gapTo(facing_corner), corner_gap, kDistanceTolerance);
+  ASSERT_TRUE(cube_scene.setLinkPadding("cube_link", 0.02).ok());
+  EXPECT_NEAR(gapTo(facing_face), 0.13, kDistanceTolerance);
+  // The padded corner moves out by 0.02 along each face normal: sqrt(3) * 0.02 along the diagonal.
+  EXPECT_NEAR(gapTo(facing_corner), corner_gap - std::sqrt(3.0) * 0.02, kDistanceTolerance);
+
   // On the arm: padding turns a near miss into a self collision.
   const auto arm = loadArm();
   CollisionScene arm_scene(arm.links, disabledPairs(arm));

@@ -92,6 +92,8 @@ struct CollisionSceneOptions {
 };
 
 // Robot-vs-robot and robot-vs-world collision checking on FCL (double precision).
+// Meshes: a convex mesh becomes an fcl::Convex (a solid, with penetration depths); any other mesh an
+// OBBRSS BVH, which is a surface as in MoveIt: a body entirely inside it does not touch it.
 // Link poses are passed per query (world frame = base_link), in the order of the LinkGeometry list given
 // at construction, so the scene depends on no robot-model class. Queries are const and keep no per-call
 // state: one scene can serve several threads while nobody modifies it.

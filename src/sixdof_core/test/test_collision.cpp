@@ -328,6 +328,17 @@ TEST(CollisionScene, WorldMeshesHitAndMiss) {
   EXPECT_FALSE(scene.isColliding(probeAt(0.3, 0.1, 0.26)));  // 1 cm above the top face
   EXPECT_FALSE(scene.isColliding(probeAt(0.3, 0.3, 0.1)));  // in the notch, 0.1 from both inner faces
   EXPECT_NEAR(scene.distance(probeAt(0.3, 0.3, 0.1)).distance, 0.05, kDistanceTolerance);
+  // Moved and turned 90 deg about z: the notch is now [-0.4,-0.2]x[0.2,0.4] around (1, 0, 0).
+  Eigen::Isometry3d moved = at(1, 0, 0);
+  moved.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  ASSERT_TRUE(scene.moveWorldObject("ell", moved).ok());
+  EXPECT_FALSE(scene.isColliding(probeAt(0.7, 0.3, 0.1)));
+  EXPECT_TRUE(scene.isColliding(probeAt(0.83, 0.3, 0.1)));  // through the inner face x = 0.8
+  const DistanceReport above = scene.distance(probeAt(0.9, 0.1, 0.3));  // 0.1 above the top face
+  EXPECT_NEAR(above.distance, 0.05, kDistanceTolerance);
+  EXPECT_EQ(above.body2, "ell");
+  EXPECT_NEAR((above.point1 - Eigen::Vector3d(0.9, 0.1, 0.25)).norm(), 0.0, 1e-3);
+  EXPECT_NEAR((above.point2 - Eigen::Vector3d(0.9, 0.1, 0.2)).norm(), 0.0, 1e-3);
 
   Shape broken = mesh(testing::TempDir() + "missing.stl");
   const SceneStatus missing = scene.addWorldObject(object("ghost", broken, at(0, 0, 0)));
@@ -348,10 +359,26 @@ TEST(CollisionScene, ContactReportNamesBodiesAndDepth) {
   EXPECT_EQ(c.body2, "box");
   EXPECT_EQ(c.type2, BodyType::kWorldObject);
   EXPECT_NEAR(c.depth, 0.02, kDistanceTolerance);
-  EXPECT_NEAR(std::abs(c.normal.x()), 1.0, 1e-3);
+  EXPECT_NEAR(c.normal.x(), -1.0, 1e-3);  // from the probe (x = 0.13) towards the box
   EXPECT_NEAR(c.position.x(), 0.09, 0.011);  // within the overlap slab [0.08, 0.1]
   const DistanceReport d = scene.distance(probeAt(0.13, 0, 0));
   EXPECT_NEAR(d.distance, -0.02, kDistanceTolerance);
+
+  // The normal points from body1 (the robot) to body2 for every geometry pairing FCL dispatches
+  // differently (specialised, GJK, convex mesh, BVH mesh).
+  ASSERT_TRUE(scene.removeWorldObject("box").ok());
+  const std::vector<Shape> others = {box(0.2, 0.2, 0.2), sphere(0.1), cylinder(0.1, 0.2), mesh(writeCubeObj("n.obj")),
+                                     mesh(writeLStl("n.stl"))};
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    ASSERT_TRUE(scene.addWorldObject(object("other", others[k], at(0, 0, 0))).ok());
+    // The L mesh's face y = 0 spans x, z in [0, 0.1]: approach it from -y there; the rest from +x.
+    const auto pose = k == 4 ? probeAt(0.05, -0.04, 0.05) : probeAt(0.13, 0, 0);
+    const Eigen::Vector3d towards = k == 4 ? Eigen::Vector3d(0, 1, 0) : Eigen::Vector3d(-1, 0, 0);
+    const CollisionReport r = scene.checkCollision(pose);
+    ASSERT_EQ(r.contacts.size(), 1u) << k;
+    EXPECT_GT(r.contacts[0].normal.dot(towards), 0.9) << k << ": " << r.contacts[0].normal.transpose();
+    ASSERT_TRUE(scene.removeWorldObject("other").ok());
+  }
 }
 
 TEST(CollisionScene, DistanceMatchesAnalytic) {

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""rviz with the sixdof_rviz plugins and the shipped config, on the X display given by xvfb-run.
+
+Starts rviz itself (after subscribing to /rosout, so that no early message is missed), then checks that every
+plugin is live on the ROS graph, that a published DisplayTrajectory is drawn by the ghost robot at the
+trajectory's final state, and that rviz logged no error.
+"""
+
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+import rosgraph
+import rospy
+import rostest
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import JointState
+from trajectory_msgs.msg import JointTrajectoryPoint
+
+from sixdof_msgs.msg import DisplayTrajectory, RobotTrajectory
+
+ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
+ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
+# rviz prints this when the optional package media_export is missing; it is harmless.
+HARMLESS = ("no such package media_export", "error while executing command")
+
+
+def read_screenshot(path: str) -> np.ndarray:
+    """Takes a screenshot of the whole X display and returns it as an HxWx3 uint8 array."""
+    subprocess.run(["import", "-window", "root", path], check=True)
+    ppm = subprocess.run(["convert", path, "-depth", "8", "ppm:-"], check=True, capture_output=True).stdout
+    # Binary PPM: "P6\n<w> <h>\n<max>\n" then the pixels.
+    header = ppm.split(b"\n", 3)
+    width, height = (int(v) for v in header[1].split())
+    return np.frombuffer(header[3], dtype=np.uint8, count=width * height * 3).reshape(height, width, 3)
+
+
+def ghost_mask(image: np.ndarray) -> np.ndarray:
+    """Pixels in the PlannedPath robot's colour (220, 0, 220 in the config): red and blue alike and high,
+    green low, whatever the shading. The goal robot (orange), the robot model (grey) and the background are not."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 70) & (b > 70) & (g * 2 < np.minimum(r, b)) & (np.abs(r - b) * 3 < np.maximum(r, b))
+
+
+def trajectory_to(joint1: float) -> DisplayTrajectory:
+    msg = DisplayTrajectory()
+    msg.model_id = "sixdof"
+    msg.trajectory_start.joint_state.name = ALL_JOINTS
+    msg.trajectory_start.joint_state.position = [0.0] * len(ALL_JOINTS)
+    trajectory = RobotTrajectory()
+    trajectory.joint_trajectory.joint_names = ARM_JOINTS
+    for i in range(5):
+        s = i / 4.0
+        point = JointTrajectoryPoint()
+        point.positions = [joint1 * s, 0.5 * s, 0.3 * s, 0.0, 0.4 * s, 0.0]
+        point.time_from_start = rospy.Duration(0.25 * i)
+        trajectory.joint_trajectory.points.append(point)
+    msg.trajectory.append(trajectory)
+    return msg
+
+
+class RvizPluginsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls) -> None:
+        rospy.init_node("test_rviz_plugins")
+        cls.log_messages = []
+        rospy.Subscriber("/rosout", Log, cls.log_messages.append, queue_size=1000)
+        # The simulator is not part of this test: the current state is published here.
+        cls.joint_pub = rospy.Publisher("joint_states", JointState, queue_size=1)
+        cls.timer = rospy.Timer(rospy.Duration(0.1), cls.publish_joint_states)
+        cls.path_pub = rospy.Publisher("move_group/display_planned_path", DisplayTrajectory, queue_size=1, latch=True)
+        cls.shot_dir = os.environ.get("SIXDOF_RVIZ_SHOT_DIR") or tempfile.mkdtemp(prefix="sixdof_rviz_shots_")
+        os.makedirs(cls.shot_dir, exist_ok=True)
+        rospy.sleep(1.0)  # let /rosout connect before rviz starts talking
+        cls.rviz_log_path = os.path.join(cls.shot_dir, "rviz.log")
+        cls.rviz_log = open(cls.rviz_log_path, "w")
+        cls.rviz = subprocess.Popen(
+            ["rosrun", "rviz", "rviz", "-d", rospy.get_param("~rviz_config"), "__name:=rviz"],
+            stdout=cls.rviz_log,
+            stderr=subprocess.STDOUT,
+        )
+
+    @classmethod
+    def tearDownClass(cls) -> None:
+        cls.timer.shutdown()
+        cls.rviz.terminate()
+        cls.rviz.wait()
+        cls.rviz_log.close()
+
+    @classmethod
+    def publish_joint_states(cls, _event) -> None:
+        msg = JointState()
+        msg.header.stamp = rospy.Time.now()
+        msg.name = ALL_JOINTS
+        msg.position = [0.0] * len(ALL_JOINTS)
+        cls.joint_pub.publish(msg)
+
+    def wait_for(self, condition, what: str, tries: int = 600) -> None:
+        for _ in range(tries):
+            self.assertIsNone(self.rviz.poll(), "rviz exited; see " + self.rviz_log_path)
+            if condition():
+                return
+            rospy.sleep(0.1)
+        self.fail("timed out waiting for " + what)
+
+    def graph_has(self, topic: str, publishes: bool) -> bool:
+        publishers, subscribers, _ = rosgraph.Master("/test_rviz_plugins").getSystemState()
+        for name, nodes in publishers if publishes else subscribers:
+            if name == topic and "/rviz" in nodes:
+                return True
+        return False
+
+    def ghost_pixels(self, name: str, baseline: np.ndarray, unlike: np.ndarray) -> np.ndarray:
+        """Mask of ghost-coloured pixels that were not in the baseline, once the drawing differs from `unlike`
+        (the previous picture) and is still."""
+        previous = None
+        for _ in range(100):
+            mask = ghost_mask(read_screenshot(os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
+            changed = (mask ^ unlike).sum() > 500
+            if changed and previous is not None and mask.sum() > 500 and (mask ^ previous).sum() < 50:
+                return mask
+            previous = mask
+            rospy.sleep(0.3)
+        self.fail(f"the ghost robot of {name} never settled ({0 if previous is None else previous.sum()} pixels)")
+
+    def test_1_plugins_live(self) -> None:
+        # PlannedPath subscribes to the trajectory topic, GoalState publishes the goal, the panel's logic reads it.
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_state", True), "GoalState goal publisher")
+        self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_state", False), "panel goal subscription")
+        self.wait_for(lambda: self.graph_has("/joint_states", False), "joint_states subscription")
+        goal = rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
+        # The goal starts at the current state (all zero here).
+        self.assertEqual(sorted(goal.name), sorted(ALL_JOINTS))
+        self.assertTrue(all(abs(p) < 1e-9 for p in goal.position))
+
+    def test_2_ghost_draws_the_trajectory(self) -> None:
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        rospy.sleep(3.0)  # a few frames with the robot model and goal marker drawn
+        baseline = ghost_mask(read_screenshot(os.path.join(self.shot_dir, "0_before.png")))
+        self.assertLess(baseline.sum(), 200, "ghost colour on screen before any trajectory")
+        self.path_pub.publish(trajectory_to(1.2))
+        plus = self.ghost_pixels("1_joint1_plus", baseline, unlike=np.zeros_like(baseline))
+        self.path_pub.publish(trajectory_to(-1.2))
+        minus = self.ghost_pixels("2_joint1_minus", baseline, unlike=plus)
+        # The view looks at the robot from +x with z up, so +y is screen-right: joint1 > 0 swings the arm there.
+        plus_column = np.argwhere(plus)[:, 1].mean()
+        minus_column = np.argwhere(minus)[:, 1].mean()
+        self.assertGreater(plus_column, minus_column + 100)
+
+    def test_3_no_errors_logged(self) -> None:
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        errors = [m.msg for m in self.log_messages if m.name == "/rviz" and m.level >= Log.ERROR]
+        self.assertEqual(errors, [])
+        with open(self.rviz_log_path) as log:
+            lines = [line.strip() for line in log if ("ERROR" in line or "FATAL" in line or "rror" in line)]
+        self.assertEqual([line for line in lines if not any(h in line for h in HARMLESS)], [])
+
+
+if __name__ == "__main__":
+    rostest.rosrun("sixdof_rviz", "test_rviz_plugins", RvizPluginsTest)

@@ -2,6 +2,8 @@
 
 #include <OgreQuaternion.h>
 #include <OgreVector3.h>
+#include <ros/console.h>
+#include <rviz/display.h>
 #include <rviz/display_context.h>
 #include <rviz/frame_manager.h>
 #include <rviz/robot/link_updater.h>
@@ -32,6 +34,11 @@ class PoseMapUpdater : public rviz::LinkUpdater {
 };
 
 }  // namespace
+
+void reportConfigError(rviz::Display* display, const std::string& status_name, const std::string& text) {
+  display->setStatusStd(rviz::StatusProperty::Error, status_name, text);
+  ROS_ERROR_STREAM(display->getNameStd() << ": " << text);
+}
 
 GhostRobot::GhostRobot(Ogre::SceneNode* parent_node, rviz::DisplayContext* context, const std::string& name,
                        rviz::Property* parent_property, const urdf::ModelInterface& urdf,

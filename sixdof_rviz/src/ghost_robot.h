@@ -12,12 +12,16 @@ namespace Ogre {
 class SceneNode;
 }
 namespace rviz {
+class Display;
 class DisplayContext;
 class Property;
 class Robot;
 }  // namespace rviz
 
 namespace sixdof_rviz {
+
+// Sets an Error status on `display` and logs it once: configuration errors must show in rviz's log too.
+void reportConfigError(rviz::Display* display, const std::string& status_name, const std::string& text);
 
 // A robot drawn with rviz's own robot rendering (the URDF's visual meshes) at a given joint state, in one colour.
 class GhostRobot {

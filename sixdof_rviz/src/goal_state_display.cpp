@@ -102,20 +102,20 @@ void GoalStateDisplay::loadModel() {
   const std::string urdf_param = robot_description_property_->getStdString();
   const std::string srdf_param = semantic_description_property_->getStdString();
   if (!update_nh_.getParam(urdf_param, urdf_xml) || !update_nh_.getParam(srdf_param, srdf_xml)) {
-    setStatusStd(rviz::StatusProperty::Error, "Robot",
+    reportConfigError(this, "Robot",
                  "parameters '" + urdf_param + "' and '" + srdf_param + "' must be set");
     return;
   }
   try {
     model_ = std::make_shared<SemanticModel>(urdf_xml, srdf_xml);
   } catch (const std::invalid_argument& e) {
-    setStatusStd(rviz::StatusProperty::Error, "Robot", e.what());
+    reportConfigError(this, "Robot", e.what());
     return;
   }
   group_ = group_property_->getStdString();
   const PlanningGroup* group = model_->group(group_);
   if (group == nullptr || group->tip_link.empty()) {
-    setStatusStd(rviz::StatusProperty::Error, "Robot",
+    reportConfigError(this, "Robot",
                  "planning group '" + group_ + "' is not a chain group of the SRDF (needed for its tip link)");
     model_.reset();
     return;
@@ -190,7 +190,7 @@ void GoalStateDisplay::placeMarker() {
   free.always_visible = true;
   msg.controls.push_back(free);
   if (!marker_->processMessage(msg)) {
-    setStatusStd(rviz::StatusProperty::Error, "Marker", "rviz rejected the interactive marker");
+    reportConfigError(this, "Marker", "rviz rejected the interactive marker");
   }
 }
 

@@ -88,13 +88,13 @@ void MotionPlanningPanel::onInitialize() {
   std::string urdf_xml;
   std::string srdf_xml;
   if (!nh.getParam("robot_description", urdf_xml) || !nh.getParam("robot_description_semantic", srdf_xml)) {
-    showStatus({PanelStatus::Level::kError, "parameters robot_description and robot_description_semantic must be set"});
+    initFailed("parameters robot_description and robot_description_semantic must be set");
     return;
   }
   try {
     model_ = std::make_shared<SemanticModel>(urdf_xml, srdf_xml);
   } catch (const std::invalid_argument& e) {
-    showStatus({PanelStatus::Level::kError, e.what()});
+    initFailed(e.what());
     return;
   }
   logic_ = std::make_unique<PlanningPanelLogic>(nh, model_, [this](const PanelStatus& s) { showStatus(s); });
@@ -106,6 +106,11 @@ void MotionPlanningPanel::onInitialize() {
     button->setEnabled(true);
   }
   showStatus({PanelStatus::Level::kInfo, "Ready"});
+}
+
+void MotionPlanningPanel::initFailed(const std::string& text) {
+  showStatus({PanelStatus::Level::kError, text});
+  ROS_ERROR_STREAM("MotionPlanningPanel: " << text);
 }
 
 void MotionPlanningPanel::applySavedChoices() {

@@ -38,6 +38,7 @@ class MotionPlanningPanel : public rviz::Panel {
   GoalSpec goalSpec() const;
   void showStatus(const PanelStatus& status);
   void applySavedChoices();
+  void initFailed(const std::string& text);
 
   QComboBox* group_combo_;
   QComboBox* goal_source_combo_;

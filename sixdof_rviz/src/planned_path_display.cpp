@@ -60,12 +60,12 @@ void PlannedPathDisplay::loadRobot() {
   std::string urdf_xml;
   const std::string param = robot_description_property_->getStdString();
   if (!update_nh_.getParam(param, urdf_xml)) {
-    setStatusStd(rviz::StatusProperty::Error, "Robot", "parameter '" + param + "' is not set");
+    reportConfigError(this, "Robot", "parameter '" + param + "' is not set");
     return;
   }
   urdf_ = urdf::parseURDF(urdf_xml);
   if (!urdf_ || !urdf_->getRoot()) {
-    setStatusStd(rviz::StatusProperty::Error, "Robot", "parameter '" + param + "' holds no valid URDF");
+    reportConfigError(this, "Robot", "parameter '" + param + "' holds no valid URDF");
     return;
   }
   fk_ = std::make_shared<LinkPoses>(urdf_);
@@ -102,14 +102,14 @@ void PlannedPathDisplay::updateTopic() {
 void PlannedPathDisplay::subscribe() {
   const std::string topic = topic_property_->getStdString();
   if (topic.empty()) {
-    setStatusStd(rviz::StatusProperty::Error, "Topic", "no topic set");
+    reportConfigError(this, "Topic", "no topic set");
     return;
   }
   try {
     sub_ = update_nh_.subscribe(topic, 2, &PlannedPathDisplay::incomingTrajectory, this);
     setStatusStd(rviz::StatusProperty::Ok, "Topic", "subscribed to " + topic);
   } catch (const ros::Exception& e) {
-    setStatusStd(rviz::StatusProperty::Error, "Topic", std::string("cannot subscribe: ") + e.what());
+    reportConfigError(this, "Topic", std::string("cannot subscribe: ") + e.what());
   }
 }
 
@@ -144,7 +144,7 @@ void PlannedPathDisplay::incomingTrajectory(const sixdof_msgs::DisplayTrajectory
   std::string error;
   auto states = toTrajectoryStates(*msg, &error);
   if (!states) {
-    setStatusStd(rviz::StatusProperty::Error, "Trajectory", "rejected: " + error);
+    reportConfigError(this, "Trajectory", "rejected: " + error);
     return;
   }
   setStatusStd(rviz::StatusProperty::Ok, "Trajectory",

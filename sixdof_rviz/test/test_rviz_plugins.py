@@ -15,11 +15,14 @@ import numpy as np
 import rosgraph
 import rospy
 import rostest
+from geometry_msgs.msg import Pose
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
+from shape_msgs.msg import SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from sixdof_msgs.msg import DisplayTrajectory, RobotTrajectory
+from sixdof_msgs.msg import AttachedCollisionObject, CollisionObject, DisplayTrajectory, RobotTrajectory
+from sixdof_msgs.srv import GetPlanningScene, GetPlanningSceneResponse
 
 ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
@@ -42,6 +45,50 @@ def ghost_mask(image: np.ndarray) -> np.ndarray:
     green low, whatever the shading. The goal robot (orange), the robot model (grey) and the background are not."""
     r, g, b = (image[:, :, i].astype(int) for i in range(3))
     return (r > 70) & (b > 70) & (g * 2 < np.minimum(r, b)) & (np.abs(r - b) * 3 < np.maximum(r, b))
+
+
+def world_mask(image: np.ndarray) -> np.ndarray:
+    """World objects' colour (60, 170, 60 in the config)."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (g > 90) & (g * 2 > r * 3) & (g * 2 > b * 3)
+
+
+def attached_mask(image: np.ndarray) -> np.ndarray:
+    """Attached objects' colour (140, 60, 220 in the config): blue clearly above red, red well above green."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (b > 90) & (b * 4 > r * 5) & (r * 2 > g * 3)
+
+
+def marker_sphere_mask(image: np.ndarray) -> np.ndarray:
+    """The goal marker's yellow sphere (0.9, 0.9, 0.2), centred on the tip link (link6) origin."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 150) & (g * 4 > r * 3) & (b * 2 < g)
+
+
+def box(size: float) -> SolidPrimitive:
+    return SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[size, size, size])
+
+
+def pose(x: float, y: float, z: float) -> Pose:
+    p = Pose()
+    p.position.x, p.position.y, p.position.z = x, y, z
+    p.orientation.w = 1.0
+    return p
+
+
+def scene_response() -> GetPlanningSceneResponse:
+    """A table-top box beside the robot and a cube held between the fingers (0.08 m along link6's z axis)."""
+    response = GetPlanningSceneResponse()
+    obstacle = CollisionObject(id="obstacle", primitives=[box(0.15)], primitive_poses=[pose(0, 0, 0)])
+    obstacle.header.frame_id = "base_link"
+    obstacle.pose = pose(0.25, -0.45, 0.075)
+    response.scene.world.collision_objects.append(obstacle)
+    held = CollisionObject(id="held_cube", primitives=[box(0.04)], primitive_poses=[pose(0, 0, 0)])
+    held.pose = pose(0, 0, 0.08)
+    response.scene.robot_state.attached_collision_objects.append(
+        AttachedCollisionObject(link_name="link6", object=held, touch_links=["finger1", "finger2"])
+    )
+    return response
 
 
 def trajectory_to(joint1: float) -> DisplayTrajectory:
@@ -150,7 +197,34 @@ class RvizPluginsTest(unittest.TestCase):
         minus_column = np.argwhere(minus)[:, 1].mean()
         self.assertGreater(plus_column, minus_column + 100)
 
-    def test_3_no_errors_logged(self) -> None:
+    def test_3_planning_scene_objects(self) -> None:
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        baseline = read_screenshot(os.path.join(self.shot_dir, "3_scene_before.png"))
+        # The marker's green arrow and the panel's icons share the world colour: only new pixels count.
+        world_before, attached_before = world_mask(baseline), attached_mask(baseline)
+        # Stands in for move_group's get_planning_scene: the display polls it.
+        service = rospy.Service("get_planning_scene", GetPlanningScene, lambda _request: scene_response())
+        try:
+            for _ in range(100):
+                image = read_screenshot(os.path.join(self.shot_dir, "4_scene.png"))
+                world, attached = world_mask(image) & ~world_before, attached_mask(image) & ~attached_before
+                if world.sum() > 1000 and attached.sum() > 100:
+                    break
+                rospy.sleep(0.3)
+        finally:
+            service.shutdown()
+        self.assertGreater(world.sum(), 1000, "world box not drawn")
+        self.assertGreater(attached.sum(), 100, "attached cube not drawn")
+        # The held cube is drawn at the gripper: next to the goal marker's sphere on link6 (at the current state).
+        sphere = np.argwhere(marker_sphere_mask(image))
+        self.assertGreater(len(sphere), 20, "goal marker sphere not found")
+        cube_centre = np.argwhere(attached).mean(axis=0)
+        gripper_distance = np.linalg.norm(cube_centre - sphere.mean(axis=0))
+        box_distance = np.linalg.norm(np.argwhere(world).mean(axis=0) - sphere.mean(axis=0))
+        self.assertLess(gripper_distance, 120)
+        self.assertGreater(box_distance, 2 * gripper_distance)
+
+    def test_4_no_errors_logged(self) -> None:
         self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
         errors = [m.msg for m in self.log_messages if m.name == "/rviz" and m.level >= Log.ERROR]
         self.assertEqual(errors, [])

@@ -56,6 +56,10 @@ GoalStateDisplay::GoalStateDisplay() {
   joint_state_topic_property_ = new rviz::RosTopicProperty(
       "Joint State Topic", "joint_states", "sensor_msgs/JointState",
       "Current robot state: the start of dragging and the IK seed.", this, SLOT(updateJointStateTopic()));
+  goal_pose_topic_property_ = new rviz::RosTopicProperty(
+      "Goal Pose Topic", "sixdof_rviz/goal_pose", "geometry_msgs/PoseStamped",
+      "Tip link poses (in the robot's root frame) that move the marker as if dragged there.", this,
+      SLOT(updateGoalPoseTopic()));
   ik_rate_property_ =
       new rviz::FloatProperty("IK Rate", 10.0f, "Maximum compute_ik calls per second while dragging.", this);
   ik_rate_property_->setMin(0.5f);
@@ -143,6 +147,7 @@ void GoalStateDisplay::loadModel() {
   }
   robot_->setVisible(isEnabled());
   updateJointStateTopic();
+  updateGoalPoseTopic();
 }
 
 void GoalStateDisplay::startFromCurrentState(const sensor_msgs::JointState& state) {
@@ -156,19 +161,25 @@ void GoalStateDisplay::startFromCurrentState(const sensor_msgs::JointState& stat
 void GoalStateDisplay::placeMarker() {
   const Eigen::Isometry3d tip = fk_->compute(goal_).at(tip_link_);
   const Eigen::Quaterniond q(tip.rotation());
+  geometry_msgs::Pose pose;
+  pose.position.x = tip.translation().x();
+  pose.position.y = tip.translation().y();
+  pose.position.z = tip.translation().z();
+  pose.orientation.w = q.w();
+  pose.orientation.x = q.x();
+  pose.orientation.y = q.y();
+  pose.orientation.z = q.z();
+  placeMarkerAt(pose);
+}
+
+void GoalStateDisplay::placeMarkerAt(const geometry_msgs::Pose& pose) {
   const double scale = marker_scale_property_->getFloat();
   visualization_msgs::InteractiveMarker msg;
   msg.header.frame_id = fk_->rootLink();
   msg.name = "goal_state";
   msg.description = "Goal of " + group_;
   msg.scale = scale;
-  msg.pose.position.x = tip.translation().x();
-  msg.pose.position.y = tip.translation().y();
-  msg.pose.position.z = tip.translation().z();
-  msg.pose.orientation.w = q.w();
-  msg.pose.orientation.x = q.x();
-  msg.pose.orientation.y = q.y();
-  msg.pose.orientation.z = q.z();
+  msg.pose = pose;
   using Control = visualization_msgs::InteractiveMarkerControl;
   const double s = std::sqrt(0.5);
   msg.controls.push_back(axisControl("rotate_x", s, s, 0, 0, Control::ROTATE_AXIS));
@@ -229,10 +240,12 @@ void GoalStateDisplay::onEnable() {
   if (robot_) robot_->setVisible(true);
   if (marker_) placeMarker();
   updateJointStateTopic();
+  updateGoalPoseTopic();
 }
 
 void GoalStateDisplay::onDisable() {
   joint_state_sub_.shutdown();
+  goal_pose_sub_.shutdown();
   if (robot_) robot_->setVisible(false);
   if (marker_) marker_->processMessage(visualization_msgs::InteractiveMarker{});
 }
@@ -244,9 +257,37 @@ void GoalStateDisplay::reset() {
 
 void GoalStateDisplay::processFeedback(visualization_msgs::InteractiveMarkerFeedback& feedback) {
   if (feedback.event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE || !model_) return;
+  geometry_msgs::PoseStamped pose;
+  pose.header.frame_id = feedback.header.frame_id;
+  pose.pose = feedback.pose;
+  requestIk(pose);
+}
+
+void GoalStateDisplay::updateGoalPoseTopic() {
+  goal_pose_sub_.shutdown();
+  if (!isEnabled() || goal_pose_topic_property_->getStdString().empty()) return;
+  goal_pose_sub_ = update_nh_.subscribe(goal_pose_topic_property_->getStdString(), 1,
+                                        &GoalStateDisplay::goalPoseCallback, this);
+}
+
+void GoalStateDisplay::goalPoseCallback(const geometry_msgs::PoseStamped::ConstPtr& msg) {
+  if (!model_ || !marker_) return;
+  // The marker lives in the root link's frame; other frames would need a tf lookup the marker does not do.
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != fk_->rootLink()) {
+    reportConfigError(this, "Goal Pose", "goal pose in frame '" + msg->header.frame_id + "', expected '" +
+                                             fk_->rootLink() + "'");
+    return;
+  }
+  deleteStatusStd("Goal Pose");
+  geometry_msgs::PoseStamped pose = *msg;
+  pose.header.frame_id = fk_->rootLink();
+  placeMarkerAt(pose.pose);
+  requestIk(pose);
+}
+
+void GoalStateDisplay::requestIk(const geometry_msgs::PoseStamped& pose) {
   IkRequest request;
-  request.pose.header.frame_id = feedback.header.frame_id;
-  request.pose.pose = feedback.pose;
+  request.pose = pose;
   request.group = group_;
   request.tip_link = tip_link_;
   request.seed = toJointState(goal_);

@@ -27,7 +27,8 @@ namespace sixdof_rviz {
 
 class GhostRobot;
 
-// "sixdof_rviz/GoalState": a 6-DoF interactive marker on the tip link of a planning group. Dragging it asks
+// "sixdof_rviz/GoalState": a 6-DoF interactive marker on the tip link of a planning group. Dragging it (or
+// publishing a pose on the goal pose topic, e.g. from a script) asks
 // move_group's compute_ik (throttled, in a worker thread) and check_state_validity; the goal robot is drawn
 // in the "reachable" colour, or in the "unreachable" colour when there is no IK solution or the solution is
 // in collision. Reachable goals are published (latched) on kGoalStateTopic for the MotionPlanningPanel.
@@ -48,6 +49,7 @@ class GoalStateDisplay : public rviz::Display {
   void loadModel();
   void updateAppearance();
   void updateJointStateTopic();
+  void updateGoalPoseTopic();
   void processFeedback(visualization_msgs::InteractiveMarkerFeedback& feedback);
 
  private:
@@ -64,7 +66,10 @@ class GoalStateDisplay : public rviz::Display {
   };
 
   void startFromCurrentState(const sensor_msgs::JointState& state);
+  void goalPoseCallback(const geometry_msgs::PoseStamped::ConstPtr& msg);
+  void requestIk(const geometry_msgs::PoseStamped& pose);
   void placeMarker();
+  void placeMarkerAt(const geometry_msgs::Pose& pose);
   void showGoal(bool reachable);
   void publishGoal();
   void ikLoop();
@@ -75,6 +80,7 @@ class GoalStateDisplay : public rviz::Display {
   rviz::StringProperty* semantic_description_property_;
   rviz::StringProperty* group_property_;
   rviz::RosTopicProperty* joint_state_topic_property_;
+  rviz::RosTopicProperty* goal_pose_topic_property_;
   rviz::FloatProperty* ik_rate_property_;
   rviz::FloatProperty* marker_scale_property_;
   rviz::FloatProperty* alpha_property_;
@@ -88,6 +94,7 @@ class GoalStateDisplay : public rviz::Display {
   std::unique_ptr<GhostRobot> robot_;
   std::unique_ptr<rviz::InteractiveMarker> marker_;
   ros::Subscriber joint_state_sub_;
+  ros::Subscriber goal_pose_sub_;
   ros::Publisher goal_pub_;
   JointValues goal_;
   bool reachable_ = true;

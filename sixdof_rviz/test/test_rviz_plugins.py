@@ -15,14 +15,28 @@ import numpy as np
 import rosgraph
 import rospy
 import rostest
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, PoseStamped
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from sixdof_msgs.msg import AttachedCollisionObject, CollisionObject, DisplayTrajectory, RobotTrajectory
-from sixdof_msgs.srv import GetPlanningScene, GetPlanningSceneResponse
+from sixdof_msgs.msg import (
+    AttachedCollisionObject,
+    CollisionObject,
+    ContactInformation,
+    DisplayTrajectory,
+    MoveItErrorCodes,
+    RobotTrajectory,
+)
+from sixdof_msgs.srv import (
+    GetPlanningScene,
+    GetPlanningSceneResponse,
+    GetPositionIK,
+    GetPositionIKResponse,
+    GetStateValidity,
+    GetStateValidityResponse,
+)
 
 ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
@@ -63,6 +77,18 @@ def marker_sphere_mask(image: np.ndarray) -> np.ndarray:
     """The goal marker's yellow sphere (0.9, 0.9, 0.2), centred on the tip link (link6) origin."""
     r, g, b = (image[:, :, i].astype(int) for i in range(3))
     return (r > 150) & (g * 4 > r * 3) & (b * 2 < g)
+
+
+def reachable_mask(image: np.ndarray) -> np.ndarray:
+    """The goal robot's "reachable" colour (250, 128, 0 in the config): orange, green about half of red."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 90) & (g * 10 > r * 3) & (g * 10 < r * 7) & (b * 10 < r * 3)
+
+
+def unreachable_mask(image: np.ndarray) -> np.ndarray:
+    """The goal robot's "unreachable" colour (230, 0, 0 in the config); its reachable orange has half as much green."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 90) & (g * 5 < r) & (b * 5 < r)
 
 
 def box(size: float) -> SolidPrimitive:
@@ -197,6 +223,18 @@ class RvizPluginsTest(unittest.TestCase):
         minus_column = np.argwhere(minus)[:, 1].mean()
         self.assertGreater(plus_column, minus_column + 100)
 
+    @staticmethod
+    def values(state: JointState) -> dict:
+        return dict(zip(state.name, state.position, strict=True))
+
+    def wait_for_pixels(self, name: str, mask_function, baseline: np.ndarray, minimum: int) -> np.ndarray:
+        for _ in range(100):
+            mask = mask_function(read_screenshot(os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
+            if mask.sum() > minimum:
+                return mask
+            rospy.sleep(0.3)
+        self.fail(f"{name}: fewer than {minimum} new pixels")
+
     def test_3_planning_scene_objects(self) -> None:
         self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
         baseline = read_screenshot(os.path.join(self.shot_dir, "3_scene_before.png"))
@@ -224,7 +262,83 @@ class RvizPluginsTest(unittest.TestCase):
         self.assertLess(gripper_distance, 120)
         self.assertGreater(box_distance, 2 * gripper_distance)
 
-    def test_4_no_errors_logged(self) -> None:
+    def test_4_goal_state_ik(self) -> None:
+        self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_pose", False), "GoalState goal pose subscription")
+        rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
+        red_before = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "5_goal_before.png")))
+        # Stand-ins for move_group's compute_ik / check_state_validity with scripted answers.
+        answers = {"ik": MoveItErrorCodes.NO_IK_SOLUTION, "valid": True}
+        ik_requests = []
+        solution = dict(zip(ARM_JOINTS, [0.4, 0.1, 0.2, 0.0, 0.3, 0.0], strict=True))
+
+        def compute_ik(request):
+            ik_requests.append(request.ik_request)
+            response = GetPositionIKResponse()
+            response.error_code.val = answers["ik"]
+            if answers["ik"] == MoveItErrorCodes.SUCCESS:
+                response.solution.joint_state.name = list(solution)
+                response.solution.joint_state.position = list(solution.values())
+            else:
+                response.error_code.message = "pose out of reach"
+            return response
+
+        def check_state_validity(_request):
+            response = GetStateValidityResponse(valid=answers["valid"])
+            response.error_code.val = MoveItErrorCodes.SUCCESS
+            if not answers["valid"]:
+                response.contacts.append(ContactInformation(contact_body_1="link6", contact_body_2="base_link"))
+            return response
+
+        goals = []
+        goal_sub = rospy.Subscriber("/sixdof_rviz/goal_state", JointState, goals.append)
+        pose_pub = rospy.Publisher("sixdof_rviz/goal_pose", PoseStamped, queue_size=1)
+        target = PoseStamped()
+        target.header.frame_id = "base_link"
+        target.pose = pose(0.3, 0.2, 0.4)
+        services = [
+            rospy.Service("compute_ik", GetPositionIK, compute_ik),
+            rospy.Service("check_state_validity", GetStateValidity, check_state_validity),
+        ]
+        try:
+            # Unreachable: the goal robot turns red.
+            self.wait_for(lambda: pose_pub.get_num_connections() > 0, "goal pose connection")
+            pose_pub.publish(target)
+            self.wait_for_pixels("6_goal_no_ik", unreachable_mask, red_before, 2000)
+            request = ik_requests[-1]
+            self.assertEqual(request.group_name, "arm")
+            self.assertEqual(request.ik_link_name, "link6")
+            self.assertEqual(request.pose_stamped.header.frame_id, "base_link")
+            self.assertEqual(request.pose_stamped.pose, target.pose)
+            self.assertFalse(request.avoid_collisions)
+            # The seed is the current state (all zero here).
+            self.assertTrue(all(p == 0.0 for p in request.robot_state.joint_state.position))
+
+            # Reachable and collision-free: orange at the solution, which is published as the goal.
+            # (Red pixels are no measure here: rviz draws links without a URDF material red, and the goal robot
+            # no longer hides the RobotModel.)
+            answers["ik"] = MoveItErrorCodes.SUCCESS
+            orange_no_ik = reachable_mask(read_screenshot(os.path.join(self.shot_dir, "6_goal_no_ik.png")))
+            pose_pub.publish(target)
+            self.wait_for(lambda: any(self.values(g)["joint1"] == solution["joint1"] for g in goals), "IK goal")
+            goal_values = self.values(goals[-1])
+            for joint, value in solution.items():
+                self.assertAlmostEqual(goal_values[joint], value)
+            self.assertEqual(goal_values["finger1_joint"], 0.0)  # joints outside the group keep the current state
+            self.wait_for_pixels("7_goal_ok", reachable_mask, orange_no_ik, 2000)
+
+            # Reachable but in collision: red again, and not published as a goal.
+            answers["valid"] = False
+            published = len(goals)
+            red_ok = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "7_goal_ok.png")))
+            pose_pub.publish(target)
+            self.wait_for_pixels("8_goal_collision", unreachable_mask, red_ok, 2000)
+            self.assertEqual(len(goals), published)
+        finally:
+            goal_sub.unregister()
+            for service in services:
+                service.shutdown()
+
+    def test_5_no_errors_logged(self) -> None:
         self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
         errors = [m.msg for m in self.log_messages if m.name == "/rviz" and m.level >= Log.ERROR]
         self.assertEqual(errors, [])

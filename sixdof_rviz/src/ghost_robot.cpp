@@ -6,6 +6,7 @@
 #include <rviz/display.h>
 #include <rviz/display_context.h>
 #include <rviz/frame_manager.h>
+#include <rviz/properties/property.h>
 #include <rviz/robot/link_updater.h>
 #include <rviz/robot/robot.h>
 #include <rviz/robot/robot_link.h>
@@ -43,13 +44,16 @@ void reportConfigError(rviz::Display* display, const std::string& status_name, c
 GhostRobot::GhostRobot(Ogre::SceneNode* parent_node, rviz::DisplayContext* context, const std::string& name,
                        rviz::Property* parent_property, const urdf::ModelInterface& urdf,
                        std::shared_ptr<const LinkPoses> fk)
-    : context_(context), robot_(std::make_unique<rviz::Robot>(parent_node, context, name, parent_property)),
+    : context_(context),
+      properties_(std::make_unique<rviz::Property>(QString::fromStdString(name), QVariant(), "", parent_property)),
+      robot_(std::make_unique<rviz::Robot>(parent_node, context, name, properties_.get())),
       fk_(std::move(fk)) {
   robot_->load(urdf, true, false);
   robot_->setVisualVisible(true);
   robot_->setCollisionVisible(false);
 }
 
+// Members go in reverse order: the robot before the property holding its link properties.
 GhostRobot::~GhostRobot() = default;
 
 void GhostRobot::setState(const JointValues& values) { robot_->update(PoseMapUpdater(fk_->compute(values))); }

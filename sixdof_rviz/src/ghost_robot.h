@@ -39,6 +39,8 @@ class GhostRobot {
 
  private:
   rviz::DisplayContext* context_;
+  // Holds rviz::Robot's link properties: rviz::Robot never deletes its own "Links" property.
+  std::unique_ptr<rviz::Property> properties_;
   std::unique_ptr<rviz::Robot> robot_;
   std::shared_ptr<const LinkPoses> fk_;
 };

@@ -149,18 +149,7 @@ void PlannedPathDisplay::incomingTrajectory(const sixdof_msgs::DisplayTrajectory
   }
   setStatusStd(rviz::StatusProperty::Ok, "Trajectory",
                std::to_string(states->states.size()) + " states, " + std::to_string(states->times.back()) + " s");
-  if (animation_.empty() || animation_.finished() || interrupt_property_->getBool()) {
-    startTrajectory(std::move(*states));
-  } else {
-    pending_ = std::move(*states);
-  }
-}
-
-void PlannedPathDisplay::startTrajectory(TrajectoryStates states) {
-  pending_.reset();
-  animation_.start(std::move(states));
-  shown_index_.reset();
-  updateTrail();
+  animation_.offer(std::move(*states), interrupt_property_->getBool());
 }
 
 std::optional<double> PlannedPathDisplay::stateDisplayTime() {
@@ -190,8 +179,12 @@ void PlannedPathDisplay::update(float wall_dt, float /*ros_dt*/) {
   }
   deleteStatusStd("Transform");
   for (auto& ghost : trail_) ghost->updateRootPose();
-  if (animation_.finished() && pending_) startTrajectory(std::move(*pending_));
   auto index = animation_.advance(wall_dt, loop_property_->getBool(), stateDisplayTime());
+  if (animation_.generation() != shown_generation_) {
+    shown_generation_ = animation_.generation();
+    shown_index_.reset();
+    updateTrail();
+  }
   if (!index) return;
   if (index != shown_index_) {
     robot_->setState(animation_.states().states[*index]);

@@ -49,7 +49,6 @@ class PlannedPathDisplay : public rviz::Display {
   void subscribe();
   void unsubscribe();
   void incomingTrajectory(const sixdof_msgs::DisplayTrajectory::ConstPtr& msg);
-  void startTrajectory(TrajectoryStates states);
   std::optional<double> stateDisplayTime();
   void applyAppearance(GhostRobot* robot) const;
 
@@ -69,7 +68,7 @@ class PlannedPathDisplay : public rviz::Display {
   std::unique_ptr<GhostRobot> robot_;
   std::vector<std::unique_ptr<GhostRobot>> trail_;
   TrajectoryAnimation animation_;
-  std::optional<TrajectoryStates> pending_;
+  unsigned shown_generation_ = 0;
   std::optional<size_t> shown_index_;
 };
 

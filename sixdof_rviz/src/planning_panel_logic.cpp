@@ -1,5 +1,6 @@
 #include "sixdof_rviz/planning_panel_logic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <map>

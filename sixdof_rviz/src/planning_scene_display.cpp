@@ -202,7 +202,8 @@ void PlanningSceneDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
       deleteStatusStd("Service");
     }
   }
-  if (scene) {
+  // Polling returns the same scene most of the time: rebuild the shapes only when it changed.
+  if (scene && !(shown_scene_ && *shown_scene_ == *scene)) {
     shown_scene_ = *scene;
     rebuild(*scene);
   }

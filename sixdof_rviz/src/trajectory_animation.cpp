@@ -46,15 +46,27 @@ std::optional<TrajectoryStates> toTrajectoryStates(const sixdof_msgs::DisplayTra
   return out;
 }
 
+bool TrajectoryAnimation::offer(TrajectoryStates states, bool interrupt) {
+  if (interrupt || empty() || finished_) {
+    start(std::move(states));
+    return true;
+  }
+  pending_ = std::move(states);
+  return false;
+}
+
 void TrajectoryAnimation::start(TrajectoryStates states) {
   states_ = std::move(states);
+  pending_.reset();
   elapsed_ = 0.0;
   finished_ = states_.states.empty();
+  ++generation_;
 }
 
 void TrajectoryAnimation::clear() { start(TrajectoryStates{}); }
 
 std::optional<size_t> TrajectoryAnimation::advance(double dt, bool loop, std::optional<double> state_time) {
+  if (finished_ && pending_) start(*std::move(pending_));
   if (states_.states.empty()) return std::nullopt;
   const size_t last = states_.states.size() - 1;
   if (finished_) return last;
@@ -62,6 +74,10 @@ std::optional<size_t> TrajectoryAnimation::advance(double dt, bool loop, std::op
   // With a fixed display time every state, the last included, is shown for that long.
   const double total = state_time ? *state_time * static_cast<double>(last + 1) : states_.times.back();
   if (elapsed_ > total) {
+    if (pending_) {
+      start(*std::move(pending_));
+      return 0;
+    }
     if (loop) {
       elapsed_ = 0.0;
       return 0;

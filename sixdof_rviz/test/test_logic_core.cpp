@@ -175,6 +175,35 @@ TEST(TrajectoryAnimation, FixedStateTimeAndLoop) {
   EXPECT_FALSE(animation.advance(0.1, true, 0.1));
 }
 
+TEST(TrajectoryAnimation, NewTrajectoryWaitsUnlessItInterrupts) {
+  std::string error;
+  const TrajectoryStates first = *toTrajectoryStates(makeTrajectory({0.0, 1.0}), &error);
+  const TrajectoryStates second = *toTrajectoryStates(makeTrajectory({0.0, 1.0, 2.0}), &error);
+  TrajectoryAnimation animation;
+  EXPECT_TRUE(animation.offer(first, false));  // nothing animating: starts at once
+  const unsigned generation = animation.generation();
+  EXPECT_EQ(animation.advance(0.5, false, std::nullopt), 0u);
+  EXPECT_FALSE(animation.offer(second, false));
+  EXPECT_TRUE(animation.hasPending());
+  EXPECT_EQ(animation.states().states.size(), 2u);  // still the first one
+  EXPECT_EQ(animation.advance(0.6, false, std::nullopt), 0u);  // past the first one's end: the second starts
+  EXPECT_EQ(animation.states().states.size(), 3u);
+  EXPECT_EQ(animation.generation(), generation + 1);
+  EXPECT_FALSE(animation.hasPending());
+  EXPECT_TRUE(animation.offer(first, true));  // interrupts
+  EXPECT_EQ(animation.states().states.size(), 2u);
+}
+
+TEST(TrajectoryAnimation, LoopingTrajectoryGivesWayAfterOneLoop) {
+  std::string error;
+  TrajectoryAnimation animation;
+  animation.offer(*toTrajectoryStates(makeTrajectory({0.0, 1.0}), &error), false);
+  EXPECT_EQ(animation.advance(0.5, true, std::nullopt), 0u);
+  EXPECT_FALSE(animation.offer(*toTrajectoryStates(makeTrajectory({0.0, 1.0, 2.0}), &error), false));
+  EXPECT_EQ(animation.advance(0.6, true, std::nullopt), 0u);
+  EXPECT_EQ(animation.states().states.size(), 3u);
+}
+
 }  // namespace
 }  // namespace sixdof_rviz
 

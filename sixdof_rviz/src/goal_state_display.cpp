@@ -1,0 +1,407 @@
+#include "goal_state_display.h"
+
+#include <chrono>
+
+#include <OgreQuaternion.h>
+#include <OgreVector3.h>
+#include <rviz/default_plugin/interactive_markers/interactive_marker.h>
+#include <rviz/properties/color_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/ros_topic_property.h>
+#include <rviz/properties/string_property.h>
+#include <sixdof_msgs/GetPositionIK.h>
+#include <sixdof_msgs/GetStateValidity.h>
+#include <sixdof_msgs/MoveItErrorCodes.h>
+#include <visualization_msgs/InteractiveMarker.h>
+
+#include "ghost_robot.h"
+#include "sixdof_rviz/planning_panel_logic.h"
+
+namespace sixdof_rviz {
+namespace {
+
+visualization_msgs::InteractiveMarkerControl axisControl(const std::string& name, double w, double x, double y,
+                                                         double z, uint8_t mode) {
+  visualization_msgs::InteractiveMarkerControl control;
+  control.name = name;
+  control.orientation.w = w;
+  control.orientation.x = x;
+  control.orientation.y = y;
+  control.orientation.z = z;
+  control.orientation_mode = visualization_msgs::InteractiveMarkerControl::INHERIT;
+  control.interaction_mode = mode;
+  return control;
+}
+
+sensor_msgs::JointState toJointState(const JointValues& values) {
+  sensor_msgs::JointState msg;
+  for (const auto& [name, value] : values) {
+    msg.name.push_back(name);
+    msg.position.push_back(value);
+  }
+  return msg;
+}
+
+}  // namespace
+
+GoalStateDisplay::GoalStateDisplay() {
+  robot_description_property_ = new rviz::StringProperty(
+      "Robot Description", "robot_description", "Parameter holding the URDF.", this, SLOT(loadModel()));
+  semantic_description_property_ =
+      new rviz::StringProperty("Semantic Description", "robot_description_semantic",
+                               "Parameter holding the SRDF (planning groups).", this, SLOT(loadModel()));
+  group_property_ = new rviz::StringProperty("Planning Group", "arm",
+                                             "SRDF chain group whose tip link carries the marker.", this,
+                                             SLOT(loadModel()));
+  joint_state_topic_property_ = new rviz::RosTopicProperty(
+      "Joint State Topic", "joint_states", "sensor_msgs/JointState",
+      "Current robot state: the start of dragging and the IK seed.", this, SLOT(updateJointStateTopic()));
+  goal_pose_topic_property_ = new rviz::RosTopicProperty(
+      "Goal Pose Topic", "sixdof_rviz/goal_pose", "geometry_msgs/PoseStamped",
+      "Tip link poses (in the robot's root frame) that move the marker as if dragged there.", this,
+      SLOT(updateGoalPoseTopic()));
+  ik_rate_property_ =
+      new rviz::FloatProperty("IK Rate", 10.0f, "Maximum compute_ik calls per second while dragging.", this);
+  ik_rate_property_->setMin(0.5f);
+  ik_rate_property_->setMax(100.0f);
+  marker_scale_property_ =
+      new rviz::FloatProperty("Marker Scale", 0.2f, "Size of the interactive marker [m].", this, SLOT(loadModel()));
+  marker_scale_property_->setMin(0.01f);
+  alpha_property_ =
+      new rviz::FloatProperty("Robot Alpha", 0.6f, "Opacity of the goal robot.", this, SLOT(updateAppearance()));
+  alpha_property_->setMin(0.0f);
+  alpha_property_->setMax(1.0f);
+  reachable_color_property_ = new rviz::ColorProperty("Reachable Color", QColor(250, 128, 0),
+                                                      "Goal robot colour for a valid goal.", this,
+                                                      SLOT(updateAppearance()));
+  unreachable_color_property_ = new rviz::ColorProperty(
+      "Unreachable Color", QColor(230, 0, 0), "Goal robot colour when there is no IK solution or it collides.", this,
+      SLOT(updateAppearance()));
+}
+
+GoalStateDisplay::~GoalStateDisplay() { stopWorker(); }
+
+void GoalStateDisplay::onInitialize() {
+  goal_pub_ = update_nh_.advertise<sensor_msgs::JointState>(kGoalStateTopic, 1, true);
+  worker_ = std::thread(&GoalStateDisplay::ikLoop, this);
+  loadModel();
+}
+
+void GoalStateDisplay::stopWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+void GoalStateDisplay::loadModel() {
+  if (context_ == nullptr) return;
+  marker_.reset();
+  robot_.reset();
+  model_.reset();
+  std::string urdf_xml;
+  std::string srdf_xml;
+  const std::string urdf_param = robot_description_property_->getStdString();
+  const std::string srdf_param = semantic_description_property_->getStdString();
+  if (!update_nh_.getParam(urdf_param, urdf_xml) || !update_nh_.getParam(srdf_param, srdf_xml)) {
+    reportConfigError(this, "Robot",
+                 "parameters '" + urdf_param + "' and '" + srdf_param + "' must be set");
+    return;
+  }
+  try {
+    model_ = std::make_shared<SemanticModel>(urdf_xml, srdf_xml);
+  } catch (const std::invalid_argument& e) {
+    reportConfigError(this, "Robot", e.what());
+    return;
+  }
+  group_ = group_property_->getStdString();
+  const PlanningGroup* group = model_->group(group_);
+  if (group == nullptr || group->tip_link.empty()) {
+    reportConfigError(this, "Robot",
+                 "planning group '" + group_ + "' is not a chain group of the SRDF (needed for its tip link)");
+    model_.reset();
+    return;
+  }
+  tip_link_ = group->tip_link;
+  fk_ = std::make_shared<LinkPoses>(model_->urdf());
+  robot_ = std::make_unique<GhostRobot>(scene_node_, context_, "Goal State", this, *model_->urdf(), fk_);
+  setStatusStd(rviz::StatusProperty::Ok, "Robot", "group '" + group_ + "', tip link '" + tip_link_ + "'");
+  // Until the current state is known the marker sits at the all-zero state and no goal is published.
+  goal_.clear();
+  for (const auto& [name, joint] : model_->urdf()->joints_) {
+    if (joint->type != urdf::Joint::FIXED) goal_[name] = 0.0;
+  }
+  marker_on_current_state_ = false;
+  marker_ = std::make_unique<rviz::InteractiveMarker>(scene_node_, context_);
+  connect(marker_.get(), &rviz::InteractiveMarker::userFeedback, this, &GoalStateDisplay::processFeedback);
+  if (latest_joint_state_) {
+    startFromCurrentState(*latest_joint_state_);
+  } else {
+    placeMarker();
+    reachable_ = true;
+    robot_->setState(goal_);
+    updateAppearance();
+    setStatusStd(rviz::StatusProperty::Warn, "Goal", "waiting for the current state on joint_states");
+  }
+  robot_->setVisible(isEnabled());
+  updateJointStateTopic();
+  updateGoalPoseTopic();
+}
+
+void GoalStateDisplay::startFromCurrentState(const sensor_msgs::JointState& state) {
+  for (size_t i = 0; i < state.name.size() && i < state.position.size(); ++i) goal_[state.name[i]] = state.position[i];
+  marker_on_current_state_ = true;
+  placeMarker();
+  showGoal(true);
+  setStatusStd(rviz::StatusProperty::Ok, "Goal", "at the current state");
+}
+
+void GoalStateDisplay::placeMarker() {
+  const Eigen::Isometry3d tip = fk_->compute(goal_).at(tip_link_);
+  const Eigen::Quaterniond q(tip.rotation());
+  geometry_msgs::Pose pose;
+  pose.position.x = tip.translation().x();
+  pose.position.y = tip.translation().y();
+  pose.position.z = tip.translation().z();
+  pose.orientation.w = q.w();
+  pose.orientation.x = q.x();
+  pose.orientation.y = q.y();
+  pose.orientation.z = q.z();
+  placeMarkerAt(pose);
+}
+
+void GoalStateDisplay::placeMarkerAt(const geometry_msgs::Pose& pose) {
+  const double scale = marker_scale_property_->getFloat();
+  visualization_msgs::InteractiveMarker msg;
+  msg.header.frame_id = fk_->rootLink();
+  msg.name = "goal_state";
+  msg.description = "Goal of " + group_;
+  msg.scale = scale;
+  msg.pose = pose;
+  using Control = visualization_msgs::InteractiveMarkerControl;
+  const double s = std::sqrt(0.5);
+  msg.controls.push_back(axisControl("rotate_x", s, s, 0, 0, Control::ROTATE_AXIS));
+  msg.controls.push_back(axisControl("move_x", s, s, 0, 0, Control::MOVE_AXIS));
+  msg.controls.push_back(axisControl("rotate_z", s, 0, s, 0, Control::ROTATE_AXIS));
+  msg.controls.push_back(axisControl("move_z", s, 0, s, 0, Control::MOVE_AXIS));
+  msg.controls.push_back(axisControl("rotate_y", s, 0, 0, s, Control::ROTATE_AXIS));
+  msg.controls.push_back(axisControl("move_y", s, 0, 0, s, Control::MOVE_AXIS));
+  // A sphere at the tip to drag the position freely in the view plane.
+  Control free = axisControl("move_3d", 1, 0, 0, 0, Control::MOVE_3D);
+  visualization_msgs::Marker sphere;
+  sphere.type = visualization_msgs::Marker::SPHERE;
+  sphere.scale.x = sphere.scale.y = sphere.scale.z = 0.3 * scale;
+  sphere.color.r = 0.9f;
+  sphere.color.g = 0.9f;
+  sphere.color.b = 0.2f;
+  sphere.color.a = 0.8f;
+  free.markers.push_back(sphere);
+  free.always_visible = true;
+  msg.controls.push_back(free);
+  if (!marker_->processMessage(msg)) {
+    reportConfigError(this, "Marker", "rviz rejected the interactive marker");
+  }
+}
+
+void GoalStateDisplay::showGoal(bool reachable) {
+  reachable_ = reachable;
+  robot_->setState(goal_);
+  updateAppearance();
+  if (reachable) publishGoal();
+}
+
+void GoalStateDisplay::publishGoal() {
+  sensor_msgs::JointState msg = toJointState(goal_);
+  msg.header.stamp = ros::Time::now();
+  goal_pub_.publish(msg);
+}
+
+void GoalStateDisplay::updateAppearance() {
+  if (!robot_) return;
+  const QColor color = reachable_ ? reachable_color_property_->getColor() : unreachable_color_property_->getColor();
+  robot_->setColor(color.redF(), color.greenF(), color.blueF());
+  robot_->setAlpha(alpha_property_->getFloat());
+}
+
+void GoalStateDisplay::updateJointStateTopic() {
+  joint_state_sub_.shutdown();
+  if (!isEnabled()) return;
+  joint_state_sub_ = update_nh_.subscribe<sensor_msgs::JointState>(
+      joint_state_topic_property_->getStdString(), 1, [this](const sensor_msgs::JointStateConstPtr& msg) {
+        latest_joint_state_ = *msg;
+        // The goal starts at the robot's current state once that is known.
+        if (model_ && marker_ && !marker_on_current_state_) startFromCurrentState(*msg);
+      });
+}
+
+void GoalStateDisplay::onEnable() {
+  if (robot_) robot_->setVisible(true);
+  if (marker_) placeMarker();
+  updateJointStateTopic();
+  updateGoalPoseTopic();
+}
+
+void GoalStateDisplay::onDisable() {
+  joint_state_sub_.shutdown();
+  goal_pose_sub_.shutdown();
+  if (robot_) robot_->setVisible(false);
+  if (marker_) marker_->processMessage(visualization_msgs::InteractiveMarker{});
+}
+
+void GoalStateDisplay::reset() {
+  rviz::Display::reset();
+  loadModel();
+}
+
+void GoalStateDisplay::processFeedback(visualization_msgs::InteractiveMarkerFeedback& feedback) {
+  if (feedback.event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE || !model_) return;
+  geometry_msgs::PoseStamped pose;
+  pose.header.frame_id = feedback.header.frame_id;
+  pose.pose = feedback.pose;
+  requestIk(pose);
+}
+
+void GoalStateDisplay::updateGoalPoseTopic() {
+  goal_pose_sub_.shutdown();
+  if (!isEnabled() || goal_pose_topic_property_->getStdString().empty()) return;
+  goal_pose_sub_ = update_nh_.subscribe(goal_pose_topic_property_->getStdString(), 1,
+                                        &GoalStateDisplay::goalPoseCallback, this);
+}
+
+void GoalStateDisplay::goalPoseCallback(const geometry_msgs::PoseStamped::ConstPtr& msg) {
+  if (!model_ || !marker_) return;
+  // The marker lives in the root link's frame; other frames would need a tf lookup the marker does not do.
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != fk_->rootLink()) {
+    reportConfigError(this, "Goal Pose", "goal pose in frame '" + msg->header.frame_id + "', expected '" +
+                                             fk_->rootLink() + "'");
+    return;
+  }
+  deleteStatusStd("Goal Pose");
+  geometry_msgs::PoseStamped pose = *msg;
+  pose.header.frame_id = fk_->rootLink();
+  placeMarkerAt(pose.pose);
+  requestIk(pose);
+}
+
+void GoalStateDisplay::requestIk(const geometry_msgs::PoseStamped& pose) {
+  IkRequest request;
+  request.pose = pose;
+  request.group = group_;
+  request.tip_link = tip_link_;
+  request.seed = toJointState(goal_);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_request_ = request;  // only the latest pose matters
+    ik_period_ = 1.0 / ik_rate_property_->getFloat();
+  }
+  wake_.notify_all();
+}
+
+void GoalStateDisplay::ikLoop() {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point next_call = Clock::now();
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stop_ || pending_request_.has_value(); });
+    // Throttle: wait out the rest of the period, collecting newer poses meanwhile.
+    wake_.wait_until(lock, next_call, [this] { return stop_; });
+    if (stop_) return;
+    IkRequest request = *pending_request_;
+    pending_request_.reset();
+    const double period = ik_period_;
+    lock.unlock();
+    next_call = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period));
+    IkOutcome outcome = solve(request);
+    lock.lock();
+    outcome_ = outcome;
+  }
+}
+
+GoalStateDisplay::IkOutcome GoalStateDisplay::solve(const IkRequest& request) {
+  ros::NodeHandle nh;
+  sixdof_msgs::GetPositionIK ik;
+  ik.request.ik_request.group_name = request.group;
+  ik.request.ik_request.ik_link_name = request.tip_link;
+  ik.request.ik_request.pose_stamped = request.pose;
+  ik.request.ik_request.robot_state.joint_state = request.seed;
+  ik.request.ik_request.robot_state.is_diff = true;
+  // Collisions are reported separately (check_state_validity) so that a colliding goal is still shown.
+  ik.request.ik_request.avoid_collisions = false;
+  ros::ServiceClient ik_client = nh.serviceClient<sixdof_msgs::GetPositionIK>("compute_ik");
+  if (!ik_client.call(ik)) {
+    return {IkOutcome::Kind::kError, {}, "service '" + ik_client.getService() + "' is not available"};
+  }
+  const auto& code = ik.response.error_code;
+  if (code.val == sixdof_msgs::MoveItErrorCodes::NO_IK_SOLUTION) {
+    return {IkOutcome::Kind::kNoSolution, {}, "no IK solution" + (code.message.empty() ? "" : ": " + code.message)};
+  }
+  if (code.val != sixdof_msgs::MoveItErrorCodes::SUCCESS) {
+    return {IkOutcome::Kind::kError, {}, PlanningPanelLogic::describeResult("compute_ik", code, std::nullopt).text};
+  }
+  IkOutcome outcome{IkOutcome::Kind::kValid, {}, "reachable"};
+  const auto& js = ik.response.solution.joint_state;
+  for (size_t i = 0; i < js.name.size() && i < js.position.size(); ++i) outcome.solution[js.name[i]] = js.position[i];
+
+  sixdof_msgs::GetStateValidity validity;
+  validity.request.group_name = request.group;
+  validity.request.robot_state = ik.response.solution;
+  ros::ServiceClient validity_client = nh.serviceClient<sixdof_msgs::GetStateValidity>("check_state_validity");
+  if (!validity_client.call(validity)) {
+    return {IkOutcome::Kind::kError, outcome.solution,
+            "service '" + validity_client.getService() + "' is not available"};
+  }
+  if (validity.response.error_code.val != sixdof_msgs::MoveItErrorCodes::SUCCESS) {
+    return {IkOutcome::Kind::kError, outcome.solution,
+            PlanningPanelLogic::describeResult("check_state_validity", validity.response.error_code, std::nullopt)
+                .text};
+  }
+  if (!validity.response.valid) {
+    outcome.kind = IkOutcome::Kind::kInCollision;
+    outcome.message = "goal in collision";
+    for (const auto& contact : validity.response.contacts) {
+      outcome.message += " (" + contact.contact_body_1 + " - " + contact.contact_body_2 + ")";
+      break;  // the first contact names the problem well enough in a status line
+    }
+  }
+  return outcome;
+}
+
+void GoalStateDisplay::update(float wall_dt, float /*ros_dt*/) {
+  if (!robot_ || !marker_) return;
+  if (!robot_->updateRootPose()) {
+    setStatusStd(rviz::StatusProperty::Error, "Transform",
+                 "no transform from '" + fk_->rootLink() + "' to '" + fixed_frame_.toStdString() + "'");
+  } else {
+    deleteStatusStd("Transform");
+  }
+  marker_->update(wall_dt);
+  std::optional<IkOutcome> outcome;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    outcome.swap(outcome_);
+  }
+  if (!outcome) return;
+  for (const auto& [name, value] : outcome->solution) goal_[name] = value;
+  switch (outcome->kind) {
+    case IkOutcome::Kind::kValid:
+      setStatusStd(rviz::StatusProperty::Ok, "Goal", outcome->message);
+      showGoal(true);
+      break;
+    case IkOutcome::Kind::kInCollision:
+    case IkOutcome::Kind::kNoSolution:
+      setStatusStd(rviz::StatusProperty::Warn, "Goal", outcome->message);
+      showGoal(false);
+      break;
+    case IkOutcome::Kind::kError:
+      setStatusStd(rviz::StatusProperty::Error, "Goal", outcome->message);
+      showGoal(false);
+      break;
+  }
+}
+
+}  // namespace sixdof_rviz
+
+#include <pluginlib/class_list_macros.hpp>
+PLUGINLIB_EXPORT_CLASS(sixdof_rviz::GoalStateDisplay, rviz::Display)

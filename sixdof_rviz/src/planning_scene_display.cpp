@@ -1,0 +1,233 @@
+#include "planning_scene_display.h"
+
+#include <chrono>
+
+#include <OgreQuaternion.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <OgreVector3.h>
+#include <rviz/display_context.h>
+#include <rviz/frame_manager.h>
+#include <rviz/ogre_helpers/shape.h>
+#include <rviz/properties/color_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/string_property.h>
+#include <shape_msgs/SolidPrimitive.h>
+#include <sixdof_msgs/GetPlanningScene.h>
+
+namespace sixdof_rviz {
+namespace {
+
+Ogre::Vector3 toOgre(const geometry_msgs::Point& p) { return Ogre::Vector3(p.x, p.y, p.z); }
+Ogre::Quaternion toOgre(const geometry_msgs::Quaternion& q) { return Ogre::Quaternion(q.w, q.x, q.y, q.z); }
+
+}  // namespace
+
+PlanningSceneDisplay::PlanningSceneDisplay() {
+  service_property_ = new rviz::StringProperty("Scene Service", "get_planning_scene",
+                                               "sixdof_msgs/GetPlanningScene service of move_group.", this,
+                                               SLOT(updateSettings()));
+  rate_property_ =
+      new rviz::FloatProperty("Refresh Rate", 2.0f, "Scene requests per second.", this, SLOT(updateSettings()));
+  rate_property_->setMin(0.1f);
+  rate_property_->setMax(30.0f);
+  world_color_property_ = new rviz::ColorProperty("World Object Color", QColor(60, 170, 60),
+                                                  "Colour of world collision objects.", this, SLOT(updateSettings()));
+  attached_color_property_ = new rviz::ColorProperty(
+      "Attached Object Color", QColor(140, 60, 220), "Colour of objects attached to the robot.", this,
+      SLOT(updateSettings()));
+  alpha_property_ = new rviz::FloatProperty("Alpha", 0.9f, "Opacity of the objects.", this, SLOT(updateSettings()));
+  alpha_property_->setMin(0.0f);
+  alpha_property_->setMax(1.0f);
+}
+
+PlanningSceneDisplay::~PlanningSceneDisplay() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  clearObjects();
+}
+
+void PlanningSceneDisplay::onInitialize() {
+  updateSettings();
+  worker_ = std::thread(&PlanningSceneDisplay::pollLoop, this);
+}
+
+void PlanningSceneDisplay::updateSettings() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    service_ = service_property_->getStdString();
+    period_ = 1.0 / rate_property_->getFloat();
+  }
+  // Colours and alpha are applied when drawing: redraw the scene we have.
+  if (shown_scene_) rebuild(*shown_scene_);
+}
+
+void PlanningSceneDisplay::onEnable() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    polling_ = true;
+  }
+  wake_.notify_all();
+  scene_node_->setVisible(true);
+}
+
+void PlanningSceneDisplay::onDisable() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  polling_ = false;
+  scene_node_->setVisible(false);
+}
+
+void PlanningSceneDisplay::reset() {
+  rviz::Display::reset();
+  clearObjects();
+  shown_scene_.reset();
+}
+
+void PlanningSceneDisplay::pollLoop() {
+  using Clock = std::chrono::steady_clock;
+  ros::NodeHandle nh;
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stop_ || polling_; });
+    if (stop_) return;
+    const std::string service = service_;
+    const auto next = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
+    lock.unlock();
+    sixdof_msgs::GetPlanningScene srv;
+    ros::ServiceClient client = nh.serviceClient<sixdof_msgs::GetPlanningScene>(service);
+    const bool ok = client.call(srv);
+    lock.lock();
+    if (ok) {
+      received_ = srv.response.scene;
+      poll_error_.reset();
+    } else {
+      poll_error_ = "service '" + client.getService() + "' is not available (is move_group running?)";
+    }
+    wake_.wait_until(lock, next, [this] { return stop_; });
+  }
+}
+
+void PlanningSceneDisplay::clearObjects() {
+  for (auto& object : objects_) {
+    object.shapes.clear();
+    scene_manager_->destroySceneNode(object.node);
+  }
+  objects_.clear();
+}
+
+void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object, const std::string& frame,
+                                     bool attached, int* skipped_meshes) {
+  DrawnObject drawn;
+  drawn.frame = frame;
+  drawn.node = scene_node_->createChildSceneNode();
+  const QColor color = attached ? attached_color_property_->getColor() : world_color_property_->getColor();
+  const Ogre::Vector3 object_position = toOgre(object.pose.position);
+  const Ogre::Quaternion object_orientation = toOgre(object.pose.orientation);
+  for (size_t i = 0; i < object.primitives.size(); ++i) {
+    const auto& primitive = object.primitives[i];
+    const auto& d = primitive.dimensions;
+    using P = shape_msgs::SolidPrimitive;
+    rviz::Shape::Type type;
+    Ogre::Vector3 scale;
+    Ogre::Quaternion axis_fix = Ogre::Quaternion::IDENTITY;
+    if (primitive.type == P::BOX && d.size() >= 3) {
+      type = rviz::Shape::Cube;
+      scale = Ogre::Vector3(d[P::BOX_X], d[P::BOX_Y], d[P::BOX_Z]);
+    } else if (primitive.type == P::SPHERE && d.size() >= 1) {
+      type = rviz::Shape::Sphere;
+      scale = Ogre::Vector3(2.0 * d[P::SPHERE_RADIUS]);
+    } else if (primitive.type == P::CYLINDER && d.size() >= 2) {
+      type = rviz::Shape::Cylinder;
+      // Ogre's cylinder is along y, SolidPrimitive's along z.
+      scale = Ogre::Vector3(2.0 * d[P::CYLINDER_RADIUS], d[P::CYLINDER_HEIGHT], 2.0 * d[P::CYLINDER_RADIUS]);
+      axis_fix = Ogre::Quaternion(Ogre::Degree(90), Ogre::Vector3::UNIT_X);
+    } else {
+      setStatusStd(rviz::StatusProperty::Warn, "Object " + object.id,
+                   "primitive " + std::to_string(i) + " has an unsupported type or too few dimensions");
+      continue;
+    }
+    Ogre::Vector3 local_position = Ogre::Vector3::ZERO;
+    Ogre::Quaternion local_orientation = Ogre::Quaternion::IDENTITY;
+    if (i < object.primitive_poses.size()) {
+      local_position = toOgre(object.primitive_poses[i].position);
+      local_orientation = toOgre(object.primitive_poses[i].orientation);
+    }
+    auto shape = std::make_unique<rviz::Shape>(type, scene_manager_, drawn.node);
+    shape->setPosition(object_position + object_orientation * local_position);
+    shape->setOrientation(object_orientation * local_orientation * axis_fix);
+    shape->setScale(scale);
+    shape->setColor(color.redF(), color.greenF(), color.blueF(), alpha_property_->getFloat());
+    drawn.shapes.push_back(std::move(shape));
+  }
+  *skipped_meshes += static_cast<int>(object.meshes.size());
+  objects_.push_back(std::move(drawn));
+}
+
+void PlanningSceneDisplay::rebuild(const sixdof_msgs::PlanningScene& scene) {
+  clearObjects();
+  int skipped_meshes = 0;
+  for (const auto& object : scene.world.collision_objects) {
+    addObject(object, object.header.frame_id.empty() ? fixed_frame_.toStdString() : object.header.frame_id, false,
+              &skipped_meshes);
+  }
+  for (const auto& attached : scene.robot_state.attached_collision_objects) {
+    // An attached object's pose is relative to its link unless its header names another frame.
+    const std::string frame =
+        attached.object.header.frame_id.empty() ? attached.link_name : attached.object.header.frame_id;
+    addObject(attached.object, frame, true, &skipped_meshes);
+  }
+  if (skipped_meshes > 0) {
+    setStatusStd(rviz::StatusProperty::Warn, "Meshes",
+                 std::to_string(skipped_meshes) + " mesh shape(s) are not drawn (primitives only)");
+  } else {
+    deleteStatusStd("Meshes");
+  }
+  setStatusStd(rviz::StatusProperty::Ok, "Scene",
+               std::to_string(scene.world.collision_objects.size()) + " world object(s), " +
+                   std::to_string(scene.robot_state.attached_collision_objects.size()) + " attached");
+}
+
+void PlanningSceneDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
+  std::optional<sixdof_msgs::PlanningScene> scene;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    scene.swap(received_);
+    if (poll_error_) {
+      setStatusStd(rviz::StatusProperty::Error, "Service", *poll_error_);
+    } else {
+      deleteStatusStd("Service");
+    }
+  }
+  // Polling returns the same scene most of the time: rebuild the shapes only when it changed.
+  if (scene && !(shown_scene_ && *shown_scene_ == *scene)) {
+    shown_scene_ = *scene;
+    rebuild(*scene);
+  }
+  std::string missing_frame;
+  for (auto& object : objects_) {
+    Ogre::Vector3 position;
+    Ogre::Quaternion orientation;
+    if (context_->getFrameManager()->getTransform(object.frame, ros::Time(), position, orientation)) {
+      object.node->setPosition(position);
+      object.node->setOrientation(orientation);
+      object.node->setVisible(true);
+    } else {
+      object.node->setVisible(false);
+      missing_frame = object.frame;
+    }
+  }
+  if (missing_frame.empty()) {
+    deleteStatusStd("Transform");
+  } else {
+    setStatusStd(rviz::StatusProperty::Error, "Transform", "no transform for frame '" + missing_frame + "'");
+  }
+}
+
+}  // namespace sixdof_rviz
+
+#include <pluginlib/class_list_macros.hpp>
+PLUGINLIB_EXPORT_CLASS(sixdof_rviz::PlanningSceneDisplay, rviz::Display)

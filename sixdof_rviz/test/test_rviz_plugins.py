@@ -1,0 +1,351 @@
+#!/usr/bin/env python3
+"""rviz with the sixdof_rviz plugins and the shipped config, on the X display given by xvfb-run.
+
+Starts rviz itself (after subscribing to /rosout, so that no early message is missed), then checks that every
+plugin is live on the ROS graph, that a published DisplayTrajectory is drawn by the ghost robot at the
+trajectory's final state, and that rviz logged no error.
+"""
+
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+import rosgraph
+import rospy
+import rostest
+from geometry_msgs.msg import Pose, PoseStamped
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import JointState
+from shape_msgs.msg import SolidPrimitive
+from trajectory_msgs.msg import JointTrajectoryPoint
+
+from sixdof_msgs.msg import (
+    AttachedCollisionObject,
+    CollisionObject,
+    ContactInformation,
+    DisplayTrajectory,
+    MoveItErrorCodes,
+    RobotTrajectory,
+)
+from sixdof_msgs.srv import (
+    GetPlanningScene,
+    GetPlanningSceneResponse,
+    GetPositionIK,
+    GetPositionIKResponse,
+    GetStateValidity,
+    GetStateValidityResponse,
+)
+
+ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
+ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
+# rviz prints this when the optional package media_export is missing; it is harmless.
+HARMLESS = ("no such package media_export", "error while executing command")
+
+
+def read_screenshot(path: str) -> np.ndarray:
+    """Takes a screenshot of the whole X display and returns it as an HxWx3 uint8 array."""
+    subprocess.run(["import", "-window", "root", path], check=True)
+    ppm = subprocess.run(["convert", path, "-depth", "8", "ppm:-"], check=True, capture_output=True).stdout
+    # Binary PPM: "P6\n<w> <h>\n<max>\n" then the pixels.
+    header = ppm.split(b"\n", 3)
+    width, height = (int(v) for v in header[1].split())
+    return np.frombuffer(header[3], dtype=np.uint8, count=width * height * 3).reshape(height, width, 3)
+
+
+def ghost_mask(image: np.ndarray) -> np.ndarray:
+    """Pixels in the PlannedPath robot's colour (220, 0, 220 in the config): red and blue alike and high,
+    green low, whatever the shading. The goal robot (orange), the robot model (grey) and the background are not."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 70) & (b > 70) & (g * 2 < np.minimum(r, b)) & (np.abs(r - b) * 3 < np.maximum(r, b))
+
+
+def world_mask(image: np.ndarray) -> np.ndarray:
+    """World objects' colour (60, 170, 60 in the config)."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (g > 90) & (g * 2 > r * 3) & (g * 2 > b * 3)
+
+
+def attached_mask(image: np.ndarray) -> np.ndarray:
+    """Attached objects' colour (140, 60, 220 in the config): blue clearly above red, red well above green."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (b > 90) & (b * 4 > r * 5) & (r * 2 > g * 3)
+
+
+def marker_sphere_mask(image: np.ndarray) -> np.ndarray:
+    """The goal marker's yellow sphere (0.9, 0.9, 0.2), centred on the tip link (link6) origin."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 150) & (g * 4 > r * 3) & (b * 2 < g)
+
+
+def reachable_mask(image: np.ndarray) -> np.ndarray:
+    """The goal robot's "reachable" colour (250, 128, 0 in the config): orange, green about half of red."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 90) & (g * 10 > r * 3) & (g * 10 < r * 7) & (b * 10 < r * 3)
+
+
+def unreachable_mask(image: np.ndarray) -> np.ndarray:
+    """The goal robot's "unreachable" colour (230, 0, 0 in the config); its reachable orange has half as much green."""
+    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    return (r > 90) & (g * 5 < r) & (b * 5 < r)
+
+
+def box(size: float) -> SolidPrimitive:
+    return SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[size, size, size])
+
+
+def pose(x: float, y: float, z: float) -> Pose:
+    p = Pose()
+    p.position.x, p.position.y, p.position.z = x, y, z
+    p.orientation.w = 1.0
+    return p
+
+
+def scene_response() -> GetPlanningSceneResponse:
+    """A table-top box beside the robot and a cube held between the fingers (0.08 m along link6's z axis)."""
+    response = GetPlanningSceneResponse()
+    obstacle = CollisionObject(id="obstacle", primitives=[box(0.15)], primitive_poses=[pose(0, 0, 0)])
+    obstacle.header.frame_id = "base_link"
+    obstacle.pose = pose(0.25, -0.45, 0.075)
+    response.scene.world.collision_objects.append(obstacle)
+    held = CollisionObject(id="held_cube", primitives=[box(0.04)], primitive_poses=[pose(0, 0, 0)])
+    held.pose = pose(0, 0, 0.08)
+    response.scene.robot_state.attached_collision_objects.append(
+        AttachedCollisionObject(link_name="link6", object=held, touch_links=["finger1", "finger2"])
+    )
+    return response
+
+
+def trajectory_to(joint1: float) -> DisplayTrajectory:
+    msg = DisplayTrajectory()
+    msg.model_id = "sixdof"
+    msg.trajectory_start.joint_state.name = ALL_JOINTS
+    msg.trajectory_start.joint_state.position = [0.0] * len(ALL_JOINTS)
+    trajectory = RobotTrajectory()
+    trajectory.joint_trajectory.joint_names = ARM_JOINTS
+    for i in range(5):
+        s = i / 4.0
+        point = JointTrajectoryPoint()
+        point.positions = [joint1 * s, 0.5 * s, 0.3 * s, 0.0, 0.4 * s, 0.0]
+        point.time_from_start = rospy.Duration(0.25 * i)
+        trajectory.joint_trajectory.points.append(point)
+    msg.trajectory.append(trajectory)
+    return msg
+
+
+class RvizPluginsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls) -> None:
+        rospy.init_node("test_rviz_plugins")
+        cls.log_messages = []
+        rospy.Subscriber("/rosout", Log, cls.log_messages.append, queue_size=1000)
+        # The simulator is not part of this test: the current state is published here.
+        cls.joint_pub = rospy.Publisher("joint_states", JointState, queue_size=1)
+        cls.timer = rospy.Timer(rospy.Duration(0.1), cls.publish_joint_states)
+        cls.path_pub = rospy.Publisher("move_group/display_planned_path", DisplayTrajectory, queue_size=1, latch=True)
+        cls.shot_dir = os.environ.get("SIXDOF_RVIZ_SHOT_DIR") or tempfile.mkdtemp(prefix="sixdof_rviz_shots_")
+        os.makedirs(cls.shot_dir, exist_ok=True)
+        rospy.sleep(1.0)  # let /rosout connect before rviz starts talking
+        cls.rviz_log_path = os.path.join(cls.shot_dir, "rviz.log")
+        cls.rviz_log = open(cls.rviz_log_path, "w")
+        cls.rviz = subprocess.Popen(
+            ["rosrun", "rviz", "rviz", "-d", rospy.get_param("~rviz_config"), "__name:=rviz"],
+            stdout=cls.rviz_log,
+            stderr=subprocess.STDOUT,
+        )
+
+    @classmethod
+    def tearDownClass(cls) -> None:
+        cls.timer.shutdown()
+        cls.rviz.terminate()
+        cls.rviz.wait()
+        cls.rviz_log.close()
+
+    @classmethod
+    def publish_joint_states(cls, _event) -> None:
+        msg = JointState()
+        msg.header.stamp = rospy.Time.now()
+        msg.name = ALL_JOINTS
+        msg.position = [0.0] * len(ALL_JOINTS)
+        cls.joint_pub.publish(msg)
+
+    def wait_for(self, condition, what: str, tries: int = 600) -> None:
+        for _ in range(tries):
+            self.assertIsNone(self.rviz.poll(), "rviz exited; see " + self.rviz_log_path)
+            if condition():
+                return
+            rospy.sleep(0.1)
+        self.fail("timed out waiting for " + what)
+
+    def graph_has(self, topic: str, publishes: bool) -> bool:
+        publishers, subscribers, _ = rosgraph.Master("/test_rviz_plugins").getSystemState()
+        for name, nodes in publishers if publishes else subscribers:
+            if name == topic and "/rviz" in nodes:
+                return True
+        return False
+
+    def ghost_pixels(self, name: str, baseline: np.ndarray, unlike: np.ndarray) -> np.ndarray:
+        """Mask of ghost-coloured pixels that were not in the baseline, once the drawing differs from `unlike`
+        (the previous picture) and is still."""
+        previous = None
+        for _ in range(100):
+            mask = ghost_mask(read_screenshot(os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
+            changed = (mask ^ unlike).sum() > 500
+            if changed and previous is not None and mask.sum() > 500 and (mask ^ previous).sum() < 50:
+                return mask
+            previous = mask
+            rospy.sleep(0.3)
+        self.fail(f"the ghost robot of {name} never settled ({0 if previous is None else previous.sum()} pixels)")
+
+    def test_1_plugins_live(self) -> None:
+        # PlannedPath subscribes to the trajectory topic, GoalState publishes the goal, the panel's logic reads it.
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_state", True), "GoalState goal publisher")
+        self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_state", False), "panel goal subscription")
+        self.wait_for(lambda: self.graph_has("/joint_states", False), "joint_states subscription")
+        goal = rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
+        # The goal starts at the current state (all zero here).
+        self.assertEqual(sorted(goal.name), sorted(ALL_JOINTS))
+        self.assertTrue(all(abs(p) < 1e-9 for p in goal.position))
+
+    def test_2_ghost_draws_the_trajectory(self) -> None:
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        rospy.sleep(3.0)  # a few frames with the robot model and goal marker drawn
+        baseline = ghost_mask(read_screenshot(os.path.join(self.shot_dir, "0_before.png")))
+        self.assertLess(baseline.sum(), 200, "ghost colour on screen before any trajectory")
+        self.path_pub.publish(trajectory_to(1.2))
+        plus = self.ghost_pixels("1_joint1_plus", baseline, unlike=np.zeros_like(baseline))
+        self.path_pub.publish(trajectory_to(-1.2))
+        minus = self.ghost_pixels("2_joint1_minus", baseline, unlike=plus)
+        # The view looks at the robot from +x with z up, so +y is screen-right: joint1 > 0 swings the arm there.
+        plus_column = np.argwhere(plus)[:, 1].mean()
+        minus_column = np.argwhere(minus)[:, 1].mean()
+        self.assertGreater(plus_column, minus_column + 100)
+
+    @staticmethod
+    def values(state: JointState) -> dict:
+        return dict(zip(state.name, state.position, strict=True))
+
+    def wait_for_pixels(self, name: str, mask_function, baseline: np.ndarray, minimum: int) -> np.ndarray:
+        for _ in range(100):
+            mask = mask_function(read_screenshot(os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
+            if mask.sum() > minimum:
+                return mask
+            rospy.sleep(0.3)
+        self.fail(f"{name}: fewer than {minimum} new pixels")
+
+    def test_3_planning_scene_objects(self) -> None:
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        baseline = read_screenshot(os.path.join(self.shot_dir, "3_scene_before.png"))
+        # The marker's green arrow and the panel's icons share the world colour: only new pixels count.
+        world_before, attached_before = world_mask(baseline), attached_mask(baseline)
+        # Stands in for move_group's get_planning_scene: the display polls it.
+        service = rospy.Service("get_planning_scene", GetPlanningScene, lambda _request: scene_response())
+        try:
+            for _ in range(100):
+                image = read_screenshot(os.path.join(self.shot_dir, "4_scene.png"))
+                world, attached = world_mask(image) & ~world_before, attached_mask(image) & ~attached_before
+                if world.sum() > 1000 and attached.sum() > 100:
+                    break
+                rospy.sleep(0.3)
+        finally:
+            service.shutdown()
+        self.assertGreater(world.sum(), 1000, "world box not drawn")
+        self.assertGreater(attached.sum(), 100, "attached cube not drawn")
+        # The held cube is drawn at the gripper: next to the goal marker's sphere on link6 (at the current state).
+        sphere = np.argwhere(marker_sphere_mask(image))
+        self.assertGreater(len(sphere), 20, "goal marker sphere not found")
+        cube_centre = np.argwhere(attached).mean(axis=0)
+        gripper_distance = np.linalg.norm(cube_centre - sphere.mean(axis=0))
+        box_distance = np.linalg.norm(np.argwhere(world).mean(axis=0) - sphere.mean(axis=0))
+        self.assertLess(gripper_distance, 120)
+        self.assertGreater(box_distance, 2 * gripper_distance)
+
+    def test_4_goal_state_ik(self) -> None:
+        self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_pose", False), "GoalState goal pose subscription")
+        rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
+        red_before = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "5_goal_before.png")))
+        # Stand-ins for move_group's compute_ik / check_state_validity with scripted answers.
+        answers = {"ik": MoveItErrorCodes.NO_IK_SOLUTION, "valid": True}
+        ik_requests = []
+        solution = dict(zip(ARM_JOINTS, [0.4, 0.1, 0.2, 0.0, 0.3, 0.0], strict=True))
+
+        def compute_ik(request):
+            ik_requests.append(request.ik_request)
+            response = GetPositionIKResponse()
+            response.error_code.val = answers["ik"]
+            if answers["ik"] == MoveItErrorCodes.SUCCESS:
+                response.solution.joint_state.name = list(solution)
+                response.solution.joint_state.position = list(solution.values())
+            else:
+                response.error_code.message = "pose out of reach"
+            return response
+
+        def check_state_validity(_request):
+            response = GetStateValidityResponse(valid=answers["valid"])
+            response.error_code.val = MoveItErrorCodes.SUCCESS
+            if not answers["valid"]:
+                response.contacts.append(ContactInformation(contact_body_1="link6", contact_body_2="base_link"))
+            return response
+
+        goals = []
+        goal_sub = rospy.Subscriber("/sixdof_rviz/goal_state", JointState, goals.append)
+        pose_pub = rospy.Publisher("sixdof_rviz/goal_pose", PoseStamped, queue_size=1)
+        target = PoseStamped()
+        target.header.frame_id = "base_link"
+        target.pose = pose(0.3, 0.2, 0.4)
+        services = [
+            rospy.Service("compute_ik", GetPositionIK, compute_ik),
+            rospy.Service("check_state_validity", GetStateValidity, check_state_validity),
+        ]
+        try:
+            # Unreachable: the goal robot turns red.
+            self.wait_for(lambda: pose_pub.get_num_connections() > 0, "goal pose connection")
+            pose_pub.publish(target)
+            self.wait_for_pixels("6_goal_no_ik", unreachable_mask, red_before, 2000)
+            request = ik_requests[-1]
+            self.assertEqual(request.group_name, "arm")
+            self.assertEqual(request.ik_link_name, "link6")
+            self.assertEqual(request.pose_stamped.header.frame_id, "base_link")
+            self.assertEqual(request.pose_stamped.pose, target.pose)
+            self.assertFalse(request.avoid_collisions)
+            # The seed is the current state (all zero here).
+            self.assertTrue(all(p == 0.0 for p in request.robot_state.joint_state.position))
+
+            # Reachable and collision-free: orange at the solution, which is published as the goal.
+            # (Red pixels are no measure here: rviz draws links without a URDF material red, and the goal robot
+            # no longer hides the RobotModel.)
+            answers["ik"] = MoveItErrorCodes.SUCCESS
+            orange_no_ik = reachable_mask(read_screenshot(os.path.join(self.shot_dir, "6_goal_no_ik.png")))
+            pose_pub.publish(target)
+            self.wait_for(lambda: any(self.values(g)["joint1"] == solution["joint1"] for g in goals), "IK goal")
+            goal_values = self.values(goals[-1])
+            for joint, value in solution.items():
+                self.assertAlmostEqual(goal_values[joint], value)
+            self.assertEqual(goal_values["finger1_joint"], 0.0)  # joints outside the group keep the current state
+            self.wait_for_pixels("7_goal_ok", reachable_mask, orange_no_ik, 2000)
+
+            # Reachable but in collision: red again, and not published as a goal.
+            answers["valid"] = False
+            published = len(goals)
+            red_ok = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "7_goal_ok.png")))
+            pose_pub.publish(target)
+            self.wait_for_pixels("8_goal_collision", unreachable_mask, red_ok, 2000)
+            self.assertEqual(len(goals), published)
+        finally:
+            goal_sub.unregister()
+            for service in services:
+                service.shutdown()
+
+    def test_5_no_errors_logged(self) -> None:
+        self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
+        errors = [m.msg for m in self.log_messages if m.name == "/rviz" and m.level >= Log.ERROR]
+        self.assertEqual(errors, [])
+        with open(self.rviz_log_path) as log:
+            lines = [line.strip() for line in log if ("ERROR" in line or "FATAL" in line or "rror" in line)]
+        self.assertEqual([line for line in lines if not any(h in line for h in HARMLESS)], [])
+
+
+if __name__ == "__main__":
+    rostest.rosrun("sixdof_rviz", "test_rviz_plugins", RvizPluginsTest)

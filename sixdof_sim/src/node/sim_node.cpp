@@ -7,6 +7,7 @@
 #include <sensor_msgs/JointState.h>
 #include <sixdof_msgs/GraspEvent.h>
 #include <sixdof_msgs/ObjectStates.h>
+#include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -82,6 +83,13 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), options_(re
   world_options.package_search_roots = packageRoots();
   world_options.grasp_fix_enabled = options_.grasp_fix;
   world_ = std::make_unique<World>(urdf, spec, world_options);
+  // docs/design.md: the world frame is the robot's (fixed) root link.
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
+  geometry_msgs::TransformStamped world_to_root;
+  world_to_root.header.frame_id = "world";
+  world_to_root.child_frame_id = model->getRoot()->name;
+  world_to_root.transform.rotation.w = 1.0;
+  static_tf_broadcaster_.sendTransform(world_to_root);
 
   const auto clock = [this] { return now(); };
   for (const std::string& name : options_.controllers) {

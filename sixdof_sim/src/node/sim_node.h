@@ -5,6 +5,7 @@
 
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <chrono>
@@ -64,6 +65,7 @@ class SimNode {
   std::unique_ptr<SimControlServices> control_services_;
   ros::Publisher clock_pub_, joint_state_pub_, object_state_pub_, grasp_event_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::StaticTransformBroadcaster static_tf_broadcaster_;
 };
 
 }  // namespace sixdof_sim

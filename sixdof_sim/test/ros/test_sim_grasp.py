@@ -32,6 +32,7 @@ from sixdof_msgs.srv import GetObjectState, SetObjectState
 CUBE = "red_cube"
 TIMEOUT = 60.0  # simulated seconds
 LIFT = 0.10
+GRASP_ABOVE_CENTRE = 0.01
 
 
 class SimGraspTest(unittest.TestCase):
@@ -85,8 +86,10 @@ class SimGraspTest(unittest.TestCase):
 
         # Top-down grasp at the cube's centre; the cube is turned to face the fingers.
         pose = self.cube().object.pose
-        grasp = top_down_ik(self.geometry, pose.position.x, pose.position.y, pose.position.z)
-        above = top_down_ik(self.geometry, pose.position.x, pose.position.y, pose.position.z + LIFT)
+        # The finger tips reach past the tcp: grasping above the cube's centre keeps them off the table.
+        grasp_z = pose.position.z + GRASP_ABOVE_CENTRE
+        grasp = top_down_ik(self.geometry, pose.position.x, pose.position.y, grasp_z)
+        above = top_down_ik(self.geometry, pose.position.x, pose.position.y, grasp_z + LIFT)
         pose.orientation.x, pose.orientation.y = 0.0, 0.0
         pose.orientation.z, pose.orientation.w = math.sin(0.5 * grasp[0]), math.cos(0.5 * grasp[0])
         self.assertTrue(self.set_object(CUBE, pose, self.cube().twist).success)

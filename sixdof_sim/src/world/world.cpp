@@ -5,6 +5,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyFixedConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyGearConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
@@ -27,6 +28,10 @@ namespace {
 constexpr double kMargin = 0.001;
 // Friction of robot links without <gazebo><mu1> (Gazebo's default mu is 1).
 constexpr double kDefaultLinkFriction = 1.0;
+// Mimic coupling: position error correction per step and force bound (N or N m; far above any
+// joint effort limit so the coupling does not give).
+constexpr double kGearErp = 0.2;
+constexpr double kGearMaxForce = 1000.0;
 // Impulse bound of the grasp fix's fixed constraint (N s per step): far above what holding an object needs.
 constexpr double kGraspConstraintMaxImpulse = 50.0;
 
@@ -489,6 +494,24 @@ void World::Impl::build() {
     }
     multibody->setJointPos(link, initial_positions[j]);
     multibody->setJointVel(link, 0.0);
+  }
+  // Mimic joints: a gear constraint q_mimic - multiplier * q_master = offset couples them rigidly, so a
+  // parallel gripper stays symmetric when an object pushes one finger (independent servos alone let a
+  // squeezed object and both fingers drift sideways as a unit once both servos saturate).
+  for (size_t j = 0; j < joints.size(); ++j) {
+    if (joints[j].master < 0) continue;
+    const JointInfo& info = joint_infos[j];
+    const int link = bodies[joints[j].body].bullet_link;
+    const int master_link = bodies[joints[joints[j].master].body].bullet_link;
+    auto gear = std::make_unique<btMultiBodyGearConstraint>(multibody.get(), link, multibody.get(), master_link,
+                                                            btVector3(0, 0, 0), btVector3(0, 0, 0),
+                                                            btMatrix3x3::getIdentity(), btMatrix3x3::getIdentity());
+    gear->setGearRatio(-info.mimic_multiplier);
+    gear->setRelativePositionTarget(info.mimic_offset);
+    gear->setErp(kGearErp);
+    gear->setMaxAppliedImpulse(kGearMaxForce * dt());
+    world->addMultiBodyConstraint(gear.get());
+    robot_constraints.push_back(std::move(gear));
   }
 
   // ---- static environment and objects ----

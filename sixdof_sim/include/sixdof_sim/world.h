@@ -23,6 +23,10 @@ class WorldError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Checks an object spec (name, finite pose, sizes > 0, mass > 0 unless static, friction >= 0,
+// restitution in [0, 1], colour in [0, 1]); the message names the field.
+Result validateObjectSpec(const ObjectSpec& spec);
+
 struct WorldOptions {
   double time_step = 0.001;    // s, fixed physics step
   int solver_iterations = 50;  // Bullet constraint solver iterations per step

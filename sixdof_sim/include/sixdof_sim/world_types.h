@@ -40,8 +40,10 @@ struct JointInfo {
   double upper = 0.0;         // URDF <limit upper>
   double max_velocity = 0.0;  // URDF <limit velocity>
   double max_effort = 0.0;    // URDF <limit effort> (N m or N)
-  double damping = 0.0;       // URDF <dynamics damping>
-  double friction = 0.0;      // URDF <dynamics friction> (Coulomb, N m or N)
+  double damping = 0.0;       // URDF <dynamics damping>: viscous, always applied
+  // URDF <dynamics friction> (Coulomb, N m or N): applied in kEffort mode; in the servo modes the
+  // drive's velocity loop holds the joint and the friction is part of what it overcomes.
+  double friction = 0.0;
   // Mimic joints (URDF <mimic>) get their own servo whose target follows the master's command:
   // q = multiplier * q_master + offset. They cannot be commanded directly (Status::kMimicJoint).
   std::string mimic_of;  // empty: not a mimic joint

@@ -97,7 +97,9 @@ struct JointRuntime {
   double effort = 0.0;      // kEffort command
   double applied_effort = 0.0;
   btMultiBodyJointMotor* servo = nullptr;
-  btMultiBodyJointMotor* friction = nullptr;
+  // Coulomb friction motor: in the world only while the joint is in kEffort mode (see applyCommands).
+  std::unique_ptr<btMultiBodyJointMotor> friction;
+  bool friction_in_world = false;
   btMultiBodyJointLimitConstraint* limit = nullptr;
 };
 
@@ -292,7 +294,7 @@ void World::Impl::buildStructure() {
     joint_description_index.push_back(static_cast<int>(j));
     JointRuntime runtime;
     runtime.body = links.at(joint.info.child_link).body;
-    joints.push_back(runtime);
+    joints.push_back(std::move(runtime));
   }
   for (size_t j = 0; j < joints.size(); ++j) {
     if (!joint_infos[j].mimic_of.empty()) joints[j].master = joint_index.at(joint_infos[j].mimic_of);
@@ -480,14 +482,12 @@ void World::Impl::build() {
     runtime.servo = servo.get();
     world->addMultiBodyConstraint(servo.get());
     robot_constraints.push_back(std::move(servo));
-    runtime.friction = nullptr;
+    runtime.friction.reset();
+    runtime.friction_in_world = false;
     if (info.friction > 0.0) {
       // Coulomb joint friction as a zero-velocity motor bounded by the friction force.
-      auto friction = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.friction * dt());
-      friction->setVelocityTarget(0.0, 1.0);
-      runtime.friction = friction.get();
-      world->addMultiBodyConstraint(friction.get());
-      robot_constraints.push_back(std::move(friction));
+      runtime.friction = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.friction * dt());
+      runtime.friction->setVelocityTarget(0.0, 1.0);
     }
     runtime.limit = nullptr;
     if (std::isfinite(info.lower) && std::isfinite(info.upper)) {
@@ -540,6 +540,10 @@ void World::Impl::destroy() {
   if (world) {
     if (grasp_constraint) world->removeMultiBodyConstraint(grasp_constraint.get());
     for (auto& c : robot_constraints) world->removeMultiBodyConstraint(c.get());
+    for (JointRuntime& j : joints) {
+      if (j.friction_in_world) world->removeMultiBodyConstraint(j.friction.get());
+      j.friction_in_world = false;
+    }
     for (auto& o : objects) world->removeRigidBody(o->body.get());
     if (ground) world->removeRigidBody(ground.get());
     for (auto& c : colliders) world->removeCollisionObject(c.get());
@@ -547,6 +551,7 @@ void World::Impl::destroy() {
   }
   grasp_constraint.reset();
   robot_constraints.clear();
+  for (JointRuntime& j : joints) j.friction.reset();
   objects.clear();
   ground.reset();
   ground_shape.reset();
@@ -668,9 +673,16 @@ void World::Impl::applyCommands() {
     }
     if (info.damping > 0.0) multibody->addJointTorque(link, -info.damping * multibody->getJointVel(link));
     // Coulomb friction acts on an unservoed joint only: a second velocity constraint on a servoed
-    // joint fights the servo in the iterative solver and makes the wrist jitter.
-    if (runtime.friction) {
-      runtime.friction->setMaxAppliedImpulse(runtime.mode == JointControlMode::kEffort ? info.friction * dt() : 0.0);
+    // joint fights the servo in the iterative solver and makes the wrist jitter. Out of the world
+    // otherwise, so it costs no solver time.
+    const bool want_friction = runtime.friction && runtime.mode == JointControlMode::kEffort;
+    if (want_friction != runtime.friction_in_world) {
+      if (want_friction) {
+        world->addMultiBodyConstraint(runtime.friction.get());
+      } else {
+        world->removeMultiBodyConstraint(runtime.friction.get());
+      }
+      runtime.friction_in_world = want_friction;
     }
   }
 }

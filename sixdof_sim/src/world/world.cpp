@@ -100,7 +100,6 @@ struct JointRuntime {
   // Coulomb friction motor: in the world only while the joint is in kEffort mode (see applyCommands).
   std::unique_ptr<btMultiBodyJointMotor> friction;
   bool friction_in_world = false;
-  btMultiBodyJointLimitConstraint* limit = nullptr;
 };
 
 struct ObjectRuntime {
@@ -490,10 +489,8 @@ void World::Impl::build() {
       runtime.friction = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.friction * dt());
       runtime.friction->setVelocityTarget(0.0, 1.0);
     }
-    runtime.limit = nullptr;
     if (std::isfinite(info.lower) && std::isfinite(info.upper)) {
       auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(multibody.get(), link, info.lower, info.upper);
-      runtime.limit = limit.get();
       world->addMultiBodyConstraint(limit.get());
       robot_constraints.push_back(std::move(limit));
     }

@@ -141,7 +141,8 @@ int main(int argc, char** argv) {
   world.setPreStepCallback([&](double t) {
     for (size_t j = 0; j < arm.size(); ++j) {
       const double phase = omega * t + 0.7 * static_cast<double>(j);
-      check(world.setPositionTarget(arm[j], centre[j] + amplitude * std::sin(phase), amplitude * omega * std::cos(phase)));
+      check(world.setPositionTarget(arm[j], centre[j] + amplitude * std::sin(phase),
+                                    amplitude * omega * std::cos(phase)));
     }
     check(world.setPositionTarget("finger1_joint", 0.02 + 0.015 * std::sin(2.0 * omega * t)));
   });

@@ -94,7 +94,8 @@ class GraspLogic : public ::testing::Test {
   }
 
   // Runs steps of 1 ms from `t` for `seconds`; returns the decisions' events with times.
-  std::vector<std::pair<double, std::string>> run(double* t, double seconds, const std::vector<GraspContact>& contacts) {
+  std::vector<std::pair<double, std::string>> run(double* t, double seconds,
+                                                  const std::vector<GraspContact>& contacts) {
     std::vector<std::pair<double, std::string>> events;
     const int steps = static_cast<int>(std::lround(seconds * 1000));
     for (int i = 0; i < steps; ++i) {

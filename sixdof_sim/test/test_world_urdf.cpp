@@ -94,7 +94,8 @@ TEST(UrdfLoader, FixedChildrenMergeIntoOneBody) {
   ASSERT_TRUE(world.setJointPositions({"shoulder"}, {0.5}).ok());
   const Eigen::Isometry3d tip = test::linkPose(world, "tip");
   // Rotation about +y by 0.5 of the point (0, 0, 0.45) above the shoulder at height 0.1.
-  EXPECT_TRUE(tip.translation().isApprox(Eigen::Vector3d(0.45 * std::sin(0.5), 0.0, 0.1 + 0.45 * std::cos(0.5)), 1e-12));
+  const Eigen::Vector3d expected(0.45 * std::sin(0.5), 0.0, 0.1 + 0.45 * std::cos(0.5));
+  EXPECT_TRUE(tip.translation().isApprox(expected, 1e-12));
   ASSERT_TRUE(world.setEffort("shoulder", 0.0).ok());
   world.step(300);
   EXPECT_GT(world.jointPositions()[0], 0.6);  // falls further away from upright

@@ -112,7 +112,9 @@ struct ObjectRuntime {
 }  // namespace
 
 Result validateObjectSpec(const ObjectSpec& spec) {
-  auto bad = [&](const std::string& what) { return Result{Status::kInvalidArgument, describe(spec.name) + ": " + what}; };
+  auto bad = [&](const std::string& what) {
+    return Result{Status::kInvalidArgument, describe(spec.name) + ": " + what};
+  };
   if (spec.name.empty()) return {Status::kInvalidArgument, "object name must not be empty"};
   if (!finite(spec.pose)) return bad("pose is not finite");
   const Shape& s = spec.shape;
@@ -244,7 +246,8 @@ void World::Impl::buildStructure() {
     const Eigen::Matrix3d i_com = r * link.inertia * r.transpose();
     accum[body].mass += link.mass;
     accum[body].moment += link.mass * c;
-    accum[body].inertia_origin += i_com + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    accum[body].inertia_origin +=
+        i_com + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   }
 
   for (size_t b = 0; b < bodies.size(); ++b) {
@@ -299,7 +302,9 @@ void World::Impl::buildStructure() {
     if (!joint_infos[j].mimic_of.empty()) joints[j].master = joint_index.at(joint_infos[j].mimic_of);
   }
   // Initial positions: zero, moved into the limits when zero is outside them.
-  for (const JointInfo& info : joint_infos) initial_positions.push_back(std::min(std::max(0.0, info.lower), info.upper));
+  for (const JointInfo& info : joint_infos) {
+    initial_positions.push_back(std::min(std::max(0.0, info.lower), info.upper));
+  }
   for (size_t j = 0; j < joints.size(); ++j) {
     if (joints[j].master >= 0) {
       const JointInfo& info = joint_infos[j];
@@ -401,8 +406,8 @@ void World::Impl::build() {
     const btVector3 pivot_to_com = toBt(body.head_to_body.linear().transpose() * body.head_to_body.translation());
     const int parent_link = parent.bullet_link;
     if (joint->info.type == JointType::kRevolute) {
-      multibody->setupRevolute(body.bullet_link, body.mass, toBt(body.principal_inertia), parent_link, rot_parent_to_this,
-                               axis, parent_com_to_pivot, pivot_to_com, true);
+      multibody->setupRevolute(body.bullet_link, body.mass, toBt(body.principal_inertia), parent_link,
+                               rot_parent_to_this, axis, parent_com_to_pivot, pivot_to_com, true);
     } else {
       multibody->setupPrismatic(body.bullet_link, body.mass, toBt(body.principal_inertia), parent_link,
                                 rot_parent_to_this, axis, parent_com_to_pivot, pivot_to_com, true);
@@ -818,7 +823,9 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
   }
   std::set<std::string> names;
   for (const ObjectSpec& object : world.objects) {
-    if (!names.insert(object.name).second) throw WorldError("world '" + world.name + "': duplicate object '" + object.name + "'");
+    if (!names.insert(object.name).second) {
+      throw WorldError("world '" + world.name + "': duplicate object '" + object.name + "'");
+    }
   }
   impl_->buildStructure();
   impl_->grasp_config = options.grasp_fix_config ? options.grasp_fix_config : impl_->robot.grasp_fix;
@@ -830,7 +837,9 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
       throw WorldError(e.what());
     }
     for (const std::string& link : config.gripper_links) {
-      if (!impl_->links.count(link)) throw WorldError("gazebo_grasp_fix: gripper_link '" + link + "' is not a URDF link");
+      if (!impl_->links.count(link)) {
+        throw WorldError("gazebo_grasp_fix: gripper_link '" + link + "' is not a URDF link");
+      }
     }
     if (!impl_->links.count(config.palm_link)) {
       throw WorldError("gazebo_grasp_fix: palm_link '" + config.palm_link + "' is not a URDF link");
@@ -872,10 +881,13 @@ void World::step(std::uint64_t n) {
     d.refreshKinematics();
     for (size_t j = 0; j < d.joints.size(); ++j) {
       JointRuntime& runtime = d.joints[j];
-      runtime.applied_effort = runtime.mode == JointControlMode::kEffort
-                                   ? (runtime.master >= 0 ? d.joint_infos[j].mimic_multiplier * d.joints[runtime.master].effort
-                                                          : runtime.effort)
-                                   : runtime.servo->getAppliedImpulse(0) / d.dt();
+      if (runtime.mode != JointControlMode::kEffort) {
+        runtime.applied_effort = runtime.servo->getAppliedImpulse(0) / d.dt();
+      } else if (runtime.master >= 0) {
+        runtime.applied_effort = d.joint_infos[j].mimic_multiplier * d.joints[runtime.master].effort;
+      } else {
+        runtime.applied_effort = runtime.effort;
+      }
     }
     grasp_contacts.clear();
     d.collectContacts(&grasp_contacts);
@@ -919,13 +931,17 @@ std::vector<double> World::initialJointPositions() const { return impl_->initial
 
 std::vector<double> World::jointPositions() const {
   std::vector<double> q;
-  for (const JointRuntime& j : impl_->joints) q.push_back(impl_->multibody->getJointPos(impl_->bodies[j.body].bullet_link));
+  for (const JointRuntime& j : impl_->joints) {
+    q.push_back(impl_->multibody->getJointPos(impl_->bodies[j.body].bullet_link));
+  }
   return q;
 }
 
 std::vector<double> World::jointVelocities() const {
   std::vector<double> v;
-  for (const JointRuntime& j : impl_->joints) v.push_back(impl_->multibody->getJointVel(impl_->bodies[j.body].bullet_link));
+  for (const JointRuntime& j : impl_->joints) {
+    v.push_back(impl_->multibody->getJointVel(impl_->bodies[j.body].bullet_link));
+  }
   return v;
 }
 
@@ -946,11 +962,14 @@ Result World::setJointPositions(const std::vector<std::string>& names, const std
   for (size_t i = 0; i < names.size(); ++i) {
     const int j = jointIndex(names[i]);
     if (j < 0) return {Status::kUnknownJoint, "unknown joint '" + names[i] + "'"};
-    if (!std::isfinite(positions[i])) return {Status::kInvalidArgument, "joint '" + names[i] + "': position is not finite"};
+    if (!std::isfinite(positions[i])) {
+      return {Status::kInvalidArgument, "joint '" + names[i] + "': position is not finite"};
+    }
     const JointInfo& info = d.joint_infos[j];
     if (positions[i] < info.lower || positions[i] > info.upper) {
       return {Status::kOutOfLimits, "joint '" + names[i] + "': position " + std::to_string(positions[i]) +
-                                        " outside [" + std::to_string(info.lower) + ", " + std::to_string(info.upper) + "]"};
+                                        " outside [" + std::to_string(info.lower) + ", " +
+                                        std::to_string(info.upper) + "]"};
     }
     q[j] = positions[i];
     given[j] = true;
@@ -1000,7 +1019,8 @@ Result World::Impl::checkJointCommand(const std::string& joint, int* index) {
   *index = it->second;
   if (joints[*index].master >= 0) {
     return {Status::kMimicJoint,
-            "joint '" + joint + "' mimics '" + joint_infos[*index].mimic_of + "': command '" + joint_infos[*index].mimic_of + "'"};
+            "joint '" + joint + "' mimics '" + joint_infos[*index].mimic_of + "': command '" +
+                joint_infos[*index].mimic_of + "'"};
   }
   return Result::success();
 }

@@ -1,10 +1,32 @@
 #include "sixdof_core/ik_numeric.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Cholesky>
 
 #include "ik_common.h"
 
 namespace sixdof_core {
+
+namespace {
+
+// A revolute joint past a limit is first turned by 2*pi (the same pose) if that lands within the
+// limits, so a solver crossing +-pi on a joint with a range of about 2*pi is not stopped there;
+// otherwise it is clamped.
+void projectIntoLimits(const KinematicChain& chain, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                       Eigen::VectorXd* q) {
+  for (Eigen::Index i = 0; i < q->size(); ++i) {
+    double& v = (*q)[i];
+    if (chain.joint(i).type != JointType::kPrismatic) {
+      if (v > upper[i] && v - 2.0 * M_PI >= lower[i]) v -= 2.0 * M_PI;
+      if (v < lower[i] && v + 2.0 * M_PI <= upper[i]) v += 2.0 * M_PI;
+    }
+    v = std::min(std::max(v, lower[i]), upper[i]);
+  }
+}
+
+}  // namespace
 
 NumericIkSolver::NumericIkSolver(KinematicChain chain) : IkSolver(std::move(chain)) {}
 
@@ -55,7 +77,8 @@ IkResult NumericIkSolver::solveValidated(const Eigen::Isometry3d& target, const 
       Eigen::MatrixXd a = j.transpose() * j;
       const Eigen::VectorXd g = j.transpose() * e.head(rows);
       a.diagonal().array() += lambda;
-      Eigen::VectorXd q_new = (q + a.ldlt().solve(g)).cwiseMax(lower).cwiseMin(upper);
+      Eigen::VectorXd q_new = q + a.ldlt().solve(g);
+      projectIntoLimits(chain_, lower, upper, &q_new);
       Eigen::Isometry3d tip_new;
       Matrix6Xd jacobian_new;
       chain_.forwardAndJacobian(q_new, &tip_new, &jacobian_new);

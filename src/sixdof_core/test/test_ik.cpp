@@ -155,7 +155,7 @@ void checkAllSolutions(const RobotModel& model, double same_configuration) {
     for (const auto& s : solver.solveAll(target, options.seed).solutions) {
       nearest = std::min(nearest, (s - options.seed).norm());
     }
-    EXPECT_NEAR((result.solution - options.seed).norm(), nearest, 1e-12);
+    EXPECT_NEAR((result.solution - options.seed).norm(), nearest, 1e-8);
     EXPECT_LT((result.solution - q).norm(), 1e-3);
   }
 }

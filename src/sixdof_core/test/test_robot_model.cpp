@@ -218,7 +218,8 @@ TEST(RobotModelErrors, SrdfProblemsAreNamed) {
                   "group 'arm' refers to unknown link 'nolink'");
   expectSrdfError(srdfWith("<group name=\"all\"><group name=\"missing\"/></group>"),
                   "group 'all' refers to unknown subgroup 'missing'");
-  expectSrdfError(srdfWith("<group name=\"a\"><group name=\"b\"/></group><group name=\"b\"><group name=\"a\"/></group>"),
+  expectSrdfError(srdfWith("<group name=\"a\"><group name=\"b\"/></group>"
+                           "<group name=\"b\"><group name=\"a\"/></group>"),
                   "contains itself");
   expectSrdfError(srdfWith("<group name=\"arm\"><joint name=\"joint1\"/></group>"
                            "<group name=\"arm\"><joint name=\"joint2\"/></group>"),
@@ -226,13 +227,16 @@ TEST(RobotModelErrors, SrdfProblemsAreNamed) {
   expectSrdfError(srdfWith("<group_state name=\"home\" group=\"nogroup\"/>"),
                   "group_state 'home' refers to unknown group 'nogroup'");
   expectSrdfError(srdfWith("<group name=\"arm\"><joint name=\"joint1\"/></group>"
-                           "<group_state name=\"home\" group=\"arm\"><joint name=\"joint2\" value=\"0\"/></group_state>"),
+                           "<group_state name=\"home\" group=\"arm\">"
+                           "<joint name=\"joint2\" value=\"0\"/></group_state>"),
                   "sets joint 'joint2', which is not in the group");
   expectSrdfError(srdfWith("<group name=\"arm\"><joint name=\"joint2\"/></group>"
-                           "<group_state name=\"home\" group=\"arm\"><joint name=\"joint2\" value=\"2.5\"/></group_state>"),
+                           "<group_state name=\"home\" group=\"arm\">"
+                           "<joint name=\"joint2\" value=\"2.5\"/></group_state>"),
                   "outside its limits");
   expectSrdfError(srdfWith("<group name=\"arm\"><joint name=\"joint2\"/></group>"
-                           "<group_state name=\"home\" group=\"arm\"><joint name=\"joint2\" value=\"x\"/></group_state>"),
+                           "<group_state name=\"home\" group=\"arm\">"
+                           "<joint name=\"joint2\" value=\"x\"/></group_state>"),
                   "is not a number");
   expectSrdfError(srdfWith("<end_effector name=\"hand\" parent_link=\"link6\" group=\"nogroup\"/>"),
                   "end effector 'hand' refers to unknown group 'nogroup'");
@@ -240,7 +244,8 @@ TEST(RobotModelErrors, SrdfProblemsAreNamed) {
                   "end effector 'hand' refers to unknown link 'link66'");
   expectSrdfError(srdfWith("<virtual_joint name=\"v\" type=\"floating\" parent_frame=\"world\" child_link=\"link1\"/>"),
                   "not the URDF root link");
-  expectSrdfError(srdfWith("<virtual_joint name=\"v\" type=\"wobbly\" parent_frame=\"world\" child_link=\"base_link\"/>"),
+  expectSrdfError(
+      srdfWith("<virtual_joint name=\"v\" type=\"wobbly\" parent_frame=\"world\" child_link=\"base_link\"/>"),
                   "unknown type 'wobbly'");
   expectSrdfError(srdfWith("<disable_collisions link1=\"link1\" link2=\"linkX\" reason=\"Never\"/>"),
                   "disable_collisions refers to unknown link 'linkX'");

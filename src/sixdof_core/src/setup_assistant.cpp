@@ -3,8 +3,14 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -218,8 +224,8 @@ void addGroupsSkeleton(const RobotModel& model, SrdfDocument& document) {
   }
   const std::string tip = joints[last_revolute].child_link;
   const auto chain = model.chainJoints(model.rootLink(), tip);
-  document.groups.push_back(
-      XmlElement{"group", {{"name", "arm"}}, {XmlElement{"chain", {{"base_link", model.rootLink()}, {"tip_link", tip}}, {}}}});
+  const XmlElement chain_element{"chain", {{"base_link", model.rootLink()}, {"tip_link", tip}}, {}};
+  document.groups.push_back(XmlElement{"group", {{"name", "arm"}}, {chain_element}});
   XmlElement gripper{"group", {{"name", "gripper"}}, {}};
   for (size_t j = 0; j < joints.size(); ++j) {
     if (joints[j].type == JointType::kFixed) continue;
@@ -285,6 +291,113 @@ SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::s
   result.srdf = writeSrdf(document);
   // What we write must load: this catches a skeleton that does not fit the model.
   RobotModel check(urdf_xml, result.srdf, resolver);
+  return result;
+}
+
+}  // namespace sixdof_core
+
+namespace sixdof_core {
+
+const char* const kSetupAssistantUsage =
+    "usage: setup_assistant --urdf FILE [--srdf-in FILE] --srdf-out FILE [--density N] [--seed S]\n"
+    "                       [--groups-skeleton]\n"
+    "  --urdf FILE         robot description (package:// meshes are found in the folders above the URDF,\n"
+    "                      then via ROS_PACKAGE_PATH)\n"
+    "  --srdf-in FILE      existing SRDF: groups, states, end effectors, virtual/passive joints and\n"
+    "                      disable_collisions entries with other reasons than Adjacent/Default/Always/Never\n"
+    "                      are kept\n"
+    "  --srdf-out FILE     where to write the SRDF (may be the same file as --srdf-in)\n"
+    "  --density N         random samples for Always/Never (1000 low .. 100000 high; default 10000)\n"
+    "  --seed S            random seed (default 0); the same inputs and seed give the same file\n"
+    "  --groups-skeleton   when the input has no groups: arm = chain root -> last revolute joint's child,\n"
+    "                      gripper = the other movable joints, end effector 'hand'\n";
+
+namespace {
+
+bool parseWholeNumber(const std::string& text, unsigned long long& value) {
+  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0]))) return false;
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtoull(text.c_str(), &end, 10);
+  return errno == 0 && *end == '\0';
+}
+
+}  // namespace
+
+SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string>& args) {
+  SetupAssistantCommand command;
+  std::map<std::string, std::string> values;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--help" || arg == "-h") {
+      command.help = true;
+      return command;
+    }
+    if (arg == "--groups-skeleton") {
+      command.options.groups_skeleton = true;
+    } else if (arg == "--urdf" || arg == "--srdf-in" || arg == "--srdf-out" || arg == "--density" || arg == "--seed") {
+      if (i + 1 >= args.size()) throw std::invalid_argument(arg + " needs a value");
+      values[arg] = args[++i];
+    } else {
+      throw std::invalid_argument("unknown argument '" + arg + "'");
+    }
+  }
+  if (!values.count("--urdf")) throw std::invalid_argument("--urdf is required");
+  if (!values.count("--srdf-out")) throw std::invalid_argument("--srdf-out is required");
+  command.urdf_path = values["--urdf"];
+  command.srdf_out_path = values["--srdf-out"];
+  if (values.count("--srdf-in")) command.srdf_in_path = values["--srdf-in"];
+  if (values.count("--density")) {
+    unsigned long long density = 0;
+    if (!parseWholeNumber(values["--density"], density) || density == 0) {
+      throw std::invalid_argument("--density must be a whole number > 0, got '" + values["--density"] + "'");
+    }
+    command.options.collision.density = density;
+  }
+  if (values.count("--seed")) {
+    unsigned long long seed = 0;
+    if (!parseWholeNumber(values["--seed"], seed)) {
+      throw std::invalid_argument("--seed must be a whole number >= 0, got '" + values["--seed"] + "'");
+    }
+    command.options.collision.seed = seed;
+  }
+  return command;
+}
+
+SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& command) {
+  namespace fs = std::filesystem;
+  // The folders above the URDF come first: a URDF usually lives in <package>/urdf/ and names its own
+  // package's meshes, which an installed copy elsewhere on ROS_PACKAGE_PATH may lack.
+  std::vector<std::string> roots;
+  for (fs::path dir = fs::absolute(command.urdf_path).parent_path(); roots.size() < 3 && dir.has_relative_path();
+       dir = dir.parent_path()) {
+    roots.push_back(dir.string());
+  }
+  if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream in(env);
+    for (std::string root; std::getline(in, root, ':');) {
+      if (!root.empty()) roots.push_back(root);
+    }
+  }
+  const std::string urdf = readTextFile(command.urdf_path);
+  std::string srdf_in;
+  if (!command.srdf_in_path.empty()) {
+    srdf_in = readTextFile(command.srdf_in_path);
+    if (srdf_in.empty()) throw RobotModelError("SRDF file '" + command.srdf_in_path + "' is empty");
+  }
+  SetupAssistantResult result;
+  try {
+    result = runSetupAssistant(urdf, srdf_in, command.options, PackageResolver::fromSearchRoots(roots));
+  } catch (const RobotModelError& e) {
+    throw RobotModelError(std::string(e.what()) + " (URDF '" + command.urdf_path + "'" +
+                          (command.srdf_in_path.empty() ? "" : ", SRDF '" + command.srdf_in_path + "'") + ")");
+  } catch (const SrdfError& e) {
+    throw SrdfError(std::string(e.what()) + " (SRDF '" + command.srdf_in_path + "')");
+  }
+  std::ofstream out(command.srdf_out_path, std::ios::binary | std::ios::trunc);
+  if (!out || !(out << result.srdf) || !out.flush()) {
+    throw RobotModelError("cannot write file '" + command.srdf_out_path + "'");
+  }
   return result;
 }
 

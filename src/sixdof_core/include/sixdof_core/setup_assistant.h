@@ -95,4 +95,24 @@ SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::s
                                        const SetupAssistantOptions& options,
                                        const PackageResolver& resolver = PackageResolver());
 
+// The command line of `rosrun sixdof_core setup_assistant`.
+struct SetupAssistantCommand {
+  std::string urdf_path;
+  std::string srdf_in_path;  // empty: no input SRDF
+  std::string srdf_out_path;
+  SetupAssistantOptions options;
+  bool help = false;
+};
+
+extern const char* const kSetupAssistantUsage;
+
+// Throws std::invalid_argument naming the problem (unknown argument, missing value or required option,
+// density not a whole number > 0, seed not a whole number >= 0).
+SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string>& args);
+
+// Reads the files, runs the setup assistant and writes the SRDF. package:// mesh URIs are resolved in the
+// three folders above the URDF first, then in ROS_PACKAGE_PATH. Throws RobotModelError naming a file that
+// cannot be read or written, and whatever runSetupAssistant throws.
+SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& command);
+
 }  // namespace sixdof_core

@@ -141,7 +141,8 @@ CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model,
     if (!links[l].collision.shapes.empty()) with_geometry.push_back(static_cast<int>(l));
   }
   CollisionMatrixResult result;
-  result.link_pairs = with_geometry.size() * (with_geometry.size() - (with_geometry.empty() ? 0 : 1)) / 2;
+  const size_t geometry_links = with_geometry.size();
+  result.link_pairs = geometry_links < 2 ? 0 : geometry_links * (geometry_links - 1) / 2;
 
   std::map<LinkPair, ComputedPair> decided;
   auto decide = [&](int a, int b, DisableReason reason, size_t count) {

@@ -1,6 +1,8 @@
 #include "sixdof_core/ik_analytic.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "ik_common.h"
@@ -122,21 +124,25 @@ AnalyticIkSolver::AnalyticIkSolver(KinematicChain chain) : IkSolver(std::move(ch
   }
 }
 
-void AnalyticIkSolver::forwardAndJacobianPoe(const Vector6d& q, Eigen::Isometry3d* tip, Matrix6d* jacobian) const {
+void AnalyticIkSolver::forwardPoe(const Vector6d& q, Eigen::Isometry3d* tip) const {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d axes[6], points[6];
   for (int i = 0; i < 6; ++i) {
-    axes[i] = t.linear() * w_[i];
-    points[i] = t * p_[i];
-    Eigen::Isometry3d e = Eigen::Isometry3d::Identity();
-    e.linear() = rot(w_[i], q[i]);
-    e.translation() = p_[i] - e.linear() * p_[i];
-    t = t * e;
+    const Eigen::Matrix3d r = rot(w_[i], q[i]);
+    t.translation() += t.linear() * (p_[i] - r * p_[i]);
+    t.linear() = t.linear() * r;
   }
   *tip = t * home_;
+}
+
+void AnalyticIkSolver::jacobianPoe(const Vector6d& q, const Eigen::Vector3d& tip, Matrix6d* jacobian) const {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   for (int i = 0; i < 6; ++i) {
-    jacobian->block<3, 1>(0, i) = axes[i].cross(tip->translation() - points[i]);
-    jacobian->block<3, 1>(3, i) = axes[i];
+    const Eigen::Vector3d axis = t.linear() * w_[i];
+    jacobian->block<3, 1>(0, i) = axis.cross(tip - t * p_[i]);
+    jacobian->block<3, 1>(3, i) = axis;
+    const Eigen::Matrix3d r = rot(w_[i], q[i]);
+    t.translation() += t.linear() * (p_[i] - r * p_[i]);
+    t.linear() = t.linear() * r;
   }
 }
 
@@ -144,19 +150,21 @@ bool AnalyticIkSolver::refine(const Eigen::Isometry3d& target, Vector6d* q) cons
   Eigen::Isometry3d reached;
   Matrix6d jacobian;
   for (int it = 0;; ++it) {
-    forwardAndJacobianPoe(*q, &reached, &jacobian);
+    forwardPoe(*q, &reached);
     const Vector6d e = ik_detail::twistError(reached, target);
     const double position = e.head<3>().norm();
     const double orientation = e.tail<3>().norm();
     if (position < kExactTolerance && orientation < kExactTolerance) return true;
     // Far off: a spurious candidate, not a slightly inexact one.
     if (it == kRefineIterations || position > kCandidateTolerance || orientation > kCandidateTolerance) return false;
+    jacobianPoe(*q, reached.translation(), &jacobian);
     *q += (jacobian.transpose() * jacobian + 1e-12 * Matrix6d::Identity()).ldlt().solve(jacobian.transpose() * e);
   }
 }
 
-IkStatus AnalyticIkSolver::solveRaw(const Eigen::Isometry3d& target, const Vector6d& seed,
-                                    std::vector<Vector6d>* raw, std::string* message) const {
+IkStatus AnalyticIkSolver::solveRaw(const Eigen::Isometry3d& target, const Vector6d& seed, Candidates* out,
+                                    std::string* message) const {
+  out->count = 0;
   // The wrist joints do not move the wrist centre, so the first three joints alone must bring it there.
   const Eigen::Vector3d center = target * (home_.inverse() * wrist_center_);
 
@@ -174,7 +182,6 @@ IkStatus AnalyticIkSolver::solveRaw(const Eigen::Isometry3d& target, const Vecto
     return IkStatus::kOutOfReach;
   }
   bool arm_reachable = false;
-  bool wrist_reachable = false;
   for (int i1 = 0; i1 < n1; ++i1) {
     const double q1 = normalizeAngle(-q1s[i1]);
     const Eigen::Matrix3d r1 = rot(w_[0], q1);
@@ -219,7 +226,6 @@ IkStatus AnalyticIkSolver::solveRaw(const Eigen::Isometry3d& target, const Vecto
       const Eigen::Vector3d cross45 = w_[3].cross(w_[4]);
       const double gamma_sq = (1.0 - alpha * alpha - beta * beta - 2.0 * alpha * beta * k) / cross45.squaredNorm();
       if (gamma_sq < -kNearBoundary) continue;
-      wrist_reachable = true;
       const double gamma = std::sqrt(std::max(0.0, gamma_sq));
       const int n_gamma = gamma > 1e-12 ? 2 : 1;
       for (int ig = 0; ig < n_gamma; ++ig) {
@@ -234,23 +240,26 @@ IkStatus AnalyticIkSolver::solveRaw(const Eigen::Isometry3d& target, const Vecto
         const Eigen::Vector3d any = w_[5].unitOrthogonal();
         double q6 = 0.0;
         rotationAngle(w_[5], any, r6 * any, &q6);
-        Vector6d q;
-        q << q1, q2, q3, q4, q5, q6;
-        if (!refine(target, &q)) continue;
-        for (int i = 0; i < 6; ++i) q[i] = normalizeAngle(q[i]);
-        bool duplicate = false;
-        for (const auto& other : *raw) duplicate = duplicate || (other - q).cwiseAbs().maxCoeff() < 1e-9;
-        if (!duplicate) raw->push_back(q);
+        out->q[out->count++] << q1, q2, q3, q4, q5, q6;
       }
     }
   }
-  if (!raw->empty()) return IkStatus::kSuccess;
+  out->arm_reachable = arm_reachable;
+  if (out->count > 0) return IkStatus::kSuccess;
   if (!arm_reachable) {
     *message = "target is out of reach (the wrist centre is beyond the arm's reach)";
     return IkStatus::kOutOfReach;
   }
-  *message = wrist_reachable ? "no closed-form solution reproduces the target (numerical failure)"
-                             : "target orientation is not reachable by the wrist";
+  *message = "target orientation is not reachable by the wrist";
+  return IkStatus::kNoSolution;
+}
+
+IkStatus AnalyticIkSolver::refinementFailure(const Candidates& candidates, std::string* message) {
+  if (!candidates.arm_reachable) {
+    *message = "target is out of reach (the wrist centre is beyond the arm's reach)";
+    return IkStatus::kOutOfReach;
+  }
+  *message = "no closed-form candidate converges to the target (numerical failure)";
   return IkStatus::kNoSolution;
 }
 
@@ -290,68 +299,108 @@ bool forEachWithinLimits(const KinematicChain& chain, const Vector6d& q, const V
 AnalyticSolutions AnalyticIkSolver::solveAll(const Eigen::Isometry3d& tip_in_base, const Eigen::VectorXd& seed) const {
   AnalyticSolutions all;
   const Vector6d s = seed.size() == 6 ? Vector6d(seed) : Vector6d::Zero();
-  std::vector<Vector6d> raw;
-  raw.reserve(8);
-  all.status = solveRaw(tip_in_base, s, &raw, &all.message);
-  all.unconstrained_count = static_cast<int>(raw.size());
-  for (const auto& q : raw) {
+  Candidates candidates;
+  all.status = solveRaw(tip_in_base, s, &candidates, &all.message);
+  std::vector<Vector6d> exact;
+  for (int c = 0; c < candidates.count; ++c) {
+    Vector6d q = candidates.q[c];
+    if (!refine(tip_in_base, &q)) continue;
+    for (int i = 0; i < 6; ++i) q[i] = normalizeAngle(q[i]);
+    bool duplicate = false;
+    for (const auto& other : exact) duplicate = duplicate || (other - q).cwiseAbs().maxCoeff() < 1e-9;
+    if (!duplicate) exact.push_back(q);
+  }
+  all.unconstrained_count = static_cast<int>(exact.size());
+  if (candidates.count > 0 && exact.empty()) all.status = refinementFailure(candidates, &all.message);
+  for (const auto& q : exact) {
     forEachWithinLimits(chain_, q, s, [&](const Vector6d& variant) { all.solutions.emplace_back(variant); });
   }
-  if (!raw.empty() && all.solutions.empty()) {
+  if (!exact.empty() && all.solutions.empty()) {
     all.status = IkStatus::kJointLimits;
-    all.message = std::to_string(raw.size()) + " solutions, each violating a joint limit";
+    all.message = std::to_string(exact.size()) + " solutions, each violating a joint limit";
   }
   return all;
+}
+
+IkStatus AnalyticIkSolver::solveNearest(const Eigen::Isometry3d& target, const Vector6d& seed, Vector6d* best,
+                                        std::string* message) const {
+  Candidates candidates;
+  const IkStatus status = solveRaw(target, seed, &candidates, message);
+  if (status != IkStatus::kSuccess) return status;
+  // Only the chosen solution needs the (rarely needed) refinement: try candidates nearest-first, each
+  // in its 2*pi variant nearest the seed.
+  std::pair<double, int> order[8];
+  Vector6d nearest[8];
+  int within = 0;
+  for (int c = 0; c < candidates.count; ++c) {
+    double best_distance = std::numeric_limits<double>::infinity();
+    forEachWithinLimits(chain_, candidates.q[c], seed, [&](const Vector6d& variant) {
+      const double distance = (variant - seed).squaredNorm();
+      if (distance < best_distance) {
+        best_distance = distance;
+        nearest[c] = variant;
+      }
+    });
+    if (best_distance == std::numeric_limits<double>::infinity()) continue;
+    // Insertion into the (at most 8) sorted entries.
+    int k = within++;
+    for (; k > 0 && order[k - 1].first > best_distance; --k) order[k] = order[k - 1];
+    order[k] = {best_distance, c};
+  }
+  for (int k = 0; k < within; ++k) {
+    Vector6d q = nearest[order[k].second];
+    if (refine(target, &q) && chain_.withinLimits(q)) {
+      *best = q;
+      return IkStatus::kSuccess;
+    }
+  }
+  if (within == 0) {
+    *message = std::to_string(candidates.count) + " solutions, each violating a joint limit";
+    return IkStatus::kJointLimits;
+  }
+  return refinementFailure(candidates, message);
 }
 
 IkResult AnalyticIkSolver::solveValidated(const Eigen::Isometry3d& target, const IkOptions& options,
                                           const Eigen::VectorXd& seed) const {
   const Vector6d s(seed);
   IkResult result;
-  std::vector<Vector6d> raw;
-  raw.reserve(8);
+  Vector6d best;
+  if (!options.position_only) {
+    result.attempts = 1;
+    result.status = solveNearest(target, s, &best, &result.message);
+    if (result.success()) {
+      result.solution = best;
+      Eigen::Isometry3d reached;
+      forwardPoe(best, &reached);
+      const PoseError error = poseError(reached, target);
+      result.position_error = error.position;
+      result.orientation_error = error.orientation;
+    }
+    return result;
+  }
   // Position-only goals: the seed's orientation first, then random orientations, until the budget ends.
   std::mt19937_64 rng(options.random_seed);
   ik_detail::Budget budget(options);
   Eigen::Isometry3d goal = target;
-  if (options.position_only) goal.linear() = chain_.forward(seed).linear();
-  IkStatus last = IkStatus::kOutOfReach;
-  while (options.position_only ? budget.nextAttempt() : budget.used() == 0 && budget.nextAttempt()) {
+  goal.linear() = chain_.forward(seed).linear();
+  while (budget.nextAttempt()) {
     if (budget.used() > 1) {
       Eigen::Vector4d random;
       std::normal_distribution<double> normal;
       for (int i = 0; i < 4; ++i) random[i] = normal(rng);
       goal.linear() = Eigen::Quaterniond(random.normalized()).toRotationMatrix();
     }
-    raw.clear();
-    last = solveRaw(goal, s, &raw, &result.message);
-    if (raw.empty()) continue;
-    double best_distance = std::numeric_limits<double>::infinity();
-    Vector6d best;
-    for (const auto& q : raw) {
-      forEachWithinLimits(chain_, q, s, [&](const Vector6d& variant) {
-        const double distance = (variant - s).squaredNorm();
-        if (distance < best_distance) {
-          best_distance = distance;
-          best = variant;
-        }
-      });
-    }
-    if (best_distance == std::numeric_limits<double>::infinity()) {
-      last = IkStatus::kJointLimits;
-      result.message = std::to_string(raw.size()) + " solutions, each violating a joint limit";
-      continue;
-    }
+    if (solveNearest(goal, s, &best, &result.message) != IkStatus::kSuccess) continue;
     result.status = IkStatus::kSuccess;
     result.message.clear();
     result.solution = best;
     result.attempts = budget.used();
     ik_detail::setErrors(chain_, target, result.solution, &result);
-    if (options.position_only) result.orientation_error = 0.0;
+    result.orientation_error = 0.0;
     return result;
   }
-  // A full-pose answer is exact: its status says why. Position-only searches report the budget.
-  result.status = options.position_only ? budget.exhaustedStatus() : last;
+  result.status = budget.exhaustedStatus();
   result.attempts = budget.used();
   return result;
 }

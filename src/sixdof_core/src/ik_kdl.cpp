@@ -22,16 +22,18 @@ KDL::Frame toKdl(const Eigen::Isometry3d& t) {
                     KDL::Vector(t.translation().x(), t.translation().y(), t.translation().z()));
 }
 
+// One segment per joint, as kdl_parser builds it: the joint moves in the segment's root frame and the
+// segment ends at the next joint's origin (the tip offset for the last one).
 KDL::Chain toKdlChain(const KinematicChain& chain) {
   KDL::Chain kdl;
+  kdl.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::None), toKdl(chain.jointOffset(0))));
   for (size_t i = 0; i < chain.dof(); ++i) {
     const JointModel& joint = chain.joint(i);
-    kdl.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::None), toKdl(chain.jointOffset(i))));
     const KDL::Vector axis(joint.axis.x(), joint.axis.y(), joint.axis.z());
     const auto type = joint.type == JointType::kPrismatic ? KDL::Joint::TransAxis : KDL::Joint::RotAxis;
-    kdl.addSegment(KDL::Segment(KDL::Joint(joint.name, KDL::Vector::Zero(), axis, type), KDL::Frame::Identity()));
+    const Eigen::Isometry3d& next = i + 1 < chain.dof() ? chain.jointOffset(i + 1) : chain.tipOffset();
+    kdl.addSegment(KDL::Segment(KDL::Joint(joint.name, KDL::Vector::Zero(), axis, type), toKdl(next)));
   }
-  kdl.addSegment(KDL::Segment(KDL::Joint(KDL::Joint::None), toKdl(chain.tipOffset())));
   return kdl;
 }
 

@@ -454,7 +454,7 @@ void RobotModel::parseSrdf(const std::string& srdf_xml) {
     if (visit_state[name] == 2) return;
     if (visit_state[name] == 1) throw RobotModelError("SRDF: group '" + name + "' contains itself via subgroups");
     visit_state[name] = 1;
-    auto* group = const_cast<JointGroup*>(findGroup(name));
+    const JointGroup* group = findGroup(name);
     for (const auto& sub : group->subgroups) {
       if (!findGroup(sub)) {
         throw RobotModelError("SRDF: group '" + name + "' refers to unknown subgroup '" + sub + "'");

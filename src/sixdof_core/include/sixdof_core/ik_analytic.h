@@ -47,12 +47,22 @@ class AnalyticIkSolver : public IkSolver {
 
  private:
   using Vector6d = Eigen::Matrix<double, 6, 1>;
-  // Solutions without limits (angles in [-pi, pi]); returns the status for zero solutions.
-  IkStatus solveRaw(const Eigen::Isometry3d& target, const Vector6d& seed, std::vector<Vector6d>* raw,
-                    std::string* message) const;
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  // Closed-form candidates (up to 2 for joint 1 x 2 elbow x 2 wrist), before refinement.
+  struct Candidates {
+    Vector6d q[8];
+    int count = 0;
+    bool arm_reachable = false;  // reached without stretching past a boundary by rounding
+  };
+  IkStatus solveRaw(const Eigen::Isometry3d& target, const Vector6d& seed, Candidates* out,
+                    std::string* message) const;
+  // The solution within limits nearest the seed.
+  IkStatus solveNearest(const Eigen::Isometry3d& target, const Vector6d& seed, Vector6d* best,
+                        std::string* message) const;
+  static IkStatus refinementFailure(const Candidates& candidates, std::string* message);
   // Exact kinematics in product-of-exponentials form (fixed-size, no allocation).
-  void forwardAndJacobianPoe(const Vector6d& q, Eigen::Isometry3d* tip, Matrix6d* jacobian) const;
+  void forwardPoe(const Vector6d& q, Eigen::Isometry3d* tip) const;
+  void jacobianPoe(const Vector6d& q, const Eigen::Vector3d& tip, Matrix6d* jacobian) const;
   // Newton steps from a closed-form candidate; false if it is not (close to) a solution.
   bool refine(const Eigen::Isometry3d& target, Vector6d* q) const;
 

@@ -11,7 +11,7 @@ namespace sixdof_core {
 class NumericIkSolver : public IkSolver {
  public:
   // Iterations of one start before it counts as stalled.
-  static constexpr int kMaxIterationsPerStart = 60;
+  static constexpr int kMaxIterationsPerStart = 40;
 
   explicit NumericIkSolver(KinematicChain chain);
   std::string name() const override { return "numeric"; }

@@ -156,6 +156,7 @@ class RobotModel {
   const std::vector<GroupState>& groupStates() const { return group_states_; }
   const GroupState* findGroupState(const std::string& group, const std::string& name) const;
   const std::vector<EndEffector>& endEffectors() const { return end_effectors_; }
+  // Recorded as declared; they add no variables (link transforms are in the root link's frame).
   const std::vector<VirtualJoint>& virtualJoints() const { return virtual_joints_; }
   const std::vector<std::string>& passiveJoints() const { return passive_joints_; }
   const std::vector<DisabledCollisionPair>& disabledCollisionPairs() const { return disabled_collisions_; }

@@ -1,0 +1,118 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sixdof_core/robot_model.h"
+#include "sixdof_core/srdf_writer.h"
+
+namespace sixdof_core {
+
+// Why the setup assistant disables a link pair (MoveIt Setup Assistant's reasons).
+enum class DisableReason {
+  kAdjacent,  // joined by a joint, possibly across links without collision geometry
+  kDefault,   // colliding at the default state
+  kAlways,    // colliding in more than always_fraction of the random samples
+  kNever,     // colliding in none of the random samples
+};
+
+// "Adjacent", "Default", "Always", "Never".
+std::string reasonName(DisableReason reason);
+
+struct CollisionMatrixOptions {
+  // Random samples for Always/Never (MoveIt's sampling density: 1,000 low .. 100,000 high).
+  std::size_t density = 10000;
+  std::uint64_t seed = 0;
+  double always_fraction = 0.95;
+};
+
+struct ComputedPair {
+  std::string link1;  // the link that comes first in the model's (topological) link order
+  std::string link2;
+  DisableReason reason = DisableReason::kNever;
+  std::size_t colliding_samples = 0;  // for Always/Never: in how many samples the pair collided
+};
+
+struct CollisionMatrixResult {
+  // Sorted by reason (Adjacent, Default, Always, Never), then by the links' model order.
+  std::vector<ComputedPair> disabled;
+  std::size_t link_pairs = 0;    // pairs of links that both have collision geometry
+  std::size_t samples = 0;       // random states drawn
+  std::size_t pair_checks = 0;   // pairwise collision checks done while sampling
+};
+
+// Pairs of links with geometry that are joined by a joint once links without geometry are collapsed
+// into their neighbours (parent before child in each pair, in model order).
+std::vector<std::pair<std::string, std::string>> adjacentLinkPairs(const RobotModel& model);
+
+// Every link of the model, in model order, with its collision shapes (none for links without geometry),
+// so that RobotState::linkTransforms() are exactly the poses a CollisionScene built from it expects.
+std::vector<LinkGeometry> allLinkGeometry(const RobotModel& model);
+
+// Joint positions drawn uniformly within the limits of each active joint (continuous joints in [-pi, pi]);
+// mimic joints follow through RobotState. The same generator state gives the same sequence on every platform.
+class StateSampler {
+ public:
+  StateSampler(const RobotModel& model, std::uint64_t seed);
+  Eigen::VectorXd sample();
+
+ private:
+  std::vector<std::pair<double, double>> bounds_;
+  std::uint64_t state_;
+};
+
+// Classifies every pair of links with geometry. Throws std::invalid_argument on density 0 or
+// always_fraction outside (0, 1).
+CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model, const CollisionMatrixOptions& options);
+
+// Groups of a model without an SRDF: `arm` = chain from the root to the child of the last revolute
+// (or continuous) joint; `gripper` = every other non-fixed joint; end effector `hand` (parent link = the
+// arm's tip, group gripper) when there is a gripper. Throws std::invalid_argument when the model has no
+// revolute joint.
+void addGroupsSkeleton(const RobotModel& model, SrdfDocument& document);
+
+struct SetupAssistantOptions {
+  CollisionMatrixOptions collision;
+  bool groups_skeleton = false;  // only applied when the input SRDF has no groups
+};
+
+struct SetupAssistantResult {
+  std::string srdf;
+  CollisionMatrixResult collisions;
+  bool skeleton_written = false;
+  std::size_t manual_pairs_kept = 0;
+};
+
+// Computes the disabled collision pairs of the URDF's robot and merges them into srdf_in_xml (empty: no
+// input SRDF). Hand-written parts of the input are kept; its disable_collisions entries with reason
+// Adjacent, Default, Always or Never are replaced by the computed set, entries with any other reason
+// (e.g. User) are kept and win over a computed entry for the same pair. Throws RobotModelError or
+// SrdfError on bad input, std::invalid_argument on bad options.
+SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::string& srdf_in_xml,
+                                       const SetupAssistantOptions& options,
+                                       const PackageResolver& resolver = PackageResolver());
+
+// The command line of `rosrun sixdof_core setup_assistant`.
+struct SetupAssistantCommand {
+  std::string urdf_path;
+  std::string srdf_in_path;  // empty: no input SRDF
+  std::string srdf_out_path;
+  SetupAssistantOptions options;
+  bool help = false;
+};
+
+extern const char* const kSetupAssistantUsage;
+
+// Throws std::invalid_argument naming the problem (unknown argument, missing value or required option,
+// density not a whole number > 0, seed not a whole number >= 0).
+SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string>& args);
+
+// Reads the files, runs the setup assistant and writes the SRDF. package:// mesh URIs are resolved in the
+// three folders above the URDF first, then in ROS_PACKAGE_PATH. Throws RobotModelError naming a file that
+// cannot be read or written, and whatever runSetupAssistant throws.
+SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& command);
+
+}  // namespace sixdof_core

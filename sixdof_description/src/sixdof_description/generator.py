@@ -360,16 +360,22 @@ def render_srdf(robot: Robot, previous: str | None) -> str:
         out.append("  </group_state>")
     for element in kept_states:
         ET.indent(element, space="  ", level=1)
-        out.append("  " + ET.tostring(element, encoding="unicode").strip())
+        out.append("  " + _srdf_xml(element))
     out.append('  <end_effector name="hand" parent_link="link6" group="gripper"/>')
     out.append('  <virtual_joint name="virtual_joint" type="fixed" parent_frame="world" child_link="base_link"/>')
     for a, b in adjacent_pairs():
         out.append(f'  <disable_collisions link1="{a}" link2="{b}" reason="Adjacent"/>')
     for element in kept_pairs:
         element.tail = None
-        out.append("  " + ET.tostring(element, encoding="unicode").strip())
+        out.append("  " + _srdf_xml(element))
     out.append("</robot>")
     return "\n".join(out) + "\n"
+
+
+def _srdf_xml(element: ET.Element) -> str:
+    """An element as one SRDF line, with empty elements closed as `/>` like every other line of the file (and
+    like sixdof_core's setup_assistant writes them), so that either tool leaves the other's output unchanged."""
+    return ET.tostring(element, encoding="unicode").strip().replace(" />", "/>")
 
 
 # --- YAML -------------------------------------------------------------------------------------------

@@ -85,8 +85,8 @@ Row run(const std::string& name, const IkSolver& solver, const IkOptions& option
 
 [[noreturn]] void usage(const std::string& problem) {
   std::cerr << "ik_bench: " << problem << "\n"
-            << "usage: ik_bench [--urdf URDF] [--srdf SRDF] [--group arm] [--count 10000] [--timeout 0.005] [--seed 1]\n"
-            << "                [--solvers analytic,numeric,kdl,kdl_single]\n";
+            << "usage: ik_bench [--urdf URDF] [--srdf SRDF] [--group arm] [--count 10000] [--timeout 0.005]\n"
+            << "                [--seed 1] [--solvers analytic,numeric,kdl,kdl_single]\n";
   std::exit(2);
 }
 

@@ -138,6 +138,11 @@ PackageResolver PackageResolver::fromMap(const std::map<std::string, std::string
   return resolver;
 }
 
+PackageResolver& PackageResolver::addPackage(const std::string& package, const std::string& directory) {
+  package_dirs_[package] = directory;
+  return *this;
+}
+
 std::string PackageResolver::packageDirectory(const std::string& package) const {
   auto it = package_dirs_.find(package);
   if (it != package_dirs_.end()) return it->second;

@@ -165,7 +165,9 @@ TEST(RobotModel, MeshesResolveThroughPackagePaths) {
                                               PackageResolver::fromMap({{"sixdof_core", kDataDir + "/../.."}}));
   EXPECT_TRUE(std::filesystem::equivalent(from_map->link("wrist_3_link").collision.shapes[0].shape.mesh_path,
                                           shapes[0].shape.mesh_path));
-  const auto from_path = PackageResolver::fromRosPackagePath("/nonexistent:" + kDataDir + "/../../..");
+  auto from_path = PackageResolver::fromRosPackagePath("/nonexistent:" + kDataDir + "/../../..");
+  from_path.addPackage("fixtures", kDataDir);
+  EXPECT_TRUE(std::filesystem::exists(from_path.resolve("package://fixtures/meshes/flange.stl")));
   EXPECT_TRUE(std::filesystem::exists(from_path.resolve("package://sixdof_core/test/data/meshes/flange.stl")));
 
   try {

@@ -110,6 +110,8 @@ class PackageResolver {
   // Splits a ROS_PACKAGE_PATH-style string (':'-separated) into search roots.
   static PackageResolver fromRosPackagePath(const std::string& ros_package_path);
   static PackageResolver fromMap(const std::map<std::string, std::string>& package_dirs);
+  // An explicit package directory, looked up before the search roots.
+  PackageResolver& addPackage(const std::string& package, const std::string& directory);
 
   // Throws RobotModelError when the package is unknown or the file does not exist.
   std::string resolve(const std::string& uri) const;

@@ -3,6 +3,7 @@
 // GJK/EPA tolerances); penetration depths within 1e-4 m.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -127,9 +128,17 @@ std::string writeLStl(const std::string& name) {
 }
 
 // Joint values that put the tool (link6 z) straight down with the TCP at (x, 0, tcp_z): planar 2-link
-// solution (upper arm and forearm both 0.3 m from the design contract, wrist to TCP 0.16 m) with elbow up.
-std::map<std::string, double> topDown(double x, double tcp_z) {
-  const double l = 0.3, shoulder = 0.3, wrist_to_tcp = 0.16;
+// solution (upper arm and forearm both 0.3 m, shoulder 0.3 m high, from the design contract) with elbow up.
+// The wrist-centre-to-TCP distance is the URDF's: at zero joints the tool points along +x from the wrist
+// centre (link5's origin).
+std::map<std::string, double> topDown(const sixdof_test::UrdfArm& arm, double x, double tcp_z) {
+  const auto zero = arm.poses({});
+  const auto at_zero = [&](const std::string& link) {
+    const auto it = std::find(arm.order.begin(), arm.order.end(), link);
+    return zero[it - arm.order.begin()].translation();
+  };
+  const double wrist_to_tcp = at_zero("tcp").x() - at_zero("link5").x();
+  const double l = 0.3, shoulder = 0.3;
   const double dx = x, dz = tcp_z + wrist_to_tcp - shoulder;
   const double d = std::hypot(dx, dz);
   const double a1 = std::atan2(dz, dx) + std::acos(d / (2 * l));
@@ -176,7 +185,7 @@ TEST(CollisionScene, HomeIsFreeFoldedArmCollides) {
   const auto arm = loadArm();
   const CollisionScene scene(arm.links, disabledPairs(arm));
   EXPECT_FALSE(scene.isColliding(arm.poses({})));
-  EXPECT_FALSE(scene.isColliding(arm.poses(topDown(0.4, 0.2))));
+  EXPECT_FALSE(scene.isColliding(arm.poses(topDown(arm, 0.4, 0.2))));
 
   // Forearm folded down along the upper arm.
   const auto folded = arm.poses({{"joint3", 1.6}});
@@ -490,12 +499,23 @@ TEST(CollisionScene, AttachedObjectMovesWithLinkAndMayTouchFingers) {
   ASSERT_GE(link6, 0);
   ASSERT_GE(tcp, 0);
 
-  // Grasp: tool down, TCP 0.2 m above the table; fingers at 0.02 squeeze a 4.2 cm wide block.
-  const auto grasp = arm.poses(topDown(0.4, 0.2));
+  // Grasp: tool down, TCP 0.2 m above the table; fingers at 0.02 squeeze a 4.2 cm wide block whose bottom
+  // is 1 cm below the fingertips (their depth below the TCP is measured against a plate right under the
+  // gripper, to which the fingers are the closest links).
+  const auto grasp = arm.poses(topDown(arm, 0.4, 0.2));
   ASSERT_NEAR(grasp[tcp].translation().z(), 0.2, 1e-9);
   ASSERT_NEAR(grasp[tcp].linear().col(2).z(), -1.0, 1e-9);
   ASSERT_FALSE(scene.isColliding(grasp));
-  WorldObject block = object("block", box(0.03, 0.042, 0.04), grasp[tcp]);
+  CollisionScene probe(arm.links, disabledPairs(arm));
+  ASSERT_TRUE(probe.addWorldObject(object("plate", box(0.05, 0.05, 0.05), at(0.4, 0, -0.025))).ok());
+  const DistanceReport fingers_to_table = probe.distance(grasp, CollisionScope::kWorld);
+  const bool plate_second = fingers_to_table.body2 == "plate";
+  ASSERT_TRUE(plate_second || fingers_to_table.body1 == "plate");
+  const std::string& lowest = plate_second ? fingers_to_table.body1 : fingers_to_table.body2;
+  ASSERT_EQ(lowest.rfind("finger", 0), 0u) << lowest;
+  const double tip_depth = 0.2 - fingers_to_table.distance;
+  const double half_height = tip_depth + 0.01;
+  WorldObject block = object("block", box(0.03, 0.042, 2 * half_height), grasp[tcp]);
   ASSERT_TRUE(scene.addWorldObject(block).ok());
   EXPECT_TRUE(hasPair(scene.checkCollision(grasp), "block", "finger1"));
 
@@ -518,7 +538,7 @@ TEST(CollisionScene, AttachedObjectMovesWithLinkAndMayTouchFingers) {
 
   // Lowered so the block's bottom is 5 mm into the table while the fingertips (1 cm above the block's
   // bottom) stay 5 mm clear: only block-table collides.
-  const auto into_table = arm.poses(topDown(0.4, 0.015));
+  const auto into_table = arm.poses(topDown(arm, 0.4, half_height - 0.005));
   const CollisionReport hit = scene.checkCollision(into_table);
   ASSERT_TRUE(hit.colliding);
   ASSERT_EQ(hit.contacts.size(), 1u);
@@ -527,7 +547,7 @@ TEST(CollisionScene, AttachedObjectMovesWithLinkAndMayTouchFingers) {
   EXPECT_TRUE(scene.isColliding(into_table, CollisionScope::kWorld));
   EXPECT_FALSE(scene.isColliding(into_table, CollisionScope::kSelf));
   // Just above: free, and the closest world pair is the block 5 mm above the table.
-  const auto above = arm.poses(topDown(0.4, 0.025));
+  const auto above = arm.poses(topDown(arm, 0.4, half_height + 0.005));
   EXPECT_FALSE(scene.isColliding(above));
   const DistanceReport clearance = scene.distance(above, CollisionScope::kWorld);
   EXPECT_EQ(clearance.body1, "block");
@@ -543,7 +563,7 @@ TEST(CollisionScene, AttachedObjectMovesWithLinkAndMayTouchFingers) {
   // The released block stays where the gripper left it: lowering the (empty) gripper onto it again
   // squeezes it between the fingers, while the arm away from it is free.
   EXPECT_TRUE(hasPair(copy.checkCollision(above), "block", "finger1"));
-  EXPECT_FALSE(copy.isColliding(arm.poses(topDown(0.4, 0.2))));
+  EXPECT_FALSE(copy.isColliding(arm.poses(topDown(arm, 0.4, 0.2))));
 }
 
 TEST(CollisionScene, MultiShapeObjectsMoveAsOne) {

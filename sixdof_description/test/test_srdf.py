@@ -1,0 +1,178 @@
+"""The SRDF: well-formed, consistent with the URDF, named states within limits and where they were meant to be."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+from conftest import urdf_chain
+
+from sixdof_description import cad
+from sixdof_description.generator import build_robot, load_design, render_srdf
+from sixdof_description.kinematics import fk, frame, pose_error
+
+ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
+ARM_STATES = ["home pose", "pick pose", "after pick pose", "place pose", "after place pose"]
+
+
+def test_groups_end_effector_virtual_joint(srdf):
+    assert srdf.get("name") == "sixdof"
+    groups = {g.get("name"): g for g in srdf.findall("group")}
+    assert set(groups) == {"arm", "gripper"}
+    chain = groups["arm"].find("chain")
+    assert (chain.get("base_link"), chain.get("tip_link")) == ("base_link", "link6")
+    assert [j.get("name") for j in groups["gripper"].findall("joint")] == ["finger1_joint", "finger2_joint"]
+    ee = srdf.findall("end_effector")
+    assert len(ee) == 1
+    assert (ee[0].get("name"), ee[0].get("parent_link"), ee[0].get("group")) == ("hand", "link6", "gripper")
+    vj = srdf.find("virtual_joint")
+    assert (vj.get("type"), vj.get("parent_frame"), vj.get("child_link")) == ("fixed", "world", "base_link")
+
+
+def test_every_named_link_and_joint_exists(srdf, robot):
+    links, joints = set(robot.link_map), {j.name for j in robot.joints}
+    for e in srdf.iter():
+        for attr in ("link1", "link2", "parent_link", "child_link", "base_link", "tip_link"):
+            if e.get(attr) is not None:
+                assert e.get(attr) in links, f"<{e.tag} {attr}={e.get(attr)}>: no such link"
+        if e.tag == "joint":
+            assert e.get("name") in joints, f"joint {e.get('name')} is not in the URDF"
+        if e.tag == "disable_collisions":
+            assert e.get("reason") in ("Adjacent", "Default", "Always", "Never", "User")
+
+
+def test_adjacent_pairs_are_the_joined_links(srdf, robot):
+    adjacent = {frozenset((d.get("link1"), d.get("link2")))
+                for d in srdf.findall("disable_collisions") if d.get("reason") == "Adjacent"}
+    with_geometry = {name for name, link in robot.link_map.items() if link.collision is not None}
+    expected = {frozenset((j.parent, j.child)) for j in robot.joints
+                if j.parent in with_geometry and j.child in with_geometry}
+    assert adjacent == expected
+
+
+def _states(srdf, group):
+    return {s.get("name"): {j.get("name"): float(j.get("value")) for j in s.findall("joint")}
+            for s in srdf.findall("group_state") if s.get("group") == group}
+
+
+def test_named_states_are_within_limits(srdf, robot):
+    limits = {j.name: (j.limit.lower, j.limit.upper) for j in robot.joints if j.limit is not None}
+    arm = _states(srdf, "arm")
+    assert list(arm) == ARM_STATES
+    for name, values in arm.items():
+        assert list(values) == ARM
+        for joint, v in values.items():
+            lo, hi = limits[joint]
+            assert lo <= v <= hi, f"{name}: {joint}={v} outside [{lo}, {hi}]"
+    assert _states(srdf, "gripper") == {"open": {"finger1_joint": 0.04, "finger2_joint": 0.04},
+                                        "close": {"finger1_joint": 0.0, "finger2_joint": 0.0}}
+
+
+@pytest.mark.parametrize("state", ARM_STATES)
+def test_named_state_reaches_its_design_pose(srdf, robot, design, state):
+    spec = design["named_states"][state]
+    kchain, _ = urdf_chain(robot, "base_link", spec["frame"])
+    q = [_states(srdf, "arm")[state][j] for j in ARM]
+    target = frame(spec["xyz"], [math.radians(a) for a in spec["rpy_deg"]])
+    perr, rerr = pose_error(fk(kchain, q), target)
+    assert perr < 1e-5 and rerr < 1e-5
+
+
+def test_pick_and_place_poses_point_down_over_their_places(srdf, robot):
+    kchain, _ = urdf_chain(robot, "base_link", "tcp")
+    states = _states(srdf, "arm")
+    tcp = {name: fk(kchain, [states[name][j] for j in ARM]) for name in ARM_STATES}
+    for name in ARM_STATES[1:]:
+        z = tcp[name].M.UnitZ()
+        assert z[2] == pytest.approx(-1.0, abs=1e-6), f"{name}: tool not pointing down"
+    cube_top = 0.04
+    assert tcp["pick pose"].p[2] - 0.02 == pytest.approx(0.06, abs=1e-6)
+    assert tcp["pick pose"].p[2] > cube_top
+    assert (tcp["pick pose"].p[0], tcp["pick pose"].p[1]) == pytest.approx((0.40, -0.15), abs=1e-6)
+    assert (tcp["place pose"].p[0], tcp["place pose"].p[1]) == pytest.approx((0.40, 0.20), abs=1e-6)
+    assert tcp["after pick pose"].p[2] - tcp["pick pose"].p[2] == pytest.approx(0.15, abs=1e-6)
+    assert tcp["after place pose"].p[2] > tcp["place pose"].p[2]
+
+
+def test_regeneration_keeps_hand_written_entries(pkg):
+    robot = build_robot(load_design(Path(pkg) / "config" / "design.yaml"))
+    base = render_srdf(robot, None)
+    hand_written = base.replace(
+        "</robot>",
+        '  <group_state name="wave" group="arm"><joint name="joint1" value="0.5"/></group_state>\n'
+        '  <disable_collisions link1="link1" link2="link3" reason="Never"/>\n'
+        '  <disable_collisions link1="base_link" link2="link2" reason="Adjacent"/>\n</robot>')
+    regenerated = render_srdf(robot, hand_written)
+    assert 'name="wave"' in regenerated
+    assert 'link1="link1" link2="link3" reason="Never"' in regenerated
+    # Adjacent pairs are always recomputed, generated states are not duplicated.
+    assert 'link1="base_link" link2="link2" reason="Adjacent"' not in regenerated
+    assert regenerated.count('name="home pose"') == 1
+    assert render_srdf(robot, regenerated) == regenerated
+    np.testing.assert_equal(render_srdf(robot, base), base)
+
+
+def _link_frames(robot, q_arm, finger):
+    """Every link's pose in base_link at arm joints q_arm and finger opening `finger`."""
+    values = dict(zip(ARM, q_arm, strict=True))
+    values.update({"finger1_joint": finger, "finger2_joint": finger})
+    frames = {}
+    for link in robot.link_map:
+        if link == "base_link":
+            continue
+        kchain, specs = urdf_chain(robot, "base_link", link)
+        frames[link] = fk(kchain, [values[s.name] for s in specs])
+    return frames
+
+
+@pytest.mark.parametrize("state", ARM_STATES)
+def test_named_states_keep_the_robot_above_the_table(pkg, srdf, robot, state):
+    """Collision hulls of all moving links stay above z = 0; at 'pick pose' the open fingers clear the cube."""
+    q = [_states(srdf, "arm")[state][j] for j in ARM]
+    frames = _link_frames(robot, q, 0.04)
+    lowest = {}
+    for link, f in frames.items():
+        if robot.link_map[link].collision is None:
+            continue
+        hull = trimesh.load(pkg / "meshes" / "collision" / f"{link}.stl")
+        rot = np.array([[f.M[r, c] for c in range(3)] for r in range(3)])
+        points = hull.vertices @ rot.T + np.array([f.p[0], f.p[1], f.p[2]])
+        lowest[link] = points[:, 2].min()
+    assert min(lowest.values()) > 0.0, lowest
+    if state == "pick pose":
+        cube_top = 0.04
+        assert min(lowest["finger1"], lowest["finger2"]) > cube_top
+
+
+def _placed_hulls(pkg, robot, q_arm, finger):
+    hulls = {"base_link": trimesh.load(pkg / "meshes" / "collision" / "base_link.stl")}
+    for link, f in _link_frames(robot, q_arm, finger).items():
+        if robot.link_map[link].collision is None:
+            continue
+        transform = np.eye(4)
+        transform[:3, :3] = [[f.M[r, c] for c in range(3)] for r in range(3)]
+        transform[:3, 3] = [f.p[0], f.p[1], f.p[2]]
+        hulls[link] = trimesh.load(pkg / "meshes" / "collision" / f"{link}.stl")
+        hulls[link].apply_transform(transform)
+    return hulls
+
+
+@pytest.mark.parametrize("state", ARM_STATES)
+@pytest.mark.parametrize("gripper", ["open", "close"])
+def test_named_states_are_free_of_self_collision(pkg, srdf, robot, state, gripper):
+    """Collision hulls of links not allowed to touch do not overlap (manifold intersection volume)."""
+    allowed = {frozenset((d.get("link1"), d.get("link2"))) for d in srdf.findall("disable_collisions")}
+    q = [_states(srdf, "arm")[state][j] for j in ARM]
+    finger = _states(srdf, "gripper")[gripper]["finger1_joint"]
+    hulls = _placed_hulls(pkg, robot, q, finger)
+    names = sorted(hulls)
+    overlaps = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            if frozenset((a, b)) in allowed:
+                continue
+            volume = (cad.to_manifold(hulls[a]) ^ cad.to_manifold(hulls[b])).volume()
+            if volume > 1e-9:
+                overlaps.append((a, b, volume))
+    assert not overlaps

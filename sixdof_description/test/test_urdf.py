@@ -1,0 +1,187 @@
+"""The generated URDF: parses, keeps docs/design.md's kinematics, has valid and mesh-consistent inertias."""
+
+import math
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import PyKDL as kdl  # noqa: N813
+import pytest
+import trimesh
+from conftest import urdf_chain
+
+from sixdof_description.generator import GRASP_FIX_BLOCK
+from sixdof_description.kinematics import fk, frame, pose_error, solve_ik
+
+PI = math.pi
+# docs/design.md's joint table: origin xyz, rpy, axis, limits.
+CONTRACT = {
+    "joint1": ("base_link", "link1", (0, 0, 0.10), (0, 0, 0), (0, 0, 1), (-PI, PI)),
+    "joint2": ("link1", "link2", (0, 0, 0.20), (0, 0, 0), (0, 1, 0), (-1.92, 1.92)),
+    "joint3": ("link2", "link3", (0, 0, 0.30), (0, 0, 0), (0, 1, 0), (-2.6, 2.6)),
+    "joint4": ("link3", "link4", (0.12, 0, 0), (0, 0, 0), (1, 0, 0), (-PI, PI)),
+    "joint5": ("link4", "link5", (0.18, 0, 0), (0, 0, 0), (0, 1, 0), (-2.1, 2.1)),
+    "joint6": ("link5", "link6", (0.08, 0, 0), (0, PI / 2, 0), (0, 0, 1), (-2 * PI, 2 * PI)),
+}
+LINKS = ["base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2"]
+PAPER_POSES = {
+    "home": ((0.366, 0.0, 0.286), (-180.0, 0.688, 179.995)),
+    "target": ((-0.568, 0.058, 0.396), (-133.151, 35.219, 1.048)),
+}
+
+
+def test_check_urdf_is_clean(pkg):
+    tool = shutil.which("check_urdf")
+    assert tool, "check_urdf (liburdfdom-tools) is not installed"
+    run = subprocess.run([tool, str(pkg / "urdf" / "sixdof.urdf")], capture_output=True, text=True, check=False)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "Error" not in run.stdout + run.stderr
+    assert "root Link: base_link has 1 child(ren)" in run.stdout
+
+
+def test_arm_joints_follow_the_design_contract(robot):
+    joints = {j.name: j for j in robot.joints}
+    revolute = [j.name for j in robot.joints if j.type == "revolute"]
+    assert revolute == list(CONTRACT)
+    for name, (parent, child, xyz, rpy, axis, limits) in CONTRACT.items():
+        j = joints[name]
+        assert (j.parent, j.child) == (parent, child)
+        np.testing.assert_allclose(j.origin.xyz, xyz, atol=1e-9)
+        np.testing.assert_allclose(j.origin.rpy, rpy, atol=1e-8)
+        np.testing.assert_allclose(j.axis, axis, atol=1e-12)
+        assert j.limit.lower == pytest.approx(limits[0], abs=1e-8)
+        assert j.limit.upper == pytest.approx(limits[1], abs=1e-8)
+        assert j.limit.velocity > 0 and j.limit.effort > 0
+        assert j.dynamics.damping > 0 and j.dynamics.friction >= 0
+
+
+def test_zero_pose_matches_the_contract(robot):
+    kchain, _ = urdf_chain(robot, "base_link", "link6")
+    f = fk(kchain, [0.0] * 6)
+    np.testing.assert_allclose([f.p[i] for i in range(3)], [0.38, 0.0, 0.60], atol=1e-12)
+    z_axis, x_axis = f.M.UnitZ(), f.M.UnitX()
+    np.testing.assert_allclose([z_axis[i] for i in range(3)], [1, 0, 0], atol=1e-12)
+    np.testing.assert_allclose([x_axis[i] for i in range(3)], [0, 0, -1], atol=1e-12)
+
+
+def test_gripper_joints(robot):
+    joints = {j.name: j for j in robot.joints}
+    assert joints["palm_joint"].type == "fixed" and joints["palm_joint"].parent == "link6"
+    f1, f2 = joints["finger1_joint"], joints["finger2_joint"]
+    assert (f1.type, f1.parent, f1.child) == ("prismatic", "palm", "finger1")
+    assert (f2.type, f2.parent, f2.child) == ("prismatic", "palm", "finger2")
+    np.testing.assert_allclose(f1.axis, [0, 1, 0])
+    np.testing.assert_allclose(f2.axis, [0, -1, 0])
+    for j in (f1, f2):
+        assert (j.limit.lower, j.limit.upper) == (0.0, 0.04)
+    assert f2.mimic is not None and f2.mimic.joint == "finger1_joint"
+    assert (f2.mimic.multiplier or 1.0) == 1.0 and (f2.mimic.offset or 0.0) == 0.0
+    tcp = joints["tcp_joint"]
+    assert (tcp.type, tcp.parent, tcp.child) == ("fixed", "link6", "tcp")
+    assert tcp.origin.xyz[0] == 0.0 and tcp.origin.xyz[1] == 0.0 and tcp.origin.xyz[2] > 0.0
+
+
+def test_tcp_is_centred_between_the_pads(pkg, robot):
+    """The finger's pad face is at y = 0 of its frame, and the tcp sits mid-height of the pads."""
+    joints = {j.name: j for j in robot.joints}
+    finger1 = trimesh.load(pkg / "meshes" / "visual" / "finger1.stl")
+    assert finger1.bounds[0][1] == pytest.approx(0.0, abs=1e-6)
+    face = finger1.vertices[finger1.vertices[:, 1] < 1e-4]
+    pad_mid_z = (face[:, 2].min() + face[:, 2].max()) / 2.0
+    finger_z = joints["palm_joint"].origin.xyz[2] + joints["finger1_joint"].origin.xyz[2]
+    assert joints["tcp_joint"].origin.xyz[2] == pytest.approx(finger_z + pad_mid_z, abs=2e-4)
+    # 3-6 cm objects fit between pads that open to 2 x 0.04 m.
+    pad_length = face[:, 2].max() - face[:, 2].min()
+    assert 0.015 < pad_length < 0.04
+
+
+@pytest.mark.parametrize("name", LINKS)
+def test_inertia_is_physically_valid(robot, name):
+    inertial = robot.link_map[name].inertial
+    assert inertial.mass > 0.0
+    i = inertial.inertia
+    tensor = np.array([[i.ixx, i.ixy, i.ixz], [i.ixy, i.iyy, i.iyz], [i.ixz, i.iyz, i.izz]])
+    principal = np.linalg.eigvalsh(tensor)
+    assert principal.min() > 0.0, f"{name}: inertia not positive definite {principal}"
+    a, b, c = principal
+    tol = 1e-12
+    assert a + b >= c - tol and b + c >= a - tol and a + c >= b - tol, f"{name}: triangle inequality {principal}"
+
+
+@pytest.mark.parametrize("name", LINKS)
+def test_inertia_matches_the_mesh(pkg, robot, design, name):
+    mesh = trimesh.load(pkg / "meshes" / "visual" / f"{name}.stl")
+    assert mesh.is_watertight, f"{name}: visual mesh is not closed"
+    mesh.density = design["density"]
+    inertial = robot.link_map[name].inertial
+    assert inertial.mass == pytest.approx(mesh.mass, rel=1e-4)
+    np.testing.assert_allclose(inertial.origin.xyz, mesh.center_mass, atol=1e-6)
+    np.testing.assert_allclose(inertial.origin.rpy, [0, 0, 0])
+    i = inertial.inertia
+    tensor = np.array([[i.ixx, i.ixy, i.ixz], [i.ixy, i.iyy, i.iyz], [i.ixz, i.iyz, i.izz]])
+    scale = np.abs(mesh.moment_inertia).max()
+    np.testing.assert_allclose(tensor, mesh.moment_inertia, atol=1e-4 * scale)
+
+
+@pytest.mark.parametrize("name", LINKS)
+def test_meshes_exist_and_collision_is_a_small_convex_hull(pkg, robot, name):
+    link = robot.link_map[name]
+    prefix = "package://sixdof_description/"
+    assert link.visual.geometry.filename == f"{prefix}meshes/visual/{name}.stl"
+    assert link.collision.geometry.filename == f"{prefix}meshes/collision/{name}.stl"
+    hull = trimesh.load(pkg / "meshes" / "collision" / f"{name}.stl")
+    visual = trimesh.load(pkg / "meshes" / "visual" / f"{name}.stl")
+    assert hull.is_convex and hull.is_watertight
+    assert len(hull.faces) <= 200
+    # The hull encloses the visual solid (up to the coarse tessellation of round parts).
+    assert hull.volume >= 0.9 * visual.volume
+    assert link.visual.material is not None and link.visual.material.name
+
+
+def test_materials_have_colours(robot):
+    for material in robot.materials:
+        assert material.color is not None and len(material.color.rgba) == 4
+
+
+def test_grasp_fix_block_and_friction(pkg):
+    text = (pkg / "urdf" / "sixdof.urdf").read_text(encoding="utf-8")
+    root = ET.fromstring(text)
+    plugins = root.findall("gazebo/plugin[@name='gazebo_grasp_fix']")
+    assert len(plugins) == 1
+    expected = ET.fromstring(GRASP_FIX_BLOCK).find("plugin")
+
+    def canon(e):
+        return (e.tag, dict(e.attrib), (e.text or "").strip(), [canon(c) for c in e])
+
+    assert canon(plugins[0]) == canon(expected)
+    arm = plugins[0].find("arm")
+    assert arm.findtext("palm_link") == "link6"
+    assert [g.text for g in arm.findall("gripper_link")] == ["finger1", "finger2"]
+    assert plugins[0].findtext("release_tolerance") == "0.005"
+    for link in LINKS:
+        ref = root.find(f"gazebo[@reference='{link}']")
+        assert ref is not None, f"no friction for {link}"
+        assert float(ref.findtext("mu1")) > 0 and float(ref.findtext("mu2")) > 0
+    assert float(root.find("gazebo[@reference='finger1']").findtext("mu1")) >= 1.0
+
+
+@pytest.mark.parametrize("pose", sorted(PAPER_POSES))
+def test_paper_pose_is_reachable(robot, pose):
+    kchain, specs = urdf_chain(robot, "base_link", "link6")
+    xyz, rpy_deg = PAPER_POSES[pose]
+    target = frame(xyz, [math.radians(a) for a in rpy_deg])
+    result = solve_ik(kchain, [s.lower for s in specs], [s.upper for s in specs], target, [0.0] * 6,
+                      restarts=100, random_seed=11)
+    assert result.success, f"{pose} pose unreachable: {result.position_error} m, {result.rotation_error} rad"
+    perr, rerr = pose_error(fk(kchain, result.q), target)
+    assert perr < 1e-5 and rerr < 1e-5
+    assert all(s.lower <= q <= s.upper for s, q in zip(specs, result.q, strict=True))
+
+
+def test_kdl_tree_has_the_whole_robot(robot):
+    kchain, specs = urdf_chain(robot, "base_link", "tcp")
+    assert kchain.getNrOfJoints() == 6 and len(specs) == 6
+    fchain, fspecs = urdf_chain(robot, "base_link", "finger2")
+    assert fchain.getNrOfJoints() == 7 and fspecs[-1].name == "finger2_joint"
+    assert isinstance(kchain.getSegment(0), kdl.Segment)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <thread>
 
 #include "sixdof_core/collision.h"
 #include "sixdof_core/mesh_loader.h"
@@ -328,6 +329,17 @@ TEST(CollisionScene, WorldMeshesHitAndMiss) {
   EXPECT_FALSE(scene.isColliding(probeAt(0.3, 0.1, 0.26)));  // 1 cm above the top face
   EXPECT_FALSE(scene.isColliding(probeAt(0.3, 0.3, 0.1)));  // in the notch, 0.1 from both inner faces
   EXPECT_NEAR(scene.distance(probeAt(0.3, 0.3, 0.1)).distance, 0.05, kDistanceTolerance);
+  // Moved and turned 90 deg about z: the notch is now [-0.4,-0.2]x[0.2,0.4] around (1, 0, 0).
+  Eigen::Isometry3d moved = at(1, 0, 0);
+  moved.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  ASSERT_TRUE(scene.moveWorldObject("ell", moved).ok());
+  EXPECT_FALSE(scene.isColliding(probeAt(0.7, 0.3, 0.1)));
+  EXPECT_TRUE(scene.isColliding(probeAt(0.83, 0.3, 0.1)));  // through the inner face x = 0.8
+  const DistanceReport above = scene.distance(probeAt(0.9, 0.1, 0.3));  // 0.1 above the top face
+  EXPECT_NEAR(above.distance, 0.05, kDistanceTolerance);
+  EXPECT_EQ(above.body2, "ell");
+  EXPECT_NEAR((above.point1 - Eigen::Vector3d(0.9, 0.1, 0.25)).norm(), 0.0, 1e-3);
+  EXPECT_NEAR((above.point2 - Eigen::Vector3d(0.9, 0.1, 0.2)).norm(), 0.0, 1e-3);
 
   Shape broken = mesh(testing::TempDir() + "missing.stl");
   const SceneStatus missing = scene.addWorldObject(object("ghost", broken, at(0, 0, 0)));
@@ -348,10 +360,26 @@ TEST(CollisionScene, ContactReportNamesBodiesAndDepth) {
   EXPECT_EQ(c.body2, "box");
   EXPECT_EQ(c.type2, BodyType::kWorldObject);
   EXPECT_NEAR(c.depth, 0.02, kDistanceTolerance);
-  EXPECT_NEAR(std::abs(c.normal.x()), 1.0, 1e-3);
+  EXPECT_NEAR(c.normal.x(), -1.0, 1e-3);  // from the probe (x = 0.13) towards the box
   EXPECT_NEAR(c.position.x(), 0.09, 0.011);  // within the overlap slab [0.08, 0.1]
   const DistanceReport d = scene.distance(probeAt(0.13, 0, 0));
   EXPECT_NEAR(d.distance, -0.02, kDistanceTolerance);
+
+  // The normal points from body1 (the robot) to body2 for every geometry pairing FCL dispatches
+  // differently (specialised, GJK, convex mesh, BVH mesh).
+  ASSERT_TRUE(scene.removeWorldObject("box").ok());
+  const std::vector<Shape> others = {box(0.2, 0.2, 0.2), sphere(0.1), cylinder(0.1, 0.2), mesh(writeCubeObj("n.obj")),
+                                     mesh(writeLStl("n.stl"))};
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    ASSERT_TRUE(scene.addWorldObject(object("other", others[k], at(0, 0, 0))).ok());
+    // The L mesh's face y = 0 spans x, z in [0, 0.1]: approach it from -y there; the rest from +x.
+    const auto pose = k == 4 ? probeAt(0.05, -0.04, 0.05) : probeAt(0.13, 0, 0);
+    const Eigen::Vector3d towards = k == 4 ? Eigen::Vector3d(0, 1, 0) : Eigen::Vector3d(-1, 0, 0);
+    const CollisionReport r = scene.checkCollision(pose);
+    ASSERT_EQ(r.contacts.size(), 1u) << k;
+    EXPECT_GT(r.contacts[0].normal.dot(towards), 0.9) << k << ": " << r.contacts[0].normal.transpose();
+    ASSERT_TRUE(scene.removeWorldObject("other").ok());
+  }
 }
 
 TEST(CollisionScene, DistanceMatchesAnalytic) {
@@ -516,6 +544,75 @@ TEST(CollisionScene, AttachedObjectMovesWithLinkAndMayTouchFingers) {
   // squeezes it between the fingers, while the arm away from it is free.
   EXPECT_TRUE(hasPair(copy.checkCollision(above), "block", "finger1"));
   EXPECT_FALSE(copy.isColliding(arm.poses(topDown(0.4, 0.2))));
+}
+
+TEST(CollisionScene, MultiShapeObjectsMoveAsOne) {
+  CollisionScene scene = probeScene();
+  // A shelf: two 0.2 m boards, one at the object origin and one 0.5 m above it.
+  WorldObject shelf = object("shelf", box(0.2, 0.2, 0.02), at(1, 0, 0));
+  shelf.shapes.push_back(PlacedShape{box(0.2, 0.2, 0.02), at(0, 0, 0.5)});
+  ASSERT_TRUE(scene.addWorldObject(shelf).ok());
+  EXPECT_TRUE(scene.isColliding(probeAt(1, 0, 0.55)));
+  EXPECT_FALSE(scene.isColliding(probeAt(1, 0, 0.3)));
+  Eigen::Isometry3d tipped = at(1, 0, 0);
+  tipped.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));  // upper board now at x = 1.5
+  ASSERT_TRUE(scene.moveWorldObject("shelf", tipped).ok());
+  EXPECT_FALSE(scene.isColliding(probeAt(1, 0, 0.55)));
+  EXPECT_TRUE(scene.isColliding(probeAt(1.5, 0, 0.1)));
+
+  // An attached tool of two spheres, 0.3 m and 0.6 m along the probe link's x axis.
+  AttachedObject tool;
+  tool.id = "tool";
+  tool.link_name = "probe";
+  tool.pose_in_link = at(0.3, 0, 0);
+  tool.shapes = {PlacedShape{sphere(0.02), Eigen::Isometry3d::Identity()}, PlacedShape{sphere(0.02), at(0.3, 0, 0)}};
+  ASSERT_TRUE(scene.attachObject(tool).ok());
+  ASSERT_TRUE(scene.removeWorldObject("shelf").ok());
+  ASSERT_TRUE(scene.addWorldObject(object("post", cylinder(0.05, 1.0), at(0, 2, 0))).ok());
+  // Link at the origin turned to face +y: the tool's far sphere sits at (0, 0.6, 0), the near one at
+  // (0, 0.3, 0); the post's surface is at y = 1.95.
+  Eigen::Isometry3d facing_y = at(0, 0, 0);
+  facing_y.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  EXPECT_NEAR(scene.distance({facing_y}).distance, 1.95 - 0.62, kDistanceTolerance);
+  facing_y.translation().y() = 1.34;  // far sphere spans y up to 1.96
+  const CollisionReport hit = scene.checkCollision({facing_y});
+  ASSERT_TRUE(hit.colliding);
+  EXPECT_TRUE(hasPair(hit, "tool", "post"));
+  EXPECT_FALSE(hasPair(hit, "probe", "post"));
+}
+
+TEST(CollisionScene, ConstQueriesAreThreadSafe) {
+  const auto arm = loadArm();
+  CollisionScene scene(arm.links, disabledPairs(arm));
+  ASSERT_TRUE(scene.addWorldObject(object("table", box(1.2, 1.2, 0.05), at(0.3, 0, -0.025))).ok());
+  ASSERT_TRUE(scene.addWorldObject(object("cube", mesh(writeCubeObj("thread_cube.obj")), at(0.3, 0.2, 0.3))).ok());
+  ASSERT_TRUE(scene.setAllowed("base_link", "table", true).ok());
+  std::mt19937 rng(3);
+  std::vector<std::vector<Eigen::Isometry3d>> states;
+  for (int k = 0; k < 300; ++k) {
+    std::map<std::string, double> values;
+    for (const auto& [name, joint] : arm.model->joints_) {
+      if (joint->limits && !joint->mimic) {
+        values[name] = std::uniform_real_distribution<double>(joint->limits->lower, joint->limits->upper)(rng);
+      }
+    }
+    states.push_back(arm.poses(values));
+  }
+  std::vector<char> expected;
+  for (const auto& s : states) expected.push_back(scene.isColliding(s));
+  const CollisionScene& shared = scene;
+  std::vector<char> results[2] = {std::vector<char>(states.size()), std::vector<char>(states.size())};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t) {
+    threads.emplace_back([&, t] {
+      for (int round = 0; round < 5; ++round) {
+        for (std::size_t k = 0; k < states.size(); ++k) results[t][k] = shared.isColliding(states[k]);
+      }
+    });
+  }
+  for (auto& thread : threads) thread.join();
+  EXPECT_EQ(results[0], expected);
+  EXPECT_EQ(results[1], expected);
 }
 
 TEST(CollisionScene, ObjectBookkeepingErrors) {

@@ -183,6 +183,28 @@ TEST(TimeParameterization, StopsAtReversalsAndUnblendedCorners) {
   expectValid(sharp.trajectory, path, o);
 }
 
+TEST(TimeParameterization, NearReversalsAndTinySegments) {
+  const TimeParameterizationOptions o = armOptions();
+  std::vector<std::vector<double>> path = {std::vector<double>(6, 0.0)};
+  // Out and almost straight back (1e-4 rad off a reversal), then a zig-zag of 1e-4 rad steps.
+  std::vector<double> w(6, 0.0);
+  w[0] = 1.0;
+  path.push_back(w);
+  w[0] = 0.0;
+  w[1] = 1e-4;
+  path.push_back(w);
+  for (int k = 0; k < 20; ++k) {
+    w[2] += 1e-4;
+    w[3] = (k % 2) ? 0.0 : 1e-4;
+    path.push_back(w);
+  }
+  w[4] = 0.5;
+  path.push_back(w);
+  const TimeParameterizationResult r = computeTimeOptimalTrajectory(kJoints, path, o);
+  ASSERT_TRUE(r.ok()) << r.message;
+  expectValid(r.trajectory, path, o);
+}
+
 TEST(TimeParameterization, SinglePointAndDuplicates) {
   const TimeParameterizationOptions o = armOptions();
   const std::vector<double> q(6, 0.3);

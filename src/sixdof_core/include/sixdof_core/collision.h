@@ -53,8 +53,8 @@ struct CollisionRequest {
   std::size_t max_pairs = 0;
 };
 
-// One contact between two bodies. The normal points from body1 towards body2. For two non-convex meshes
-// FCL reports triangle intersections without a penetration depth (depth 0).
+// One contact between two bodies. The normal points from body1 towards body2. With a non-convex mesh
+// involved, FCL reports triangle-level contacts whose depth is only indicative.
 struct Contact {
   std::string body1;
   std::string body2;

@@ -248,10 +248,33 @@ ErrorCode SceneStore::applyCollisionObject(const CollisionObject& object, const 
   return code;
 }
 
+ErrorCode SceneStore::carrierLink(const std::string& link, const std::string& source, std::string* carrier,
+                                  Eigen::Isometry3d* link_in_carrier) const {
+  // Objects may be attached to any link, but the collision scene only has links with geometry: a link
+  // without geometry (e.g. tcp) hands its objects to the nearest ancestor it is rigidly fixed to.
+  *carrier = link;
+  *link_in_carrier = Eigen::Isometry3d::Identity();
+  while (collision_->linkIndex(*carrier) < 0) {
+    const auto& link_model = model_->link(*carrier);
+    if (link_model.parent_joint < 0 || model_->joints()[link_model.parent_joint].type != sixdof_core::JointType::kFixed) {
+      return makeError(ErrorCode::INVALID_LINK_NAME,
+                       "link '" + link + "' has no collision geometry and is not rigidly fixed to a link that has",
+                       source);
+    }
+    *link_in_carrier = model_->joints()[link_model.parent_joint].origin * *link_in_carrier;
+    *carrier = model_->links()[link_model.parent_link].name;
+  }
+  return makeSuccess(source);
+}
+
 ErrorCode SceneStore::detach(const std::string& id, const sixdof_core::RobotState& state, const std::string& source) {
   const auto& attached = attached_.at(id);
   const Eigen::Isometry3d link_pose = state.linkTransform(attached.link_name);
-  ErrorCode code = sceneError(collision_->detachObject(id, link_pose), source);
+  std::string carrier;
+  Eigen::Isometry3d link_in_carrier;
+  ErrorCode code = carrierLink(attached.link_name, source, &carrier, &link_in_carrier);
+  if (!isSuccess(code)) return code;
+  code = sceneError(collision_->detachObject(id, state.linkTransform(carrier)), source);
   if (!isSuccess(code)) return code;
   CollisionObject object = attached.object;
   object.header.frame_id = planningFrame(*model_);
@@ -298,6 +321,16 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
       return code;
     }
   }
+  // Touch links without collision geometry (e.g. a tcp frame) cannot touch anything; the collision scene
+  // only knows links with geometry.
+  std::vector<std::string> touch_links;
+  for (const auto& link : attached.touch_links) {
+    if (collision_->linkIndex(link) >= 0) touch_links.push_back(link);
+  }
+  std::string carrier;
+  Eigen::Isometry3d link_in_carrier;
+  code = carrierLink(attached.link_name, source, &carrier, &link_in_carrier);
+  if (!isSuccess(code)) return code;
   const Eigen::Isometry3d link_pose = state.linkTransform(attached.link_name);
   sixdof_msgs::AttachedCollisionObject stored = attached;
   stored.object.header.frame_id = attached.link_name;
@@ -311,7 +344,7 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
                        "cannot attach '" + object.id + "': no such world object (give shapes to attach a new object)",
                        source);
     }
-    code = sceneError(collision_->attachWorldObject(object.id, attached.link_name, link_pose, attached.touch_links),
+    code = sceneError(collision_->attachWorldObject(object.id, carrier, state.linkTransform(carrier), touch_links),
                       source);
     if (!isSuccess(code)) return code;
     const CollisionObject world_object = it->second;
@@ -330,9 +363,9 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
   stored.object.pose = eigenToPose(link_pose.inverse() * frame_pose * poseToEigen(object.pose));
   sixdof_core::AttachedObject core_object;
   core_object.id = object.id;
-  core_object.link_name = attached.link_name;
-  core_object.pose_in_link = poseToEigen(stored.object.pose);
-  core_object.touch_links = attached.touch_links;
+  core_object.link_name = carrier;
+  core_object.pose_in_link = link_in_carrier * poseToEigen(stored.object.pose);
+  core_object.touch_links = touch_links;
   code = toShapes(object, source, &core_object.shapes);
   if (!isSuccess(code)) return code;
   // A new attached object replaces a world or attached object of the same id, as in MoveIt.

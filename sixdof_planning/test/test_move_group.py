@@ -15,10 +15,13 @@ from geometry_msgs.msg import Pose, Quaternion
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+from visualization_msgs.msg import Marker, MarkerArray
 
 from sixdof_msgs.msg import (
+    AttachedCollisionObject,
     CollisionObject,
     Constraints,
+    DisplayTrajectory,
     ExecuteTrajectoryAction,
     ExecuteTrajectoryGoal,
     JointConstraint,
@@ -306,6 +309,8 @@ class MoveGroupTest(unittest.TestCase):
         self.assertTrue(response.success, response.error_code.message)
         objects = self.get_scene().scene.world.collision_objects
         self.assertEqual([o.id for o in objects], ["blocker"])
+        markers = rospy.wait_for_message("move_group/planning_scene_markers", MarkerArray, timeout=10.0)
+        self.assertIn(("blocker", Marker.CUBE), {(m.ns, m.type) for m in markers.markers})
         plan = self.plan(motion_plan_request=self.plan_request(joint_goal(goal_values))).motion_plan_response
         self.assert_code(plan.error_code, MoveItErrorCodes.GOAL_IN_COLLISION)
         validity = self.validity(robot_state=robot_state(goal_values), group_name="arm")
@@ -317,6 +322,35 @@ class MoveGroupTest(unittest.TestCase):
         self.assertTrue(self.apply_scene(scene=scene).success)
         plan = self.plan(motion_plan_request=self.plan_request(joint_goal(goal_values))).motion_plan_response
         self.assert_code(plan.error_code, MoveItErrorCodes.SUCCESS)
+        display = rospy.wait_for_message("move_group/display_planned_path", DisplayTrajectory, timeout=10.0)
+        self.assertEqual(display.trajectory[0].joint_trajectory, plan.trajectory.joint_trajectory)
+
+    def test_15_attach_and_detach_an_object(self) -> None:
+        tcp = self.link_pose({n: v for n, v in self.current().items() if n in ARM}, "tcp").position
+        scene = PlanningScene(is_diff=True)
+        scene.world.collision_objects.append(box("held", (tcp.x, tcp.y, tcp.z), (0.02, 0.02, 0.02)))
+        self.assertTrue(self.apply_scene(scene=scene).success)
+        attach = AttachedCollisionObject(link_name="link6", touch_links=["palm", "finger1", "finger2", "tcp"])
+        attach.object.id = "held"
+        attach.object.operation = CollisionObject.ADD
+        scene = PlanningScene(is_diff=True)
+        scene.robot_state.is_diff = True
+        scene.robot_state.attached_collision_objects.append(attach)
+        response = self.apply_scene(scene=scene)
+        self.assertTrue(response.success, response.error_code.message)
+        current = self.get_scene().scene
+        self.assertEqual(current.world.collision_objects, [])
+        self.assertEqual([a.object.id for a in current.robot_state.attached_collision_objects], ["held"])
+        # Held between the fingers (touch links), the object does not make the state invalid.
+        self.assertTrue(self.validity(robot_state=RobotState(is_diff=True)).valid)
+        attach.object.operation = CollisionObject.REMOVE
+        self.assertTrue(self.apply_scene(scene=scene).success)
+        current = self.get_scene().scene
+        self.assertEqual([o.id for o in current.world.collision_objects], ["held"])
+        self.assertAlmostEqual(current.world.collision_objects[0].pose.position.z, tcp.z, delta=1e-9)
+        scene = PlanningScene(is_diff=True)
+        scene.world.collision_objects.append(CollisionObject(id="held", operation=CollisionObject.REMOVE))
+        self.assertTrue(self.apply_scene(scene=scene).success)
 
     # --- execution -----------------------------------------------------------------------------------
     def test_20_execute_trajectory_reaches_the_goal(self) -> None:
@@ -376,6 +410,22 @@ class MoveGroupTest(unittest.TestCase):
             "GOAL_TOLERANCE_VIOLATED",
             "arm_controller",
         )
+
+    def test_24b_execution_can_be_preempted(self) -> None:
+        trajectory = self.plan_to(self.states[("arm", "place pose")]).trajectory.joint_trajectory
+        rospy.set_param(FIXTURE + "/slowdown", 10.0)
+        try:
+            goal = ExecuteTrajectoryGoal()
+            goal.trajectory.joint_trajectory = trajectory
+            started = []
+            self.execute.send_goal(goal, feedback_cb=lambda feedback: started.append(feedback.state))
+            while "MONITOR" not in started and not rospy.is_shutdown():
+                rospy.sleep(0.01)
+            self.execute.cancel_goal()
+            self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
+        finally:
+            rospy.set_param(FIXTURE + "/slowdown", 1.0)
+        self.assert_code(self.execute.get_result().error_code, MoveItErrorCodes.PREEMPTED)
 
     def test_25_move_group_action_plans_and_executes(self) -> None:
         goal = MoveGroupGoal()

@@ -177,6 +177,27 @@ TEST_F(ValidationTest, SceneStoreAttachesAndDetachesInPlace) {
   EXPECT_EQ(copy.applyAttachedObject(attach, state, kSource).val, ErrorCode::INVALID_LINK_NAME);
 }
 
+TEST_F(ValidationTest, ObjectsAttachToLinksWithoutGeometryThroughTheirCarrier) {
+  SceneStore store(model_);
+  sixdof_core::RobotState state(model_);
+  sixdof_msgs::AttachedCollisionObject attach;
+  attach.link_name = "tcp";
+  attach.object = box("tool", 0.0, 0.0, 0.0);
+  attach.object.header.frame_id = "tcp";
+  attach.touch_links = {"tcp", "finger1", "finger2"};
+  const auto attached = store.applyAttachedObject(attach, state, kSource);
+  ASSERT_TRUE(isSuccess(attached)) << attached.message;
+  EXPECT_EQ(store.attachedObjects()[0].link_name, "tcp");
+  attach.object.operation = sixdof_msgs::CollisionObject::REMOVE;
+  ASSERT_TRUE(isSuccess(store.applyAttachedObject(attach, state, kSource)));
+  ASSERT_EQ(store.worldObjects().size(), 1u);
+  const auto& pose = store.worldObjects()[0].pose.position;
+  const Eigen::Vector3d tcp = state.linkTransform("tcp").translation();
+  EXPECT_NEAR(pose.x, tcp.x(), 1e-12);
+  EXPECT_NEAR(pose.y, tcp.y(), 1e-12);
+  EXPECT_NEAR(pose.z, tcp.z(), 1e-12);
+}
+
 TEST_F(ValidationTest, SceneStoreMovesAppendsAndReplaces) {
   SceneStore store(model_);
   sixdof_core::RobotState state(model_);

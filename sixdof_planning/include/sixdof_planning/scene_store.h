@@ -60,6 +60,9 @@ class SceneStore {
   ErrorCode toShapes(const sixdof_msgs::CollisionObject& object, const std::string& source,
                      std::vector<sixdof_core::PlacedShape>* shapes) const;
   ErrorCode sceneError(const sixdof_core::SceneStatus& status, const std::string& source) const;
+  // The link with collision geometry that carries objects attached to `link`, and `link`'s pose in it.
+  ErrorCode carrierLink(const std::string& link, const std::string& source, std::string* carrier,
+                        Eigen::Isometry3d* link_in_carrier) const;
   ErrorCode detach(const std::string& id, const sixdof_core::RobotState& state, const std::string& source);
 
   sixdof_core::RobotModelConstPtr model_;

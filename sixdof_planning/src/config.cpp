@@ -93,7 +93,9 @@ void loadJointLimits(const ros::NodeHandle& nh, MoveGroupConfig* config) {
   for (auto& entry : joints) {
     const std::string prefix = fullName(nh, root) + "/" + entry.first;
     auto& values = entry.second;
-    if (values.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw ConfigError("parameter " + prefix + " must be a dictionary");
+    if (values.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      throw ConfigError("parameter " + prefix + " must be a dictionary");
+    }
     JointLimitConfig limits;
     auto flag = [&](const char* key) { return values.hasMember(key) && toBool(values[key], prefix + "/" + key); };
     auto number = [&](const char* key) {
@@ -151,8 +153,10 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   loadKinematics(nh, &config);
   loadJointLimits(nh, &config);
   loadControllers(nh, private_nh, &config);
-  config.default_planning_time = positiveParam(private_nh, "default_planning_time", config.default_planning_time, false);
-  if (private_nh.hasParam("default_planner_id") && !private_nh.getParam("default_planner_id", config.default_planner_id)) {
+  config.default_planning_time =
+      positiveParam(private_nh, "default_planning_time", config.default_planning_time, false);
+  if (private_nh.hasParam("default_planner_id") &&
+      !private_nh.getParam("default_planner_id", config.default_planner_id)) {
     throw ConfigError("parameter " + fullName(private_nh, "default_planner_id") + " is not a string");
   }
   config.execution_duration_scaling =

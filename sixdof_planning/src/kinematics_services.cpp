@@ -153,10 +153,11 @@ ErrorCode InverseKinematicsService::solve(const sixdof_msgs::PositionIKRequest& 
       }
     } while (std::chrono::steady_clock::now() < deadline);
   }
-  if (!ok) return makeError(ErrorCode::NO_IK_SOLUTION, "no IK solution: " + failure, kIkSource + std::string(" (") + solver->name() + ")");
+  const std::string source = kIkSource + std::string(" (") + solver->name() + ")";
+  if (!ok) return makeError(ErrorCode::NO_IK_SOLUTION, "no IK solution: " + failure, source);
   state.setGroupPositions(request.group_name, found);
   solution->joint_state = toJointState(state);
-  return makeSuccess(kIkSource + std::string(" (") + solver->name() + ")");
+  return makeSuccess(source);
 }
 
 }  // namespace sixdof_planning

@@ -1,5 +1,6 @@
 #include "sixdof_planning/motion_planner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -239,8 +240,8 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   options.num_planning_attempts = std::max(1, request.num_planning_attempts);
   std::unique_ptr<sixdof_core::PlanningContext> planning;
   try {
-    planning = std::make_unique<sixdof_core::PlanningContext>(context_->model(), scene->collision(),
-                                                              request.group_name, context_->ikSolver(request.group_name));
+    planning = std::make_unique<sixdof_core::PlanningContext>(
+        context_->model(), scene->collision(), request.group_name, context_->ikSolver(request.group_name));
   } catch (const std::exception& e) {
     code = makeError(ErrorCode::INVALID_GROUP_NAME, e.what(), source);
     return;
@@ -260,7 +261,8 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();
   code = makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
-                                      str(result.planning_time) + " s, trajectory " + str(trajectory.duration()) + " s");
+                                      str(result.planning_time) + " s, trajectory " + str(trajectory.duration()) +
+                                      " s");
   context_->publishDisplayTrajectory(start, response->trajectory.joint_trajectory);
 }
 

@@ -95,19 +95,23 @@ ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg
       }
       if (!needed.empty()) {
         return makeError(ErrorCode::ROBOT_STATE_STALE,
-                         what + " does not set joints " + joinNames(needed) + " and no joint_states were received for them",
+                         what + " does not set joints " + joinNames(needed) +
+                             " and no joint_states were received for them",
                          source);
       }
     }
   }
   for (size_t i = 0; i < joint_state.name.size(); ++i) {
-    if (model_->joint(joint_state.name[i]).isActive()) state->setJointPosition(joint_state.name[i], joint_state.position[i]);
+    if (model_->joint(joint_state.name[i]).isActive()) {
+      state->setJointPosition(joint_state.name[i], joint_state.position[i]);
+    }
   }
   for (size_t i = 0; i < joint_state.name.size(); ++i) {
     const double derived = state->jointPosition(joint_state.name[i]);
     if (std::abs(derived - joint_state.position[i]) > kMimicTolerance) {
       return makeError(ErrorCode::INVALID_ROBOT_STATE,
-                       what + ": mimic joint '" + joint_state.name[i] + "' is " + std::to_string(joint_state.position[i]) +
+                       what + ": mimic joint '" + joint_state.name[i] + "' is " +
+                           std::to_string(joint_state.position[i]) +
                            " but its source joint puts it at " + std::to_string(derived),
                        source);
     }

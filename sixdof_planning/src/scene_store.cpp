@@ -156,7 +156,8 @@ ErrorCode SceneStore::toShapes(const CollisionObject& object, const std::string&
     placed.origin = poseToEigen(object.primitive_poses[i]);
     if (primitive.type == shape_msgs::SolidPrimitive::BOX) {
       placed.shape.type = sixdof_core::Shape::Type::kBox;
-      placed.shape.box_size = Eigen::Vector3d(primitive.dimensions[0], primitive.dimensions[1], primitive.dimensions[2]);
+      placed.shape.box_size =
+          Eigen::Vector3d(primitive.dimensions[0], primitive.dimensions[1], primitive.dimensions[2]);
     } else if (primitive.type == shape_msgs::SolidPrimitive::SPHERE) {
       placed.shape.type = sixdof_core::Shape::Type::kSphere;
       placed.shape.radius = primitive.dimensions[0];
@@ -174,8 +175,8 @@ ErrorCode SceneStore::toShapes(const CollisionObject& object, const std::string&
     try {
       placed.shape.mesh_path = writeMeshFile(object.meshes[i]);
     } catch (const std::exception& e) {
-      return makeError(ErrorCode::FAILURE, "cannot store mesh " + std::to_string(i) + " of '" + object.id + "': " + e.what(),
-                       source);
+      return makeError(ErrorCode::FAILURE,
+                       "cannot store mesh " + std::to_string(i) + " of '" + object.id + "': " + e.what(), source);
     }
     shapes->push_back(placed);
   }
@@ -208,7 +209,10 @@ ErrorCode SceneStore::applyCollisionObject(const CollisionObject& object, const 
   if (!isSuccess(code)) return code;
   const Eigen::Isometry3d pose = frame_pose * poseToEigen(object.pose);
   if (object.operation == CollisionObject::MOVE) {
-    if (!exists) return makeError(ErrorCode::INVALID_OBJECT_NAME, "cannot move '" + object.id + "': no such world object", source);
+    if (!exists) {
+      return makeError(ErrorCode::INVALID_OBJECT_NAME, "cannot move '" + object.id + "': no such world object",
+                       source);
+    }
     code = sceneError(collision_->moveWorldObject(object.id, pose), source);
     if (isSuccess(code)) world_[object.id].pose = eigenToPose(pose);
     return code;
@@ -256,7 +260,8 @@ ErrorCode SceneStore::carrierLink(const std::string& link, const std::string& so
   *link_in_carrier = Eigen::Isometry3d::Identity();
   while (collision_->linkIndex(*carrier) < 0) {
     const auto& link_model = model_->link(*carrier);
-    if (link_model.parent_joint < 0 || model_->joints()[link_model.parent_joint].type != sixdof_core::JointType::kFixed) {
+    if (link_model.parent_joint < 0 ||
+        model_->joints()[link_model.parent_joint].type != sixdof_core::JointType::kFixed) {
       return makeError(ErrorCode::INVALID_LINK_NAME,
                        "link '" + link + "' has no collision geometry and is not rigidly fixed to a link that has",
                        source);
@@ -307,7 +312,8 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
   }
   if (object.operation != CollisionObject::ADD) {
     return makeError(ErrorCode::INVALID_REQUEST,
-                     "attached object '" + object.id + "': only ADD (attach) and REMOVE (detach) are supported", source);
+                     "attached object '" + object.id + "': only ADD (attach) and REMOVE (detach) are supported",
+                     source);
   }
   code = validateLink(*model_, attached.link_name, source);
   if (!isSuccess(code)) {

@@ -21,7 +21,6 @@ void CurrentStateMonitor::update(const sensor_msgs::JointState& msg) {
     if (index < 0 || !model_->joints()[index].isActive() || !std::isfinite(msg.position[i])) continue;
     positions_[msg.name[i]] = msg.position[i];
   }
-  last_update_ = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;
   changed_.notify_all();
 }
 
@@ -54,11 +53,6 @@ bool CurrentStateMonitor::currentState(double timeout, sixdof_core::RobotState* 
     return false;
   }
   return true;
-}
-
-ros::Time CurrentStateMonitor::lastUpdate() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return last_update_;
 }
 
 }  // namespace sixdof_planning

@@ -59,7 +59,9 @@ ErrorCode TrajectoryExecutor::validate(const trajectory_msgs::JointTrajectory& t
   std::set<std::string> seen;
   for (const auto& name : trajectory.joint_names) {
     const int index = model.jointIndex(name);
-    if (index < 0) return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'", source);
+    if (index < 0) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'", source);
+    }
     if (!model.joints()[index].isActive()) {
       return makeError(ErrorCode::INVALID_MOTION_PLAN,
                        "trajectory joint '" + name + "' is fixed or a mimic joint (give its source joint)", source);
@@ -124,12 +126,6 @@ void TrajectoryExecutor::cancelAll(const std::map<std::string, trajectory_msgs::
   for (const auto& part : parts) {
     auto& client = *clients_.at(part.first);
     if (!client.getState().isDone()) client.cancelGoal();
-  }
-}
-
-void TrajectoryExecutor::stop() {
-  for (auto& entry : clients_) {
-    if (entry.second->isServerConnected()) entry.second->cancelAllGoals();
   }
 }
 

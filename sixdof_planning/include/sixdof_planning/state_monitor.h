@@ -23,8 +23,6 @@ class CurrentStateMonitor {
   // missing ones. False (and *missing lists them) when some joint was never received; the joints that were
   // received are set on *state all the same.
   bool currentState(double timeout, sixdof_core::RobotState* state, std::vector<std::string>* missing) const;
-  // Time of the latest joint_states message (zero before the first).
-  ros::Time lastUpdate() const;
 
   // Applies a message; exposed so tests and callers can feed states directly.
   void update(const sensor_msgs::JointState& msg);
@@ -37,7 +35,6 @@ class CurrentStateMonitor {
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
   std::map<std::string, double> positions_;  // active joints only
-  ros::Time last_update_;
 };
 
 }  // namespace sixdof_planning

@@ -28,9 +28,6 @@ class TrajectoryExecutor {
   ErrorCode execute(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
                     const std::function<bool()>& preempt_requested);
 
-  // Stops whatever is executing (cancels the controllers' goals).
-  void stop();
-
  private:
   using Client = actionlib::SimpleActionClient<sixdof_msgs::FollowJointTrajectoryAction>;
 

@@ -1,6 +1,9 @@
 // IK benchmark: success rate and solve times of every solver on random reachable poses.
-//   ik_bench --urdf URDF --srdf SRDF [--group arm] [--count 10000] [--timeout 0.005] [--seed 1]
+//   ik_bench [--urdf URDF] [--srdf SRDF] [--group arm] [--count 10000] [--timeout 0.005] [--seed 1]
 //            [--solvers analytic,numeric,kdl,kdl_single]
+// Defaults: the sixdof arm of this source tree (sixdof_description's URDF and SRDF; the core's test
+// SRDF where the description has none). Mesh packages: sixdof_description from this tree, then
+// ROS_PACKAGE_PATH.
 // Poses are FK of uniformly random valid configurations (fixed seed); every solve starts from the
 // middle of the joint ranges. A success counts only if the solution reproduces the pose to 1e-5.
 // Prints a markdown table: wall-clock times (what a caller waits; the timeout is wall-clock too) and the
@@ -10,6 +13,7 @@
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -81,46 +85,38 @@ Row run(const std::string& name, const IkSolver& solver, const IkOptions& option
 
 [[noreturn]] void usage(const std::string& problem) {
   std::cerr << "ik_bench: " << problem << "\n"
-            << "usage: ik_bench --urdf URDF --srdf SRDF [--group arm] [--count 10000] [--timeout 0.005] [--seed 1]\n"
-            << "                [--solvers analytic,numeric,kdl,kdl_single]\n";
+            << "usage: ik_bench [--urdf URDF] [--srdf SRDF] [--group arm] [--count 10000] [--timeout 0.005]\n"
+            << "                [--seed 1] [--solvers analytic,numeric,kdl,kdl_single]\n";
   std::exit(2);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::string urdf, srdf, group = "arm", solvers = "analytic,numeric,kdl,kdl_single";
-  int count = 10000;
-  double timeout = 0.005;
-  unsigned long seed = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc) usage("missing value for " + arg);
-    const std::string value = argv[++i];
-    if (arg == "--urdf") {
-      urdf = value;
-    } else if (arg == "--srdf") {
-      srdf = value;
-    } else if (arg == "--group") {
-      group = value;
-    } else if (arg == "--count") {
-      count = std::stoi(value);
-    } else if (arg == "--timeout") {
-      timeout = std::stod(value);
-    } else if (arg == "--solvers") {
-      solvers = value;
-    } else if (arg == "--seed") {
-      seed = std::stoul(value);
-    } else {
-      usage("unknown argument " + arg);
-    }
+void parseArgument(const std::string& arg, const std::string& value, std::string* urdf, std::string* srdf,
+                   std::string* group, std::string* solvers, int* count, double* timeout, unsigned long* seed) {
+  if (arg == "--urdf") {
+    *urdf = value;
+  } else if (arg == "--srdf") {
+    *srdf = value;
+  } else if (arg == "--group") {
+    *group = value;
+  } else if (arg == "--count") {
+    *count = std::stoi(value);
+  } else if (arg == "--timeout") {
+    *timeout = std::stod(value);
+  } else if (arg == "--solvers") {
+    *solvers = value;
+  } else if (arg == "--seed") {
+    *seed = std::stoul(value);
+  } else {
+    usage("unknown argument " + arg);
   }
-  if (urdf.empty() || srdf.empty()) usage("--urdf and --srdf are required");
-  if (count <= 0 || !(timeout > 0.0)) usage("--count and --timeout must be positive");
+}
 
+int runBenchmark(const std::string& urdf, const std::string& srdf, const std::string& description,
+                 const std::string& group, const std::string& solvers, int count, double timeout, unsigned long seed) {
   const char* ros_package_path = std::getenv("ROS_PACKAGE_PATH");
-  const auto model = sixdof_core::RobotModel::fromFiles(
-      urdf, srdf, sixdof_core::PackageResolver::fromRosPackagePath(ros_package_path ? ros_package_path : ""));
+  auto resolver = sixdof_core::PackageResolver::fromRosPackagePath(ros_package_path ? ros_package_path : "");
+  resolver.addPackage("sixdof_description", description);
+  const auto model = sixdof_core::RobotModel::fromFiles(urdf, srdf, resolver);
   const sixdof_core::KinematicChain chain = sixdof_core::KinematicChain::forGroup(*model, group);
 
   std::mt19937_64 rng(seed);
@@ -178,4 +174,38 @@ int main(int argc, char** argv) {
                 row.median_us, row.p95_us, row.mean_us, row.cpu_median_us, row.cpu_mean_us);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string source(__FILE__);
+  const std::string repo = source.substr(0, source.rfind("/src/sixdof_core/"));
+  const std::string description = repo + "/sixdof_description";
+  std::string urdf = description + "/urdf/sixdof.urdf";
+  std::string srdf = description + "/config/sixdof.srdf";
+  if (!std::filesystem::exists(srdf)) srdf = repo + "/src/sixdof_core/test/data/sixdof.srdf";
+  std::string group = "arm", solvers = "analytic,numeric,kdl,kdl_single";
+  int count = 10000;
+  double timeout = 0.005;
+  unsigned long seed = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc) usage("missing value for " + arg);
+    const std::string value = argv[++i];
+    try {
+      parseArgument(arg, value, &urdf, &srdf, &group, &solvers, &count, &timeout, &seed);
+    } catch (const std::invalid_argument&) {
+      usage("bad value '" + value + "' for " + arg);
+    } catch (const std::out_of_range&) {
+      usage("value '" + value + "' for " + arg + " is out of range");
+    }
+  }
+  if (count <= 0 || !(timeout > 0.0)) usage("--count and --timeout must be positive");
+  try {
+    return runBenchmark(urdf, srdf, description, group, solvers, count, timeout, seed);
+  } catch (const std::exception& e) {
+    std::cerr << "ik_bench: " << e.what() << "\n";
+    return 1;
+  }
 }

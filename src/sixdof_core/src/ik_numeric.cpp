@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Cholesky>
 
@@ -40,6 +41,13 @@ IkResult NumericIkSolver::solveValidated(const Eigen::Isometry3d& target, const 
     lower[i] = limits.bounded ? limits.lower : -std::numeric_limits<double>::infinity();
     upper[i] = limits.bounded ? limits.upper : std::numeric_limits<double>::infinity();
   }
+  // Joints that cannot pass a limit by turning 2*pi (see projectIntoLimits).
+  std::vector<bool> can_hold(n);
+  for (size_t i = 0; i < n; ++i) {
+    const auto& joint = chain_.joint(i);
+    can_hold[i] = joint.limits.bounded &&
+                  (joint.type == JointType::kPrismatic || joint.limits.upper - joint.limits.lower < 2.0 * M_PI - 1e-6);
+  }
   auto converged = [&](const Eigen::Matrix<double, 6, 1>& e) {
     return e.head<3>().norm() < options.epsilon && (options.position_only || e.tail<3>().norm() < options.epsilon);
   };
@@ -47,8 +55,12 @@ IkResult NumericIkSolver::solveValidated(const Eigen::Isometry3d& target, const 
   std::mt19937_64 rng(options.random_seed);
   ik_detail::Budget budget(options);
   IkResult result;
-  Eigen::Isometry3d tip;
-  Matrix6Xd jacobian;
+  // Buffers reused by every iteration (no allocation in the loop).
+  Eigen::Isometry3d tip, tip_new;
+  Matrix6Xd jacobian(6, n), jacobian_new(6, n);
+  Eigen::MatrixXd a(n, n);
+  Eigen::VectorXd g(n), g_held(n), step(n), q_new(n);
+  Eigen::LDLT<Eigen::MatrixXd> ldlt(n);
   bool out_of_time = false;
   while (!out_of_time && budget.nextAttempt()) {
     Eigen::VectorXd q = budget.used() == 1 ? seed.cwiseMax(lower).cwiseMin(upper).eval()
@@ -58,7 +70,9 @@ IkResult NumericIkSolver::solveValidated(const Eigen::Isometry3d& target, const 
     double cost = e.head(rows).squaredNorm();
     // Levenberg-Marquardt damping: small steps far from a solution, Gauss-Newton near it.
     double lambda = 1e-3;
-    for (int it = 0; it < kMaxIterationsPerStart; ++it) {
+    // Close to a solution (error below 1 mm / 1 mrad) a start keeps going for longer: near singular
+    // configurations Levenberg-Marquardt converges only linearly, and a restart would lose that progress.
+    for (int it = 0; it < kMaxIterationsPerStart || (cost < 1e-6 && it < 4 * kMaxIterationsPerStart); ++it) {
       if (converged(e)) {
         ik_detail::wrapContinuous(chain_, seed, &q);
         result.status = IkStatus::kSuccess;
@@ -74,22 +88,35 @@ IkResult NumericIkSolver::solveValidated(const Eigen::Isometry3d& target, const 
       }
       ++result.iterations;
       const auto j = jacobian.topRows(rows);
-      Eigen::MatrixXd a = j.transpose() * j;
-      const Eigen::VectorXd g = j.transpose() * e.head(rows);
+      a.noalias() = j.transpose() * j;
+      g.noalias() = j.transpose() * e.head(rows);
       a.diagonal().array() += lambda;
-      Eigen::VectorXd q_new = q + a.ldlt().solve(g);
+      step = ldlt.compute(a).solve(g);
+      // Active set: a joint resting on a limit that the step pushes further out is held there and
+      // the others solve without it, instead of losing that part of the step to clamping.
+      bool held = false;
+      g_held = g;
+      for (size_t i = 0; i < n; ++i) {
+        if (can_hold[i] && ((q[i] <= lower[i] && step[i] < 0.0) || (q[i] >= upper[i] && step[i] > 0.0))) {
+          a.row(i).setZero();
+          a.col(i).setZero();
+          a(i, i) = 1.0;
+          g_held[i] = 0.0;
+          held = true;
+        }
+      }
+      if (held) step = ldlt.compute(a).solve(g_held);
+      q_new = q + step;
       projectIntoLimits(chain_, lower, upper, &q_new);
-      Eigen::Isometry3d tip_new;
-      Matrix6Xd jacobian_new;
       chain_.forwardAndJacobian(q_new, &tip_new, &jacobian_new);
       const Eigen::Matrix<double, 6, 1> e_new = ik_detail::twistError(tip_new, target);
       const double cost_new = e_new.head(rows).squaredNorm();
       if (cost_new < cost) {
-        q = q_new;
+        q.swap(q_new);
         e = e_new;
         cost = cost_new;
         tip = tip_new;
-        jacobian = jacobian_new;
+        jacobian.swap(jacobian_new);
         lambda = std::max(lambda * 0.1, 1e-12);
       } else {
         lambda *= 10.0;

@@ -93,12 +93,12 @@ Matrix6Xd KinematicChain::jacobian(const Eigen::VectorXd& q) const {
 void KinematicChain::forwardAndJacobian(const Eigen::VectorXd& q, Eigen::Isometry3d* tip, Matrix6Xd* jacobian) const {
   jacobian->resize(6, dof());
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  // Joint axes and origins in the base frame; the linear part needs the tip position, known at the end.
-  Eigen::Matrix<double, 3, Eigen::Dynamic> origins(3, dof());
+  // Joint axes and origins in the base frame; the linear part needs the tip position, known at the end,
+  // so the linear rows hold the joint origins until then.
   for (size_t i = 0; i < dof(); ++i) {
     t = t * offsets_[i];
     const Eigen::Vector3d axis = t.linear() * joints_[i].axis;
-    origins.col(i) = t.translation();
+    jacobian->block<3, 1>(0, i) = t.translation();
     jacobian->block<3, 1>(3, i) = axis;
     if (joints_[i].type == JointType::kPrismatic) {
       t.translate(q[i] * joints_[i].axis);
@@ -113,7 +113,7 @@ void KinematicChain::forwardAndJacobian(const Eigen::VectorXd& q, Eigen::Isometr
       jacobian->block<3, 1>(0, i) = axis;
       jacobian->block<3, 1>(3, i).setZero();
     } else {
-      jacobian->block<3, 1>(0, i) = axis.cross(tip->translation() - origins.col(i));
+      jacobian->block<3, 1>(0, i) = axis.cross(tip->translation() - jacobian->block<3, 1>(0, i));
     }
   }
 }

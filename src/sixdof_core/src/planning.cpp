@@ -591,7 +591,8 @@ PlanningResult plan(const PlanningProblem& p) {
   Session* s = &session;
   session.si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
       session.si, session.joint_space, [s](const Eigen::VectorXd& q) { return s->valid(q); }));
-  session.joint_space->space()->registerDefaultProjection(std::make_shared<FirstJointsProjection>(session.joint_space.get()));
+  session.joint_space->space()->registerDefaultProjection(
+      std::make_shared<FirstJointsProjection>(session.joint_space.get()));
   const double extent = session.joint_space->space()->getMaximumExtent();
   const double fraction = options.longest_valid_segment_length > 0.0
                               ? std::min(1.0, options.longest_valid_segment_length / extent)
@@ -617,7 +618,8 @@ PlanningResult plan(const PlanningProblem& p) {
     const double time_limit = std::max(0.0, options.allowed_planning_time - secondsSince(t0));
     std::vector<std::thread> threads;
     for (int a = 0; a < attempts; ++a) {
-      threads.emplace_back([&, a] { outcomes[a] = runAttempt(p, &session, factory->second, goals.states, time_limit); });
+      threads.emplace_back(
+          [&, a] { outcomes[a] = runAttempt(p, &session, factory->second, goals.states, time_limit); });
     }
     for (std::thread& t : threads) t.join();
   } else {

@@ -138,6 +138,11 @@ PackageResolver PackageResolver::fromMap(const std::map<std::string, std::string
   return resolver;
 }
 
+PackageResolver& PackageResolver::addPackage(const std::string& package, const std::string& directory) {
+  package_dirs_[package] = directory;
+  return *this;
+}
+
 std::string PackageResolver::packageDirectory(const std::string& package) const {
   auto it = package_dirs_.find(package);
   if (it != package_dirs_.end()) return it->second;
@@ -454,7 +459,7 @@ void RobotModel::parseSrdf(const std::string& srdf_xml) {
     if (visit_state[name] == 2) return;
     if (visit_state[name] == 1) throw RobotModelError("SRDF: group '" + name + "' contains itself via subgroups");
     visit_state[name] = 1;
-    auto* group = const_cast<JointGroup*>(findGroup(name));
+    const JointGroup* group = findGroup(name);
     for (const auto& sub : group->subgroups) {
       if (!findGroup(sub)) {
         throw RobotModelError("SRDF: group '" + name + "' refers to unknown subgroup '" + sub + "'");

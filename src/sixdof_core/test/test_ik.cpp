@@ -18,7 +18,10 @@ const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
 const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf";
 constexpr double kPoseTolerance = 1e-5;
 
-RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf"); }
+// The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
+PackageResolver armResolver() { return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}}); }
+
+RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver()); }
 
 // The provisional URDF writes pi/2 as 1.5708, so its wrist axes meet only to 3e-7 m and the closed
 // form needs refinement; this variant has exact angles, where the closed form is exact.
@@ -27,7 +30,7 @@ RobotModelConstPtr exactArmModel() {
   for (size_t at = urdf.find("1.5708"); at != std::string::npos; at = urdf.find("1.5708", at + 1)) {
     urdf.replace(at, 6, "1.5707963267948966");
   }
-  return std::make_shared<const RobotModel>(urdf, readTextFile(kDataDir + "/sixdof.srdf"));
+  return std::make_shared<const RobotModel>(urdf, readTextFile(kDataDir + "/sixdof.srdf"), armResolver());
 }
 
 RobotModelConstPtr urModel() {
@@ -252,10 +255,11 @@ TEST(IkAnalytic, FailureReasons) {
 
   // joint1 limited to [-0.1, 0.1]: a pose needing joint1 = 1.0 (or 1.0 - pi) violates it.
   std::string urdf = readTextFile(kArmUrdf);
-  const std::string limit = "<limit lower=\"-3.14159\" upper=\"3.14159\" velocity=\"2.0\" effort=\"80\"/>";
-  ASSERT_NE(urdf.find(limit), std::string::npos);
-  urdf.replace(urdf.find(limit), limit.size(), "<limit lower=\"-0.1\" upper=\"0.1\" velocity=\"2.0\" effort=\"80\"/>");
-  const RobotModel limited(urdf, readTextFile(kDataDir + "/sixdof.srdf"));
+  const size_t limit = urdf.find("<limit", urdf.find("<joint name=\"joint1\""));
+  ASSERT_NE(limit, std::string::npos);
+  urdf.replace(limit, urdf.find("/>", limit) + 2 - limit,
+               "<limit lower=\"-0.1\" upper=\"0.1\" velocity=\"2\" effort=\"80\"/>");
+  const RobotModel limited(urdf, readTextFile(kDataDir + "/sixdof.srdf"), armResolver());
   const auto limited_solver = createIkSolver("analytic", limited, "arm");
   Eigen::VectorXd q(6);
   q << 1.0, 0.3, 0.4, 0.5, 0.6, 0.7;

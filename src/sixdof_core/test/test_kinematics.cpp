@@ -13,7 +13,10 @@ const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof
 // The provisional URDF writes pi/2 as 1.5708: hand-computed poses agree to this.
 constexpr double kHandTolerance = 1e-5;
 
-RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf"); }
+// The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
+PackageResolver armResolver() { return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}}); }
+
+RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver()); }
 
 RobotModelConstPtr urModel() {
   return RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf",
@@ -71,9 +74,13 @@ TEST(ForwardKinematics, ArmMatchesHandComputedPoses) {
     const Eigen::Isometry3d from_chain = chain.forward(pose.q);
     EXPECT_LT((from_chain.matrix() - link6.matrix()).norm(), 1e-12);
   }
-  // tcp is 0.08 along link6's z.
-  state.setGroupPositions("arm", arm(0, 0, 0, 0, 0, 0));
-  EXPECT_LT((state.linkTransform("tcp").translation() - Eigen::Vector3d(0.46, 0, 0.6)).norm(), kHandTolerance);
+  // tcp is on link6's z axis, in front of the flange.
+  state.setGroupPositions("arm", arm(0.3, -0.2, 0.5, 1.0, -0.7, 2.0));
+  const Eigen::Vector3d tcp_in_link6 =
+      state.linkTransform("link6").inverse() * state.linkTransform("tcp").translation();
+  EXPECT_NEAR(tcp_in_link6.x(), 0.0, 1e-12);
+  EXPECT_NEAR(tcp_in_link6.y(), 0.0, 1e-12);
+  EXPECT_GT(tcp_in_link6.z(), 0.0);
 }
 
 TEST(ForwardKinematics, ChainAgreesWithRobotStateOnRandomConfigurations) {

@@ -6,11 +6,13 @@
 
 namespace sixdof_core {
 
-// General solver for any chain: Levenberg-Marquardt on the pose error with joint limits enforced by
-// projection, restarted from random configurations when it stalls, until the budget is spent.
+// General solver for any chain: Levenberg-Marquardt on the pose error. Joint limits: a revolute joint
+// past a limit first tries the 2*pi-equivalent angle, else is clamped; joints resting on a limit that
+// the step pushes outward are held (active set). Restarts from the seed, then random configurations,
+// until the budget is spent.
 class NumericIkSolver : public IkSolver {
  public:
-  // Iterations of one start before it counts as stalled.
+  // Iterations of one start before it counts as stalled (4 times more once within 1 mm / 1 mrad).
   static constexpr int kMaxIterationsPerStart = 40;
 
   explicit NumericIkSolver(KinematicChain chain);

@@ -25,6 +25,7 @@ struct IkOptions {
   // Time budget in seconds; <= 0 means none (then attempts must be > 0).
   double timeout = 0.005;
   // Maximum number of starts (the seed first, then random ones); 0 means until the timeout.
+  // The analytic solver needs a single start for full-pose goals.
   int attempts = 0;
   // Convergence: position error (m) and, unless position_only, rotation error (rad).
   double epsilon = 1e-5;

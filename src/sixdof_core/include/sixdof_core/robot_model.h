@@ -110,6 +110,8 @@ class PackageResolver {
   // Splits a ROS_PACKAGE_PATH-style string (':'-separated) into search roots.
   static PackageResolver fromRosPackagePath(const std::string& ros_package_path);
   static PackageResolver fromMap(const std::map<std::string, std::string>& package_dirs);
+  // An explicit package directory, looked up before the search roots.
+  PackageResolver& addPackage(const std::string& package, const std::string& directory);
 
   // Throws RobotModelError when the package is unknown or the file does not exist.
   std::string resolve(const std::string& uri) const;
@@ -156,6 +158,7 @@ class RobotModel {
   const std::vector<GroupState>& groupStates() const { return group_states_; }
   const GroupState* findGroupState(const std::string& group, const std::string& name) const;
   const std::vector<EndEffector>& endEffectors() const { return end_effectors_; }
+  // Recorded as declared; they add no variables (link transforms are in the root link's frame).
   const std::vector<VirtualJoint>& virtualJoints() const { return virtual_joints_; }
   const std::vector<std::string>& passiveJoints() const { return passive_joints_; }
   const std::vector<DisabledCollisionPair>& disabledCollisionPairs() const { return disabled_collisions_; }

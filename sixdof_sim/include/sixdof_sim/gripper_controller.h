@@ -1,0 +1,81 @@
+#pragma once
+
+#include <string>
+
+#include "sixdof_sim/trajectory_controller.h"
+
+namespace sixdof_sim {
+
+// controllers.yaml gripper_controller/gripper_cmd parameters plus the finger joint's URDF limits.
+// Defaults as in ros_controllers' gripper_action_controller, except allow_stalling (see below).
+struct GripperControllerConfig {
+  std::string name;    // for messages, e.g. "gripper_controller"
+  std::string joint;   // the commanded finger joint (the other finger mimics it)
+  double lower = 0.0;  // URDF position limits (finger opening, m)
+  double upper = 0.0;
+  double effort_limit = 0.0;             // URDF effort limit (N); max_effort 0 means this
+  double goal_tolerance = 0.01;          // |target - position| below which the goal is reached
+  double stall_velocity_threshold = 0.001;  // |velocity| below which the finger counts as not moving
+  double stall_timeout = 1.0;               // s without movement until "stalled"
+  // Whether a stall ends the goal as succeeded (a grasp: the fingers closed on an object) rather than
+  // aborted. gripper_action_controller aborts on stall (newer versions: allow_stalling, default false).
+  bool allow_stalling = false;
+};
+
+struct GripperGoal {
+  double position = 0.0;    // target finger opening (m)
+  double max_effort = 0.0;  // N; 0 = the URDF effort limit
+};
+
+struct GripperResult {
+  bool ok = true;
+  std::string message;  // names the problem when !ok
+};
+
+// One control step's command and the goal's status.
+struct GripperUpdate {
+  double command_position = 0.0;
+  double command_max_effort = 0.0;  // always > 0 (0 is resolved to the effort limit)
+  GoalState state = GoalState::IDLE;
+  bool finished = false;  // the goal ended in this step
+  bool reached_goal = false;
+  bool stalled = false;
+  double position = 0.0;  // actual position at this step
+};
+
+// GripperCommand semantics (gripper_action_controller): the finger servos to the target with bounded
+// force. The goal succeeds as soon as |target - position| < goal_tolerance (reached_goal). Otherwise, once
+// |velocity| stayed below stall_velocity_threshold for longer than stall_timeout, it ends stalled: succeeded
+// when allow_stalling (closing on an object is a grasp), aborted otherwise. The command stays in force
+// after either, so a stalled grip keeps squeezing with max_effort. Cancel holds the actual position with
+// the default effort.
+class GripperController {
+ public:
+  // Throws std::invalid_argument on a bad config (limits, non-positive effort limit, negative values).
+  explicit GripperController(GripperControllerConfig config);
+
+  const GripperControllerConfig& config() const { return config_; }
+
+  // Rejects NaN/inf, positions outside [lower, upper], max_effort < 0 or > effort_limit.
+  GripperResult validate(const GripperGoal& goal) const;
+  // Validates and starts the goal at `now` (replacing an active one).
+  GripperResult setGoal(const GripperGoal& goal, double now);
+  void cancel(double actual_position);
+  // Holds a position with the default effort, no goal (start-up, world reset, another controller took over).
+  void hold(double position);
+
+  GripperUpdate update(double now, double position, double velocity);
+
+  bool active() const { return state_ == GoalState::ACTIVE; }
+  GoalState state() const { return state_; }
+
+ private:
+  GripperControllerConfig config_;
+  bool has_command_ = false;
+  double command_position_ = 0.0;
+  double command_effort_ = 0.0;
+  double last_movement_time_ = 0.0;
+  GoalState state_ = GoalState::IDLE;
+};
+
+}  // namespace sixdof_sim

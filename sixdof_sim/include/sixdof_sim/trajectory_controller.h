@@ -1,0 +1,131 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sixdof_sim/interpolation.h"
+
+namespace sixdof_sim {
+
+// Result codes, values as in sixdof_msgs/FollowJointTrajectory (control_msgs).
+enum class TrajectoryErrorCode : int {
+  SUCCESSFUL = 0,
+  INVALID_GOAL = -1,
+  INVALID_JOINTS = -2,
+  OLD_HEADER_TIMESTAMP = -3,
+  PATH_TOLERANCE_VIOLATED = -4,
+  GOAL_TOLERANCE_VIOLATED = -5,
+};
+
+struct TrajectoryResult {
+  TrajectoryErrorCode code = TrajectoryErrorCode::SUCCESSFUL;
+  std::string message;  // names the offending joint/point/value when code != SUCCESSFUL
+  bool ok() const { return code == TrajectoryErrorCode::SUCCESSFUL; }
+};
+
+// Per-joint tolerances on |desired - actual|; 0 means "not checked".
+struct StateTolerance {
+  double position = 0.0;
+  double velocity = 0.0;
+  double acceleration = 0.0;
+};
+
+// A controller's configuration (controllers.yaml: joints + constraints) plus the joints' position limits
+// from the URDF. Defaults as in joint_trajectory_controller.
+struct TrajectoryControllerConfig {
+  std::string name;                      // for messages, e.g. "arm_controller"
+  std::vector<std::string> joints;
+  std::vector<double> lower_limits;      // per joint; -inf/+inf for unlimited joints
+  std::vector<double> upper_limits;
+  std::vector<double> path_tolerance;    // constraints/<joint>/trajectory (position), 0 = not checked
+  std::vector<double> goal_tolerance;    // constraints/<joint>/goal (position), 0 = not checked
+  double goal_time = 0.0;                // constraints/goal_time
+  double stopped_velocity_tolerance = 0.01;  // constraints/stopped_velocity_tolerance
+};
+
+// A goal's per-joint tolerance (control_msgs/JointTolerance): > 0 overrides the configured value,
+// -1 removes the check, 0 keeps the configured value.
+struct JointToleranceOverride {
+  std::string name;
+  double position = 0.0;
+  double velocity = 0.0;
+  double acceleration = 0.0;
+};
+
+// A FollowJointTrajectory goal without ROS types. Times are seconds on the controller's clock.
+struct TrajectoryGoal {
+  std::vector<std::string> joint_names;
+  std::vector<TrajectoryPoint> points;
+  std::vector<JointToleranceOverride> path_tolerance;
+  std::vector<JointToleranceOverride> goal_tolerance;
+  double goal_time_tolerance = 0.0;  // > 0 overrides goal_time; < 0 sets it to 0
+  double start_time = 0.0;           // trajectory header stamp; 0 = when the goal is accepted
+};
+
+enum class GoalState { IDLE, ACTIVE, SUCCEEDED, ABORTED, CANCELED };
+
+// What one control step produces.
+struct TrajectoryUpdate {
+  TrajectorySample desired;  // the command to the joint motors, in config joint order
+  TrajectorySample error;    // desired - actual (acceleration error is 0: no measured acceleration)
+  GoalState state = GoalState::IDLE;  // of the current/last goal
+  bool finished = false;              // the goal ended in this step; result holds why
+  TrajectoryResult result;
+};
+
+// joint_trajectory_controller semantics, ROS-free:
+// - a goal is validated (joints, sizes, times, finite values, position limits, tolerances) and either
+//   rejected with INVALID_JOINTS / INVALID_GOAL / OLD_HEADER_TIMESTAMP or replaces the current one (which
+//   the caller reports as preempted). The new trajectory starts from the current desired state when its
+//   first point lies in the future.
+// - during execution the path tolerances are checked (PATH_TOLERANCE_VIOLATED aborts and holds the actual
+//   position); after the last point the goal tolerances (positions, velocity with the stopped velocity
+//   tolerance) must hold within goal_time, else GOAL_TOLERANCE_VIOLATED (the final point stays commanded).
+// - an empty trajectory stops: it holds the current desired position and succeeds at once.
+// - cancel holds the actual position. Without a goal the controller holds its last command.
+class TrajectoryController {
+ public:
+  // Throws std::invalid_argument on an inconsistent config (sizes, duplicates, negative tolerances).
+  explicit TrajectoryController(TrajectoryControllerConfig config);
+
+  const TrajectoryControllerConfig& config() const { return config_; }
+  const std::vector<std::string>& joints() const { return config_.joints; }
+
+  // Checks a goal without changing anything.
+  TrajectoryResult validate(const TrajectoryGoal& goal, double now) const;
+
+  // Validates and, if valid, starts the goal at `now` (replacing an active one).
+  TrajectoryResult setGoal(const TrajectoryGoal& goal, double now);
+
+  // Cancels the active goal (if any) and holds the given actual positions.
+  void cancel(const std::vector<double>& actual_position);
+
+  // Holds the given positions with no goal (start-up, world reset).
+  void hold(const std::vector<double>& position);
+
+  // One control step: samples the trajectory, checks tolerances, finishes the goal when due.
+  TrajectoryUpdate update(double now, const std::vector<double>& actual_position,
+                          const std::vector<double>& actual_velocity);
+
+  bool active() const { return state_ == GoalState::ACTIVE; }
+  GoalState state() const { return state_; }
+  // The time the active trajectory reaches its last point (0 without one).
+  double endTime() const { return trajectory_ ? trajectory_->endTime() : 0.0; }
+
+ private:
+  TrajectoryResult validateTolerances(const std::vector<JointToleranceOverride>& tolerances,
+                                      const char* what) const;
+  void holdAt(const std::vector<double>& position);
+  std::string jointList() const;
+
+  TrajectoryControllerConfig config_;
+  std::unique_ptr<JointTrajectory> trajectory_;  // null until the first hold/goal
+  std::vector<StateTolerance> path_tolerance_;   // of the active goal
+  std::vector<StateTolerance> goal_tolerance_;
+  double goal_time_ = 0.0;
+  GoalState state_ = GoalState::IDLE;
+  TrajectorySample last_desired_;  // empty before the first update
+};
+
+}  // namespace sixdof_sim

@@ -1,0 +1,129 @@
+#pragma once
+// The Bullet world: the URDF robot as a fixed-base btMultiBody driven by joint servos, the world
+// file's objects as rigid bodies, a fixed-step deterministic stepper and the grasp fix.
+// ROS-free; the sixdof_sim node and the controllers sit on top of this API.
+//
+// Threading: not thread-safe; one thread drives a World (the node serialises its callbacks).
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sixdof_sim/world_types.h"
+
+namespace sixdof_sim {
+
+// Thrown only by construction on a bad URDF, world spec or options.
+class WorldError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Checks an object spec (name, finite pose, sizes > 0, mass > 0 unless static, friction >= 0,
+// restitution in [0, 1], colour in [0, 1]); the message names the field.
+Result validateObjectSpec(const ObjectSpec& spec);
+
+struct WorldOptions {
+  double time_step = 0.001;    // s, fixed physics step
+  int solver_iterations = 50;  // Bullet constraint solver iterations per step
+  // Servo position gain (1/s) of kPosition mode: time constant 1/gain. gain * time_step must be <= 1.
+  double position_gain = 100.0;
+  // Directories that package://<pkg>/<path> URIs resolve against: <root>/<pkg>/<path>, first match.
+  // A root may also be a package directory itself (<root> ends in /<pkg>).
+  std::vector<std::string> package_search_roots;
+  // Grasp fix on/off at start (setGraspFixEnabled changes it later). Needs the URDF's
+  // gazebo_grasp_fix block or grasp_fix_config; enabling without either throws WorldError.
+  bool grasp_fix_enabled = true;
+  // Overrides (or supplies) the URDF's grasp-fix block.
+  std::optional<GraspFixConfig> grasp_fix_config;
+};
+
+class World {
+ public:
+  // urdf_xml: the robot_description text. Throws WorldError naming the problem on a bad URDF
+  // (unsupported joint types, missing inertials on moving links, unreadable meshes), a bad world
+  // spec (duplicate names, non-positive sizes or masses) or bad options.
+  World(const std::string& urdf_xml, const WorldSpec& world, const WorldOptions& options = WorldOptions());
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // ---- time ----
+  // Advances n fixed steps. Before each step the pre-step callback runs (controllers update there),
+  // after each step the grasp fix runs. Same inputs -> bit-identical results.
+  void step(std::uint64_t n = 1);
+  double simTime() const;            // s since construction / reset()
+  std::uint64_t stepCount() const;   // steps since construction / reset()
+  double timeStep() const;
+  // Called before every physics step with the sim time of the step's start (e.g. controllers).
+  void setPreStepCallback(std::function<void(double sim_time)> callback);
+  // Back to the initial state: robot at its initial joint positions (all zero, clamped into limits
+  // -- see initialJointPositions()), servos holding them, every object of the WorldSpec back at
+  // its initial pose (spawned objects removed, deleted ones restored), grasps released,
+  // time zero, pending grasp events cleared.
+  void reset();
+
+  // ---- robot ----
+  const std::vector<JointInfo>& joints() const;  // actuated joints in URDF order (incl. mimics)
+  std::vector<std::string> jointNames() const;
+  int jointIndex(const std::string& name) const;  // -1 if unknown
+  std::vector<double> initialJointPositions() const;
+  std::vector<double> jointPositions() const;
+  std::vector<double> jointVelocities() const;
+  // Generalised force the joint's actuator applied during the last step (servo or effort command).
+  std::vector<double> jointEfforts() const;
+  // Teleports joints (resets only): positions set, velocities zeroed, servos switched to hold the
+  // new positions. Mimic joints not listed follow their master; listed ones must agree with it.
+  // Rejected (nothing changed) on unknown names, NaN, or positions outside the limits.
+  Result setJointPositions(const std::vector<std::string>& names, const std::vector<double>& positions);
+  // Servo to position (with velocity feed-forward), force bounded by max_effort
+  // (0 = the URDF effort limit; above it -> kOutOfLimits). Positions outside the limits -> kOutOfLimits.
+  // The mimic joints of `joint` follow automatically.
+  Result setPositionTarget(const std::string& joint, double position, double velocity = 0.0, double max_effort = 0.0);
+  // Servo to a velocity, force bounded by max_effort (0 = URDF effort limit).
+  Result setVelocityTarget(const std::string& joint, double velocity, double max_effort = 0.0);
+  // Applies a constant generalised force every step until the next command. |effort| must be
+  // <= the URDF effort limit.
+  Result setEffort(const std::string& joint, double effort);
+  std::optional<JointControlMode> controlMode(const std::string& joint) const;  // nullopt if unknown
+
+  // ---- links ----
+  std::vector<std::string> linkNames() const;  // every URDF link, including merged fixed ones
+  // World pose of a URDF link frame (tcp and palm too). Status::kUnknownLink if absent.
+  Result linkPose(const std::string& link, Eigen::Isometry3d* pose) const;
+
+  // ---- objects ----
+  Result spawnObject(const ObjectSpec& spec);
+  Result deleteObject(const std::string& name);  // releases it first if grasped
+  std::vector<std::string> objectNames() const;  // spawn order (world-file order first)
+  bool hasObject(const std::string& name) const;
+  Result objectState(const std::string& name, ObjectState* state) const;
+  // Teleports an object (releases it first if grasped). Static objects accept a pose only
+  // (a non-zero twist -> kStaticObject).
+  Result setObjectState(const std::string& name, const Eigen::Isometry3d& pose, const Twist& twist = Twist());
+
+  // ---- grasp fix ----
+  bool graspFixAvailable() const;  // a configuration exists (URDF block or options)
+  bool graspFixEnabled() const;
+  // Enabling without a configuration -> kInvalidArgument. Disabling releases held objects.
+  Result setGraspFixEnabled(bool enabled);
+  const std::optional<GraspFixConfig>& graspFixConfig() const;
+  // Attach/detach events since the last call (oldest first).
+  std::vector<GraspEvent> takeGraspEvents();
+  // Objects currently attached by the grasp fix.
+  std::vector<std::string> attachedObjects() const;
+
+  // ---- inspection ----
+  std::vector<Contact> contacts() const;  // contact points of the last step
+  WorldState state() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sixdof_sim

@@ -1,0 +1,161 @@
+#pragma once
+// Plain data types of the simulated world (no Bullet, no ROS). All poses are in the world frame
+// (= base_link), SI units, angles in radians.
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace sixdof_sim {
+
+// Outcome of a World call that can fail on bad input. message names the problem (empty on success).
+enum class Status {
+  kOk = 0,
+  kUnknownJoint,
+  kUnknownLink,
+  kUnknownObject,
+  kAlreadyExists,
+  kInvalidArgument,  // NaN, wrong sizes, negative mass/size, bad mesh, ...
+  kOutOfLimits,      // position outside the URDF limits, effort above the URDF effort limit
+  kMimicJoint,       // a mimic joint was commanded directly: command its master joint instead
+  kStaticObject,     // a twist was given to a static object
+};
+
+struct Result {
+  Status status = Status::kOk;
+  std::string message;
+  bool ok() const { return status == Status::kOk; }
+  static Result success() { return {}; }
+};
+
+enum class JointType { kRevolute, kPrismatic };
+
+// One actuated (revolute or prismatic) URDF joint. Fixed joints are merged into their parent link.
+struct JointInfo {
+  std::string name;
+  JointType type = JointType::kRevolute;
+  std::string parent_link;
+  std::string child_link;
+  double lower = 0.0;         // URDF <limit lower>
+  double upper = 0.0;         // URDF <limit upper>
+  double max_velocity = 0.0;  // URDF <limit velocity>
+  double max_effort = 0.0;    // URDF <limit effort> (N m or N)
+  double damping = 0.0;       // URDF <dynamics damping>: viscous, always applied
+  // URDF <dynamics friction> (Coulomb, N m or N): applied in kEffort mode; in the servo modes the
+  // drive's velocity loop holds the joint and the friction is part of what it overcomes.
+  double friction = 0.0;
+  // Mimic joints (URDF <mimic>) get their own servo whose target follows the master's command:
+  // q = multiplier * q_master + offset. They cannot be commanded directly (Status::kMimicJoint).
+  std::string mimic_of;  // empty: not a mimic joint
+  double mimic_multiplier = 1.0;
+  double mimic_offset = 0.0;
+};
+
+// How a joint is currently driven.
+//  kPosition: an implicit servo (Bullet joint motor): velocity target
+//             v* = velocity_ff + position_gain * (position - q), force bounded by max_effort.
+//  kVelocity: the same servo with position_gain = 0.
+//  kEffort:   a constant generalised force applied every step (no servo).
+enum class JointControlMode { kPosition, kVelocity, kEffort };
+
+enum class ShapeType { kBox, kCylinder, kSphere, kMesh };
+
+// Collision + visual shape of an object. Cylinders are along their local z axis (SolidPrimitive).
+struct Shape {
+  ShapeType type = ShapeType::kBox;
+  Eigen::Vector3d box_size = Eigen::Vector3d::Zero();  // full extents (kBox)
+  double radius = 0.0;                                 // kCylinder, kSphere
+  double length = 0.0;                                 // kCylinder
+  std::string mesh_resource;                           // kMesh: file path or package:// URI
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+};
+
+struct Color {
+  double r = 0.7, g = 0.7, b = 0.7, a = 1.0;
+};
+
+// An object of the world (a world-file entry, or spawned at run time).
+struct ObjectSpec {
+  std::string name;
+  Shape shape;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // initial pose of the shape's centre
+  double mass = 0.1;                                       // kg; must be > 0 unless is_static
+  bool is_static = false;                                  // static: immovable (tables, walls)
+  bool collision = true;                                   // false: a visual-only marker
+  double friction = 0.8;                                   // Coulomb coefficient
+  double restitution = 0.0;
+  Color color;
+};
+
+struct Twist {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // m/s, world frame, of the shape's centre
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // rad/s, world frame
+};
+
+struct ObjectState {
+  ObjectSpec spec;  // spec.pose is the current pose
+  Twist twist;
+  std::string attached_to;  // link holding it through the grasp fix, empty if none
+};
+
+struct GroundPlane {
+  bool enabled = true;
+  double z = 0.0;  // height of the plane (the floor, below the table)
+  double friction = 0.8;
+  double restitution = 0.0;
+};
+
+// A whole world: what a world file describes (see worlds/README.md).
+struct WorldSpec {
+  std::string name;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+  GroundPlane ground;
+  std::vector<ObjectSpec> objects;  // tables are static boxes; markers have collision = false
+};
+
+// Grasp-fix configuration: the URDF's <gazebo><plugin name="gazebo_grasp_fix"><arm> block.
+struct GraspFixConfig {
+  std::string arm_name;
+  std::string palm_link;
+  std::vector<std::string> gripper_links;
+  double forces_angle_tolerance = 100.0;  // degrees, >= 90
+  double update_rate = 4.0;               // Hz of SIMULATED time
+  int grip_count_threshold = 4;
+  int max_grip_count = 8;
+  double release_tolerance = 0.005;  // m
+  bool disable_collisions_on_attach = false;
+};
+
+struct GraspEvent {
+  enum class Type { kAttached, kDetached };
+  Type type = Type::kAttached;
+  double sim_time = 0.0;
+  std::string arm;
+  std::string object;
+  std::string palm_link;
+  std::vector<std::string> gripper_links;
+};
+
+// A robot/object contact point of the last step (for debugging, contact topics and tests).
+struct Contact {
+  std::string body_a;  // robot link name or object name; "ground" for the ground plane
+  std::string body_b;
+  bool a_is_robot = false;
+  bool b_is_robot = false;
+  Eigen::Vector3d position_on_b = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal_on_b = Eigen::Vector3d::Zero();  // world frame, pointing from b to a
+  double depth = 0.0;                                     // negative when penetrating
+  double normal_impulse = 0.0;                            // N s over the last step
+};
+
+// The complete dynamic state, for determinism checks and snapshots. Vectors follow joints() and
+// objectNames() order.
+struct WorldState {
+  double sim_time = 0.0;
+  std::vector<double> joint_positions;
+  std::vector<double> joint_velocities;
+  std::vector<Eigen::Isometry3d> object_poses;
+  std::vector<Twist> object_twists;
+};
+
+}  // namespace sixdof_sim

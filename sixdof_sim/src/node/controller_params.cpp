@@ -1,0 +1,96 @@
+#include "controller_params.h"
+
+#include <stdexcept>
+
+namespace sixdof_sim {
+
+namespace {
+
+double readDouble(const ros::NodeHandle& nh, const std::string& key, double fallback) {
+  if (!nh.hasParam(key)) {
+    return fallback;
+  }
+  double value = 0.0;
+  if (!nh.getParam(key, value)) {
+    throw std::runtime_error("parameter '" + nh.resolveName(key) + "' must be a number");
+  }
+  return value;
+}
+
+const JointInfo& findJoint(const std::vector<JointInfo>& joints, const std::string& name, const std::string& who) {
+  for (const JointInfo& j : joints) {
+    if (j.name == name) {
+      return j;
+    }
+  }
+  throw std::runtime_error(who + ": joint '" + name + "' is not an actuated joint of the robot");
+}
+
+}  // namespace
+
+TrajectoryControllerConfig readTrajectoryControllerConfig(const ros::NodeHandle& nh, const std::string& name,
+                                                          const std::vector<JointInfo>& robot_joints) {
+  const std::string who = "controller '" + nh.resolveName(name) + "'";
+  std::string type;
+  if (!nh.getParam(name + "/type", type)) {
+    throw std::runtime_error(who + ": no 'type' parameter (is the controllers config loaded?)");
+  }
+  const std::string suffix = "JointTrajectoryController";
+  if (type.size() < suffix.size() || type.compare(type.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    throw std::runtime_error(who + ": type '" + type + "' is not supported (only *JointTrajectoryController)");
+  }
+  TrajectoryControllerConfig c;
+  c.name = name;
+  if (!nh.getParam(name + "/joints", c.joints) || c.joints.empty()) {
+    throw std::runtime_error(who + ": 'joints' must be a non-empty list of joint names");
+  }
+  const std::string cons = name + "/constraints/";
+  c.goal_time = readDouble(nh, cons + "goal_time", 0.0);
+  c.stopped_velocity_tolerance = readDouble(nh, cons + "stopped_velocity_tolerance", 0.01);
+  for (const std::string& j : c.joints) {
+    const JointInfo& info = findJoint(robot_joints, j, who);
+    c.lower_limits.push_back(info.lower);
+    c.upper_limits.push_back(info.upper);
+    c.path_tolerance.push_back(readDouble(nh, cons + j + "/trajectory", 0.0));
+    c.goal_tolerance.push_back(readDouble(nh, cons + j + "/goal", 0.0));
+  }
+  return c;
+}
+
+GripperControllerConfig readGripperControllerConfig(const ros::NodeHandle& nh, const std::string& name,
+                                                    const std::vector<JointInfo>& robot_joints) {
+  const std::string who = "controller '" + nh.resolveName(name) + "'";
+  std::vector<std::string> joints;
+  if (!nh.getParam(name + "/joints", joints)) {
+    throw std::runtime_error(who + ": 'joints' must be a list of joint names");
+  }
+  GripperControllerConfig c;
+  c.name = name;
+  for (const std::string& j : joints) {
+    const JointInfo& info = findJoint(robot_joints, j, who);
+    if (info.mimic_of.empty()) {
+      c.joint = j;
+      c.lower = info.lower;
+      c.upper = info.upper;
+      c.effort_limit = info.max_effort;
+      break;
+    }
+  }
+  if (c.joint.empty()) {
+    throw std::runtime_error(who + ": no non-mimic joint for gripper_cmd");
+  }
+  const std::string p = name + "/gripper_cmd/";
+  // The finger travels 4 cm: gripper_action_controller's default goal_tolerance of 0.01 would be a quarter
+  // of it, so the default here is the finger's trajectory goal tolerance scale.
+  c.goal_tolerance = readDouble(nh, p + "goal_tolerance", 0.002);
+  c.stall_velocity_threshold = readDouble(nh, p + "stall_velocity_threshold", 0.001);
+  c.stall_timeout = readDouble(nh, p + "stall_timeout", 0.5);
+  // Closing on an object is how this simulator grasps, so a stall counts as success by default.
+  c.allow_stalling = true;
+  if (nh.hasParam(p + "allow_stalling") && !nh.getParam(p + "allow_stalling", c.allow_stalling)) {
+    throw std::runtime_error("parameter '" + nh.resolveName(p + "allow_stalling") + "' must be a bool");
+  }
+  return c;
+}
+
+}  // namespace sixdof_sim

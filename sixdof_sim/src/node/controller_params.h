@@ -1,0 +1,27 @@
+#pragma once
+// Controller configuration from the parameter server, in ros_control's controllers.yaml layout:
+//   <name>: {type: .../JointTrajectoryController, joints: [...],
+//            constraints: {goal_time, stopped_velocity_tolerance, <joint>: {trajectory, goal}},
+//            gripper_cmd: {goal_tolerance, stall_velocity_threshold, stall_timeout, allow_stalling}}
+// `gains` are not read: the World's joint servos are configured by the World itself.
+
+#include <ros/node_handle.h>
+
+#include <string>
+#include <vector>
+
+#include "sixdof_sim/gripper_controller.h"
+#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_sim/world_types.h"
+
+namespace sixdof_sim {
+
+// Throws std::runtime_error naming the parameter when it is missing, mistyped or inconsistent.
+TrajectoryControllerConfig readTrajectoryControllerConfig(const ros::NodeHandle& nh, const std::string& name,
+                                                          const std::vector<JointInfo>& robot_joints);
+
+// The gripper_cmd action of controller `name` drives its first non-mimic joint.
+GripperControllerConfig readGripperControllerConfig(const ros::NodeHandle& nh, const std::string& name,
+                                                    const std::vector<JointInfo>& robot_joints);
+
+}  // namespace sixdof_sim

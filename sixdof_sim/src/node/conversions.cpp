@@ -1,0 +1,177 @@
+#include "conversions.h"
+
+#include <shape_msgs/SolidPrimitive.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace sixdof_sim {
+
+geometry_msgs::Pose toMsg(const Eigen::Isometry3d& pose) {
+  geometry_msgs::Pose msg;
+  msg.position.x = pose.translation().x();
+  msg.position.y = pose.translation().y();
+  msg.position.z = pose.translation().z();
+  const Eigen::Quaterniond q(pose.rotation());
+  msg.orientation.x = q.x();
+  msg.orientation.y = q.y();
+  msg.orientation.z = q.z();
+  msg.orientation.w = q.w();
+  return msg;
+}
+
+geometry_msgs::Twist toMsg(const Twist& twist) {
+  geometry_msgs::Twist msg;
+  msg.linear.x = twist.linear.x();
+  msg.linear.y = twist.linear.y();
+  msg.linear.z = twist.linear.z();
+  msg.angular.x = twist.angular.x();
+  msg.angular.y = twist.angular.y();
+  msg.angular.z = twist.angular.z();
+  return msg;
+}
+
+sixdof_msgs::SimObject toMsg(const ObjectSpec& spec) {
+  sixdof_msgs::SimObject msg;
+  msg.name = spec.name;
+  switch (spec.shape.type) {
+    case ShapeType::kBox:
+      msg.shape.type = shape_msgs::SolidPrimitive::BOX;
+      msg.shape.dimensions = {spec.shape.box_size.x(), spec.shape.box_size.y(), spec.shape.box_size.z()};
+      break;
+    case ShapeType::kSphere:
+      msg.shape.type = shape_msgs::SolidPrimitive::SPHERE;
+      msg.shape.dimensions = {spec.shape.radius};
+      break;
+    case ShapeType::kCylinder:
+      msg.shape.type = shape_msgs::SolidPrimitive::CYLINDER;
+      msg.shape.dimensions = {spec.shape.length, spec.shape.radius};
+      break;
+    case ShapeType::kMesh:
+      msg.mesh_resource = spec.shape.mesh_resource;
+      msg.mesh_scale.x = spec.shape.mesh_scale.x();
+      msg.mesh_scale.y = spec.shape.mesh_scale.y();
+      msg.mesh_scale.z = spec.shape.mesh_scale.z();
+      break;
+  }
+  msg.pose = toMsg(spec.pose);
+  msg.mass = spec.mass;
+  msg.friction = spec.friction;
+  msg.restitution = spec.restitution;
+  msg.color.r = static_cast<float>(spec.color.r);
+  msg.color.g = static_cast<float>(spec.color.g);
+  msg.color.b = static_cast<float>(spec.color.b);
+  msg.color.a = static_cast<float>(spec.color.a);
+  msg.is_static = spec.is_static;
+  return msg;
+}
+
+bool fromMsg(const geometry_msgs::Pose& msg, Eigen::Isometry3d* pose, std::string* error) {
+  const Eigen::Vector3d p(msg.position.x, msg.position.y, msg.position.z);
+  Eigen::Quaterniond q(msg.orientation.w, msg.orientation.x, msg.orientation.y, msg.orientation.z);
+  if (!p.allFinite() || !q.coeffs().allFinite()) {
+    *error = "pose has a non-finite (NaN or inf) value";
+    return false;
+  }
+  if (std::abs(q.norm() - 1.0) > 1e-3) {
+    std::ostringstream s;
+    s << "pose orientation is not a unit quaternion (norm " << q.norm() << ")";
+    *error = s.str();
+    return false;
+  }
+  q.normalize();
+  pose->setIdentity();
+  pose->translate(p);
+  pose->rotate(q);
+  return true;
+}
+
+bool fromMsg(const geometry_msgs::Twist& msg, Twist* twist, std::string* error) {
+  twist->linear = Eigen::Vector3d(msg.linear.x, msg.linear.y, msg.linear.z);
+  twist->angular = Eigen::Vector3d(msg.angular.x, msg.angular.y, msg.angular.z);
+  if (!twist->linear.allFinite() || !twist->angular.allFinite()) {
+    *error = "twist has a non-finite (NaN or inf) value";
+    return false;
+  }
+  return true;
+}
+
+bool fromMsg(const sixdof_msgs::SimObject& msg, ObjectSpec* spec, std::string* error) {
+  ObjectSpec out;
+  out.name = msg.name;
+  if (!msg.mesh_resource.empty()) {
+    out.shape.type = ShapeType::kMesh;
+    out.shape.mesh_resource = msg.mesh_resource;
+    const Eigen::Vector3d scale(msg.mesh_scale.x, msg.mesh_scale.y, msg.mesh_scale.z);
+    out.shape.mesh_scale = scale.isZero(0.0) ? Eigen::Vector3d::Ones() : scale;
+  } else {
+    const std::vector<double>& d = msg.shape.dimensions;
+    const auto wrong = [&](const char* type, const char* expected) {
+      std::ostringstream s;
+      s << "object '" << msg.name << "': a " << type << " needs dimensions " << expected << ", got " << d.size()
+        << " values";
+      *error = s.str();
+      return false;
+    };
+    switch (msg.shape.type) {
+      case shape_msgs::SolidPrimitive::BOX:
+        if (d.size() != 3) {
+          return wrong("BOX", "[x, y, z]");
+        }
+        out.shape.type = ShapeType::kBox;
+        out.shape.box_size = Eigen::Vector3d(d[0], d[1], d[2]);
+        break;
+      case shape_msgs::SolidPrimitive::SPHERE:
+        if (d.size() != 1) {
+          return wrong("SPHERE", "[radius]");
+        }
+        out.shape.type = ShapeType::kSphere;
+        out.shape.radius = d[0];
+        break;
+      case shape_msgs::SolidPrimitive::CYLINDER:
+        if (d.size() != 2) {
+          return wrong("CYLINDER", "[height, radius]");
+        }
+        out.shape.type = ShapeType::kCylinder;
+        out.shape.length = d[0];
+        out.shape.radius = d[1];
+        break;
+      default:
+        *error = "object '" + msg.name + "': shape type " + std::to_string(msg.shape.type) +
+                 " is not supported (BOX=1, SPHERE=2, CYLINDER=3, or set mesh_resource)";
+        return false;
+    }
+  }
+  if (!fromMsg(msg.pose, &out.pose, error)) {
+    *error = "object '" + msg.name + "': " + *error;
+    return false;
+  }
+  out.mass = msg.mass;
+  out.friction = msg.friction;
+  out.restitution = msg.restitution;
+  out.is_static = msg.is_static;
+  if (msg.color.r != 0.0f || msg.color.g != 0.0f || msg.color.b != 0.0f || msg.color.a != 0.0f) {
+    out.color = {msg.color.r, msg.color.g, msg.color.b, msg.color.a};
+  }
+  *spec = out;
+  return true;
+}
+
+TrajectoryGoal fromMsg(const sixdof_msgs::FollowJointTrajectoryGoal& msg) {
+  TrajectoryGoal goal;
+  goal.joint_names = msg.trajectory.joint_names;
+  for (const trajectory_msgs::JointTrajectoryPoint& p : msg.trajectory.points) {
+    goal.points.push_back({p.positions, p.velocities, p.accelerations, p.time_from_start.toSec()});
+  }
+  for (const sixdof_msgs::JointTolerance& t : msg.path_tolerance) {
+    goal.path_tolerance.push_back({t.name, t.position, t.velocity, t.acceleration});
+  }
+  for (const sixdof_msgs::JointTolerance& t : msg.goal_tolerance) {
+    goal.goal_tolerance.push_back({t.name, t.position, t.velocity, t.acceleration});
+  }
+  goal.goal_time_tolerance = msg.goal_time_tolerance.toSec();
+  goal.start_time = msg.trajectory.header.stamp.toSec();
+  return goal;
+}
+
+}  // namespace sixdof_sim

@@ -1,0 +1,253 @@
+#include "sim_node.h"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/callback_queue.h>
+#include <ros/console.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/JointState.h>
+#include <sixdof_msgs/GraspEvent.h>
+#include <sixdof_msgs/ObjectStates.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "controller_params.h"
+#include "conversions.h"
+#include "gripper_action.h"
+#include "sixdof_sim/world_file.h"
+#include "trajectory_action.h"
+
+namespace sixdof_sim {
+
+namespace {
+
+// package:// URIs in the URDF and the world resolve against the ROS package path.
+std::vector<std::string> packageRoots() {
+  std::vector<std::string> roots;
+  const char* env = std::getenv("ROS_PACKAGE_PATH");
+  std::stringstream paths(env != nullptr ? env : "");
+  std::string path;
+  while (std::getline(paths, path, ':')) {
+    if (!path.empty()) {
+      roots.push_back(path);
+    }
+  }
+  return roots;
+}
+
+template <class T>
+void readParam(const ros::NodeHandle& pnh, const std::string& key, T* value) {
+  if (pnh.hasParam(key) && !pnh.getParam(key, *value)) {
+    throw std::runtime_error("parameter '" + pnh.resolveName(key) + "' has the wrong type");
+  }
+}
+
+}  // namespace
+
+SimNodeOptions SimNode::readOptions(const ros::NodeHandle& pnh) {
+  SimNodeOptions o;
+  readParam(pnh, "world_file", &o.world_file);
+  readParam(pnh, "physics_step", &o.physics_step);
+  readParam(pnh, "real_time_factor", &o.real_time_factor);
+  readParam(pnh, "grasp_fix", &o.grasp_fix);
+  readParam(pnh, "publish_rate", &o.publish_rate);
+  readParam(pnh, "controllers", &o.controllers);
+  readParam(pnh, "gripper_command_controller", &o.gripper_command_controller);
+  if (!(o.physics_step > 0.0) || !std::isfinite(o.physics_step)) {
+    throw std::runtime_error("~physics_step must be > 0 (seconds)");
+  }
+  if (!(o.real_time_factor >= 0.0) || !std::isfinite(o.real_time_factor)) {
+    throw std::runtime_error("~real_time_factor must be >= 0 (0 = as fast as possible)");
+  }
+  if (!(o.publish_rate > 0.0) || !std::isfinite(o.publish_rate)) {
+    throw std::runtime_error("~publish_rate must be > 0 (Hz)");
+  }
+  return o;
+}
+
+SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), options_(readOptions(pnh)) {
+  std::string urdf;
+  if (!nh_.getParam("robot_description", urdf) || urdf.empty()) {
+    throw std::runtime_error("no URDF in parameter '" + nh_.resolveName("robot_description") + "'");
+  }
+  WorldSpec spec;
+  if (!options_.world_file.empty()) {
+    spec = loadWorldFile(options_.world_file);
+  }
+  WorldOptions world_options;
+  world_options.time_step = options_.physics_step;
+  world_options.package_search_roots = packageRoots();
+  world_options.grasp_fix_enabled = options_.grasp_fix;
+  world_ = std::make_unique<World>(urdf, spec, world_options);
+  // docs/design.md: the world frame is the robot's (fixed) root link.
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
+  geometry_msgs::TransformStamped world_to_root;
+  world_to_root.header.frame_id = "world";
+  world_to_root.child_frame_id = model->getRoot()->name;
+  world_to_root.transform.rotation.w = 1.0;
+  static_tf_broadcaster_.sendTransform(world_to_root);
+
+  const auto clock = [this] { return now(); };
+  for (const std::string& name : options_.controllers) {
+    drivers_.push_back(std::make_unique<TrajectoryActionHandler>(
+        ros::NodeHandle(nh_, name), readTrajectoryControllerConfig(nh_, name, world_->joints()), *world_, arbiter_,
+        clock));
+  }
+  if (!options_.gripper_command_controller.empty()) {
+    const std::string& name = options_.gripper_command_controller;
+    drivers_.push_back(std::make_unique<GripperActionHandler>(
+        ros::NodeHandle(nh_, name), readGripperControllerConfig(nh_, name, world_->joints()), *world_, arbiter_,
+        clock));
+  }
+  world_->setPreStepCallback([this](double sim_time) {
+    for (const std::unique_ptr<JointDriver>& d : drivers_) {
+      d->update(clock_offset_ + sim_time);
+    }
+  });
+
+  const ros::NodeHandle sim_nh(nh_, "sixdof_sim");
+  object_services_ = std::make_unique<ObjectServices>(sim_nh, *world_);
+  SimControl control;
+  control.reset = [this] { reset(); };
+  control.set_paused = [this](bool p) { setPaused(p); };
+  control.paused = [this] { return paused_; };
+  control.step = [this](std::uint64_t n) {
+    for (std::uint64_t i = 0; i < n; ++i) {
+      stepOnce();
+    }
+    publishClock(true);
+  };
+  control_services_ = std::make_unique<SimControlServices>(sim_nh, control);
+
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  joint_state_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
+  object_state_pub_ = nh_.advertise<sixdof_msgs::ObjectStates>("sixdof_sim/object_states", 10);
+  grasp_event_pub_ = nh_.advertise<sixdof_msgs::GraspEvent>("grasp_events", 10);
+  ROS_INFO_STREAM("[sixdof_sim] " << world_->joints().size() << " joints, " << world_->objectNames().size()
+                                  << " objects, step " << options_.physics_step << " s, real-time factor "
+                                  << options_.real_time_factor << ", grasp fix "
+                                  << (world_->graspFixEnabled() ? "on" : "off"));
+}
+
+SimNode::~SimNode() = default;
+
+void SimNode::publishClock(bool force) {
+  // At most 1 kHz of wall time: free-running simulations would otherwise flood /clock subscribers.
+  const auto wall = std::chrono::steady_clock::now();
+  if (!force && wall - last_clock_wall_ < std::chrono::milliseconds(1)) {
+    return;
+  }
+  last_clock_wall_ = wall;
+  rosgraph_msgs::Clock msg;
+  msg.clock = ros::Time(now());
+  clock_pub_.publish(msg);
+}
+
+void SimNode::stepOnce() {
+  world_->step(1);
+  const ros::Time stamp(now());
+  for (const GraspEvent& e : world_->takeGraspEvents()) {
+    sixdof_msgs::GraspEvent msg;
+    msg.header.stamp = ros::Time(clock_offset_ + e.sim_time);
+    msg.header.frame_id = "world";
+    msg.event = e.type == GraspEvent::Type::kAttached ? sixdof_msgs::GraspEvent::ATTACHED
+                                                      : sixdof_msgs::GraspEvent::DETACHED;
+    msg.arm = e.arm;
+    msg.object = e.object;
+    msg.palm_link = e.palm_link;
+    msg.gripper_links = e.gripper_links;
+    grasp_event_pub_.publish(msg);
+    ROS_INFO_STREAM("[sixdof_sim] " << (msg.event == sixdof_msgs::GraspEvent::ATTACHED ? "attached '" : "detached '")
+                                    << e.object << "' " << (msg.event == sixdof_msgs::GraspEvent::ATTACHED ? "to" : "from")
+                                    << " " << e.palm_link);
+  }
+  if (now() + 1e-9 >= next_publish_) {
+    next_publish_ = now() + 1.0 / options_.publish_rate;
+    publishState();
+    for (const std::unique_ptr<JointDriver>& d : drivers_) {
+      d->publishFeedback(stamp);
+    }
+  }
+  publishClock(false);
+}
+
+void SimNode::publishState() {
+  const ros::Time stamp(now());
+  sensor_msgs::JointState js;
+  js.header.stamp = stamp;
+  js.name = world_->jointNames();
+  js.position = world_->jointPositions();
+  js.velocity = world_->jointVelocities();
+  js.effort = world_->jointEfforts();
+  joint_state_pub_.publish(js);
+
+  sixdof_msgs::ObjectStates objects;
+  objects.header.stamp = stamp;
+  objects.header.frame_id = "world";
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  for (const std::string& name : world_->objectNames()) {
+    ObjectState state;
+    if (!world_->objectState(name, &state).ok()) {
+      continue;
+    }
+    objects.name.push_back(name);
+    objects.pose.push_back(toMsg(state.spec.pose));
+    objects.twist.push_back(toMsg(state.twist));
+    objects.attached_to.push_back(state.attached_to);
+    geometry_msgs::TransformStamped t;
+    t.header = objects.header;
+    t.child_frame_id = name;
+    t.transform.translation.x = objects.pose.back().position.x;
+    t.transform.translation.y = objects.pose.back().position.y;
+    t.transform.translation.z = objects.pose.back().position.z;
+    t.transform.rotation = objects.pose.back().orientation;
+    transforms.push_back(t);
+  }
+  object_state_pub_.publish(objects);
+  if (!transforms.empty()) {
+    tf_broadcaster_.sendTransform(transforms);
+  }
+}
+
+void SimNode::reset() {
+  clock_offset_ += world_->simTime();
+  world_->reset();
+  for (const std::unique_ptr<JointDriver>& d : drivers_) {
+    d->reset();
+  }
+  next_publish_ = now();
+  pace_wall_ = std::chrono::steady_clock::now();
+  pace_sim_ = now();
+}
+
+void SimNode::setPaused(bool paused) {
+  paused_ = paused;
+  pace_wall_ = std::chrono::steady_clock::now();
+  pace_sim_ = now();
+}
+
+void SimNode::run() {
+  ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
+  pace_wall_ = std::chrono::steady_clock::now();
+  pace_sim_ = now();
+  while (ros::ok()) {
+    queue->callAvailable();
+    if (paused_) {
+      publishClock(false);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
+    }
+    stepOnce();
+    if (options_.real_time_factor > 0.0) {
+      const auto due = pace_wall_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>((now() - pace_sim_) / options_.real_time_factor));
+      std::this_thread::sleep_until(due);
+    }
+  }
+}
+
+}  // namespace sixdof_sim

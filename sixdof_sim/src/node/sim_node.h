@@ -1,0 +1,71 @@
+#pragma once
+// The sixdof_sim node: runs the Bullet World at a fixed step paced to a real-time factor, drives it with
+// the trajectory/gripper controllers and publishes its state. Single-threaded: ROS callbacks run between
+// physics steps, so the World is never touched concurrently.
+
+#include <ros/node_handle.h>
+#include <ros/publisher.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "joint_driver.h"
+#include "object_services.h"
+#include "sim_services.h"
+#include "sixdof_sim/world.h"
+
+namespace sixdof_sim {
+
+struct SimNodeOptions {
+  std::string world_file;        // empty: no objects besides the ground
+  double physics_step = 0.001;   // s
+  double real_time_factor = 1.0; // 0: as fast as possible
+  bool grasp_fix = true;
+  double publish_rate = 100.0;   // Hz of simulated time: joint_states, object_states, tf, action feedback
+  std::vector<std::string> controllers{"arm_controller", "gripper_controller"};
+  std::string gripper_command_controller = "gripper_controller";  // serves <name>/gripper_cmd; empty: none
+};
+
+class SimNode {
+ public:
+  // Reads all parameters once; throws std::runtime_error naming the problem on bad configuration.
+  SimNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~SimNode();
+  void run();
+
+ private:
+  static SimNodeOptions readOptions(const ros::NodeHandle& pnh);
+  double now() const { return clock_offset_ + world_->simTime(); }
+  void stepOnce();
+  void publishState();
+  void publishClock(bool force);
+  void reset();
+  void setPaused(bool paused);
+
+  ros::NodeHandle nh_;
+  SimNodeOptions options_;
+  std::unique_ptr<World> world_;
+  // World::reset() restarts its time at zero; /clock must not jump back, so resets accumulate an offset.
+  double clock_offset_ = 0.0;
+  bool paused_ = false;
+  double next_publish_ = 0.0;
+  std::chrono::steady_clock::time_point last_clock_wall_;
+  // Pacing anchor: sim time `pace_sim_` was reached at wall time `pace_wall_`.
+  std::chrono::steady_clock::time_point pace_wall_;
+  double pace_sim_ = 0.0;
+
+  JointArbiter arbiter_;
+  std::vector<std::unique_ptr<JointDriver>> drivers_;
+  std::unique_ptr<ObjectServices> object_services_;
+  std::unique_ptr<SimControlServices> control_services_;
+  ros::Publisher clock_pub_, joint_state_pub_, object_state_pub_, grasp_event_pub_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::StaticTransformBroadcaster static_tf_broadcaster_;
+};
+
+}  // namespace sixdof_sim

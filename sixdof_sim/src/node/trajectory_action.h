@@ -1,0 +1,62 @@
+#pragma once
+// arm_controller/follow_joint_trajectory and gripper_controller/follow_joint_trajectory: a
+// sixdof_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints.
+
+#include <actionlib/server/action_server.h>
+#include <ros/node_handle.h>
+#include <sixdof_msgs/FollowJointTrajectoryAction.h>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "joint_driver.h"
+#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_sim/world.h"
+
+namespace sixdof_sim {
+
+class TrajectoryActionHandler : public JointDriver {
+ public:
+  using Server = actionlib::ActionServer<sixdof_msgs::FollowJointTrajectoryAction>;
+
+  // nh: the controller's namespace (the action is nh/follow_joint_trajectory). Mimic joints of the config
+  // are checked against their master in every goal and left to the World to drive. Throws
+  // std::invalid_argument when a mimic joint's master is not part of the controller.
+  TrajectoryActionHandler(ros::NodeHandle nh, TrajectoryControllerConfig config, World& world,
+                          JointArbiter& arbiter, std::function<double()> clock);
+
+  void update(double now) override;
+  void release() override;
+  void reset() override;
+  void publishFeedback(const ros::Time& stamp) override;
+
+ private:
+  struct Mimic {
+    std::size_t joint;   // index in the controller
+    std::size_t master;  // index in the controller
+    double multiplier;
+    double offset;
+  };
+
+  void goalCallback(Server::GoalHandle gh);
+  void cancelCallback(Server::GoalHandle gh);
+  std::string checkMimics(const TrajectoryGoal& goal) const;
+  void readState(std::vector<double>* q, std::vector<double>* v) const;
+  void finishActive(int code, const std::string& message, bool succeeded, bool canceled);
+  bool ownsAny() const;
+
+  TrajectoryController controller_;
+  World& world_;
+  JointArbiter& arbiter_;
+  std::function<double()> clock_;
+  std::vector<int> world_index_;        // per controller joint
+  std::vector<std::string> commanded_;  // non-mimic joints: the World drives the mimics
+  std::vector<Mimic> mimics_;
+  std::optional<Server::GoalHandle> active_;
+  TrajectoryUpdate last_update_;
+  Server server_;
+};
+
+}  // namespace sixdof_sim

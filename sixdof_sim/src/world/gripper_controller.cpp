@@ -1,0 +1,98 @@
+#include "sixdof_sim/gripper_controller.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace sixdof_sim {
+
+GripperController::GripperController(GripperControllerConfig config) : config_(std::move(config)) {
+  const std::string who = "GripperController '" + config_.name + "': ";
+  if (config_.joint.empty()) {
+    throw std::invalid_argument(who + "no joint");
+  }
+  if (!std::isfinite(config_.lower) || !std::isfinite(config_.upper) || config_.lower > config_.upper) {
+    throw std::invalid_argument(who + "invalid position limits of joint '" + config_.joint + "'");
+  }
+  if (!(config_.effort_limit > 0.0) || !std::isfinite(config_.effort_limit)) {
+    throw std::invalid_argument(who + "joint '" + config_.joint + "' needs a positive effort limit in the URDF");
+  }
+  if (!(config_.goal_tolerance > 0.0) || !(config_.stall_velocity_threshold > 0.0) ||
+      !(config_.stall_timeout >= 0.0) || !std::isfinite(config_.goal_tolerance) ||
+      !std::isfinite(config_.stall_velocity_threshold) || !std::isfinite(config_.stall_timeout)) {
+    throw std::invalid_argument(
+        who + "goal_tolerance and stall_velocity_threshold must be > 0, stall_timeout >= 0 (all finite)");
+  }
+}
+
+GripperResult GripperController::validate(const GripperGoal& goal) const {
+  std::ostringstream s;
+  if (!std::isfinite(goal.position) || !std::isfinite(goal.max_effort)) {
+    s << "position and max_effort must be finite (got " << goal.position << ", " << goal.max_effort << ")";
+  } else if (goal.position < config_.lower || goal.position > config_.upper) {
+    s << "position " << goal.position << " of joint '" << config_.joint << "' is outside its limits ["
+      << config_.lower << ", " << config_.upper << "]";
+  } else if (goal.max_effort < 0.0) {
+    s << "max_effort " << goal.max_effort << " is negative (0 means the effort limit " << config_.effort_limit
+      << ")";
+  } else if (goal.max_effort > config_.effort_limit) {
+    s << "max_effort " << goal.max_effort << " exceeds the effort limit " << config_.effort_limit << " of joint '"
+      << config_.joint << "'";
+  }
+  return {s.str().empty(), s.str()};
+}
+
+GripperResult GripperController::setGoal(const GripperGoal& goal, double now) {
+  GripperResult r = validate(goal);
+  if (!r.ok) {
+    return r;
+  }
+  has_command_ = true;
+  command_position_ = goal.position;
+  command_effort_ = goal.max_effort > 0.0 ? goal.max_effort : config_.effort_limit;
+  last_movement_time_ = now;
+  state_ = GoalState::ACTIVE;
+  return r;
+}
+
+void GripperController::hold(double position) {
+  if (state_ == GoalState::ACTIVE) {
+    state_ = GoalState::CANCELED;
+  }
+  has_command_ = true;
+  command_position_ = position;
+  command_effort_ = config_.effort_limit;
+}
+
+void GripperController::cancel(double actual_position) {
+  if (state_ == GoalState::ACTIVE) {
+    hold(actual_position);
+  }
+}
+
+GripperUpdate GripperController::update(double now, double position, double velocity) {
+  if (!has_command_) {
+    hold(position);
+  }
+  GripperUpdate out;
+  out.position = position;
+  if (state_ == GoalState::ACTIVE) {
+    if (std::abs(command_position_ - position) < config_.goal_tolerance) {
+      out.reached_goal = true;
+      out.finished = true;
+      state_ = GoalState::SUCCEEDED;
+    } else if (std::abs(velocity) > config_.stall_velocity_threshold) {
+      last_movement_time_ = now;
+    } else if (now - last_movement_time_ > config_.stall_timeout) {
+      out.stalled = true;
+      out.finished = true;
+      state_ = config_.allow_stalling ? GoalState::SUCCEEDED : GoalState::ABORTED;
+    }
+  }
+  out.command_position = command_position_;
+  out.command_max_effort = command_effort_;
+  out.state = state_;
+  return out;
+}
+
+}  // namespace sixdof_sim

@@ -1,0 +1,236 @@
+#include "sixdof_sim/world_file.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "sixdof_sim/world.h"
+
+namespace sixdof_sim {
+namespace {
+
+class Parser {
+ public:
+  Parser(std::string source, std::string base_dir) : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& context, const std::string& problem) const {
+    std::ostringstream out;
+    out << source_;
+    if (node.IsDefined() && node.Mark().line >= 0) out << ":" << node.Mark().line + 1;
+    out << ": " << (context.empty() ? "" : context + ": ") << problem;
+    throw WorldFileError(out.str());
+  }
+
+  void checkKeys(const YAML::Node& map, const std::string& context, const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, context, "must be a mapping");
+    for (const auto& entry : map) {
+      const std::string key = entry.first.as<std::string>();
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(entry.first, context, "unknown key '" + key + "' (allowed: " + list + ")");
+      }
+    }
+  }
+
+  double number(const YAML::Node& node, const std::string& context, const std::string& key) const {
+    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be a number");
+    try {
+      return node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, context, "'" + key + "' must be a number, got '" + node.Scalar() + "'");
+    }
+  }
+
+  bool boolean(const YAML::Node& node, const std::string& context, const std::string& key) const {
+    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be true or false");
+    try {
+      return node.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(node, context, "'" + key + "' must be true or false, got '" + node.Scalar() + "'");
+    }
+  }
+
+  std::string text(const YAML::Node& node, const std::string& context, const std::string& key) const {
+    if (!node.IsScalar() || node.Scalar().empty()) fail(node, context, "'" + key + "' must be a non-empty string");
+    return node.Scalar();
+  }
+
+  std::vector<double> numbers(const YAML::Node& node, const std::string& context, const std::string& key,
+                              size_t size) const {
+    if (!node.IsSequence() || node.size() != size) {
+      fail(node, context, "'" + key + "' must be a list of " + std::to_string(size) + " numbers");
+    }
+    std::vector<double> out;
+    for (const auto& item : node) out.push_back(number(item, context, key));
+    return out;
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& context, const std::string& key) const {
+    const std::vector<double> v = numbers(node, context, key, 3);
+    return Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+
+  Eigen::Isometry3d pose(const YAML::Node& map, const std::string& context) const {
+    if (!map["position"]) fail(map, context, "'position' [x, y, z] is required");
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = vector3(map["position"], context, "position");
+    if (map["rpy"]) {
+      // Fixed-axis roll, pitch, yaw (URDF / tf2 setRPY): R = Rz(yaw) Ry(pitch) Rx(roll).
+      const Eigen::Vector3d rpy = vector3(map["rpy"], context, "rpy");
+      pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                       Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                       Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                          .toRotationMatrix();
+    }
+    return pose;
+  }
+
+  Color color(const YAML::Node& node, const std::string& context) const {
+    if (!node.IsSequence() || (node.size() != 3 && node.size() != 4)) {
+      fail(node, context, "'color' must be [r, g, b] or [r, g, b, a] with components in [0, 1]");
+    }
+    const std::vector<double> c = numbers(node, context, "color", node.size());
+    return Color{c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0};
+  }
+
+  std::string meshPath(const std::string& value) const {
+    if (value.rfind("package://", 0) == 0 || value.rfind("file://", 0) == 0) return value;
+    const std::filesystem::path path(value);
+    if (path.is_absolute() || base_dir_.empty()) return value;
+    return (std::filesystem::path(base_dir_) / path).lexically_normal().string();
+  }
+
+  ObjectSpec object(const YAML::Node& node, const std::string& context, bool table) const {
+    ObjectSpec spec;
+    if (table) {
+      checkKeys(node, context, {"name", "size", "position", "rpy", "friction", "restitution", "color"});
+    } else {
+      checkKeys(node, context,
+                {"name", "shape", "size", "radius", "length", "mesh", "scale", "position", "rpy", "mass", "static",
+                 "collision", "friction", "restitution", "color"});
+    }
+    if (!node["name"]) fail(node, context, "'name' is required");
+    spec.name = text(node["name"], context, "name");
+    const std::string named = context + " (" + spec.name + ")";
+    const std::string shape = table ? "box" : (node["shape"] ? text(node["shape"], named, "shape") : "");
+    auto require = [&](const char* key) {
+      if (!node[key]) fail(node, named, "a " + shape + " needs '" + key + "'");
+      return node[key];
+    };
+    auto forbid = [&](std::initializer_list<const char*> keys) {
+      for (const char* key : keys) {
+        if (node[key]) fail(node[key], named, "'" + std::string(key) + "' does not apply to a " + shape);
+      }
+    };
+    if (shape == "box") {
+      spec.shape.type = ShapeType::kBox;
+      spec.shape.box_size = vector3(require("size"), named, "size");
+      forbid({"radius", "length", "mesh", "scale"});
+    } else if (shape == "cylinder") {
+      spec.shape.type = ShapeType::kCylinder;
+      spec.shape.radius = number(require("radius"), named, "radius");
+      spec.shape.length = number(require("length"), named, "length");
+      forbid({"size", "mesh", "scale"});
+    } else if (shape == "sphere") {
+      spec.shape.type = ShapeType::kSphere;
+      spec.shape.radius = number(require("radius"), named, "radius");
+      forbid({"size", "length", "mesh", "scale"});
+    } else if (shape == "mesh") {
+      spec.shape.type = ShapeType::kMesh;
+      spec.shape.mesh_resource = meshPath(text(require("mesh"), named, "mesh"));
+      if (node["scale"]) spec.shape.mesh_scale = vector3(node["scale"], named, "scale");
+      forbid({"size", "radius", "length"});
+    } else if (shape.empty()) {
+      fail(node, named, "'shape' is required (box, cylinder, sphere or mesh)");
+    } else {
+      fail(node["shape"], named, "unknown shape '" + shape + "' (box, cylinder, sphere or mesh)");
+    }
+    spec.pose = pose(node, named);
+    spec.is_static = table ? true : (node["static"] ? boolean(node["static"], named, "static") : false);
+    spec.collision = table ? true : (node["collision"] ? boolean(node["collision"], named, "collision") : true);
+    if (!spec.collision && !node["static"]) spec.is_static = true;  // markers do not fall through the table
+    if (node["mass"]) {
+      if (spec.is_static) fail(node["mass"], named, "'mass' does not apply to a static object");
+      spec.mass = number(node["mass"], named, "mass");
+    } else if (!spec.is_static) {
+      fail(node, named, "'mass' is required for a dynamic object");
+    }
+    if (node["friction"]) spec.friction = number(node["friction"], named, "friction");
+    if (node["restitution"]) spec.restitution = number(node["restitution"], named, "restitution");
+    if (node["color"]) spec.color = color(node["color"], named);
+    const Result valid = validateObjectSpec(spec);
+    if (!valid.ok()) fail(node, named, valid.message);
+    return spec;
+  }
+
+  WorldSpec world(const YAML::Node& root) const {
+    if (!root.IsDefined() || root.IsNull()) fail(root, "", "the file is empty");
+    checkKeys(root, "", {"name", "gravity", "ground", "tables", "objects"});
+    WorldSpec spec;
+    if (root["name"]) spec.name = text(root["name"], "", "name");
+    if (root["gravity"]) spec.gravity = vector3(root["gravity"], "", "gravity");
+    if (root["ground"]) {
+      const YAML::Node ground = root["ground"];
+      if (ground.IsScalar()) {
+        spec.ground.enabled = boolean(ground, "ground", "ground");
+      } else {
+        checkKeys(ground, "ground", {"z", "friction", "restitution"});
+        if (ground["z"]) spec.ground.z = number(ground["z"], "ground", "z");
+        if (ground["friction"]) spec.ground.friction = number(ground["friction"], "ground", "friction");
+        if (ground["restitution"]) spec.ground.restitution = number(ground["restitution"], "ground", "restitution");
+        if (spec.ground.friction < 0.0) fail(ground["friction"], "ground", "'friction' must be >= 0");
+        if (spec.ground.restitution < 0.0 || spec.ground.restitution > 1.0) {
+          fail(ground["restitution"], "ground", "'restitution' must be in [0, 1]");
+        }
+      }
+    }
+    std::set<std::string> names;
+    for (const char* list : {"tables", "objects"}) {
+      const YAML::Node items = root[list];
+      if (!items) continue;
+      if (!items.IsSequence()) fail(items, list, "must be a list");
+      for (size_t i = 0; i < items.size(); ++i) {
+        const std::string context = std::string(list) + "[" + std::to_string(i) + "]";
+        ObjectSpec object = this->object(items[i], context, std::string(list) == "tables");
+        if (!names.insert(object.name).second) fail(items[i], context, "duplicate name '" + object.name + "'");
+        spec.objects.push_back(object);
+      }
+    }
+    return spec;
+  }
+
+ private:
+  std::string source_;
+  std::string base_dir_;
+};
+
+WorldSpec parse(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
+  const Parser parser(source_name, base_dir);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw WorldFileError(source_name + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
+  }
+  return parser.world(root);
+}
+
+}  // namespace
+
+WorldSpec parseWorldYaml(const std::string& yaml_text, const std::string& source_name) {
+  return parse(yaml_text, source_name, "");
+}
+
+WorldSpec loadWorldFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw WorldFileError(path + ": cannot be read");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse(buffer.str(), path, std::filesystem::path(path).parent_path().string());
+}
+
+}  // namespace sixdof_sim

@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""rostest: the simulator's trajectory actions follow joint_trajectory_controller semantics and error codes,
+and bad requests are rejected while the node keeps serving."""
+
+import math
+import unittest
+
+import actionlib
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+from shape_msgs.msg import SolidPrimitive
+from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, trajectory_goal
+from std_srvs.srv import Empty
+
+from sixdof_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult, JointTolerance, SimObject
+from sixdof_msgs.srv import GetObjectState, SpawnObject
+
+TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
+TARGET_B = [-0.3, 0.2, 0.6, -0.1, 0.5, 0.2]
+SERVER_TIMEOUT = 60.0
+RESULT_TIMEOUT = 60.0  # simulated seconds
+
+
+class SimActionsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls) -> None:
+        rospy.init_node("test_sim_actions")
+        cls.arm = actionlib.SimpleActionClient("arm_controller/follow_joint_trajectory", FollowJointTrajectoryAction)
+        cls.fingers = actionlib.SimpleActionClient(
+            "gripper_controller/follow_joint_trajectory", FollowJointTrajectoryAction
+        )
+        for client in (cls.arm, cls.fingers):
+            assert client.wait_for_server(rospy.Duration(SERVER_TIMEOUT)), "action server missing"
+        rospy.wait_for_service("sixdof_sim/reset_world", SERVER_TIMEOUT)
+        cls.reset_world = rospy.ServiceProxy("sixdof_sim/reset_world", Empty)
+        cls.spawn = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)
+        cls.get_object = rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)
+        cls.joints = JointStateListener()
+
+    def setUp(self) -> None:
+        self.reset_world()
+
+    def run_goal(self, goal, client=None) -> tuple[int, FollowJointTrajectoryResult]:
+        client = client or self.arm
+        client.send_goal(goal)
+        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_TIMEOUT)), "no result")
+        return client.get_state(), client.get_result()
+
+    def assert_rejected(self, goal, code: int, text: str, client=None) -> None:
+        state, result = self.run_goal(goal, client)
+        self.assertEqual(state, GoalStatus.REJECTED)
+        self.assertEqual(result.error_code, code, result.error_string)
+        self.assertIn(text, result.error_string)
+
+    def assert_near(self, actual: list[float], expected: list[float], tolerance: float) -> None:
+        for a, e in zip(actual, expected, strict=True):
+            self.assertLess(abs(a - e), tolerance, f"{actual} != {expected}")
+
+    def test_trajectory_reaches_the_goal(self) -> None:
+        feedback = []
+        goal = trajectory_goal(ARM_JOINTS, [(TARGET, 1.5)])
+        self.arm.send_goal(goal, feedback_cb=feedback.append)
+        self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
+        self.assertEqual(self.arm.get_state(), GoalStatus.SUCCEEDED)
+        self.assertEqual(self.arm.get_result().error_code, FollowJointTrajectoryResult.SUCCESSFUL)
+        self.assert_near(self.joints.positions(ARM_JOINTS), TARGET, 0.011)
+        self.assertGreater(len(feedback), 10)
+        self.assertEqual(feedback[-1].joint_names, ARM_JOINTS)
+
+    def test_multi_point_linear_trajectory_in_another_joint_order(self) -> None:
+        order = list(reversed(ARM_JOINTS))
+        mid = [0.5 * t for t in TARGET]
+        goal = trajectory_goal(order, [(list(reversed(mid)), 1.0), (list(reversed(TARGET)), 2.0)], False)
+        state, result = self.run_goal(goal)
+        self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
+        self.assert_near(self.joints.positions(ARM_JOINTS), TARGET, 0.011)
+
+    def test_invalid_joints(self) -> None:
+        goal = trajectory_goal(ARM_JOINTS[:5] + ["elbow"], [(TARGET, 1.0)])
+        self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_JOINTS, "elbow")
+        goal = trajectory_goal(ARM_JOINTS[:5], [(TARGET[:5], 1.0)])
+        self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_JOINTS, "joint6")
+
+    def test_invalid_goal_nan(self) -> None:
+        goal = trajectory_goal(ARM_JOINTS, [([math.nan] + TARGET[1:], 1.0)])
+        self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_GOAL, "NaN")
+
+    def test_invalid_goal_out_of_limits(self) -> None:
+        goal = trajectory_goal(ARM_JOINTS, [([0.0, 2.5, 0.0, 0.0, 0.0, 0.0], 1.0)])
+        self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_GOAL, "joint2")
+
+    def test_invalid_goal_non_increasing_times(self) -> None:
+        goal = trajectory_goal(ARM_JOINTS, [(TARGET, 1.0), (TARGET_B, 1.0)])
+        self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_GOAL, "strictly increase")
+
+    def test_goal_tolerance_violated(self) -> None:
+        goal = trajectory_goal(ARM_JOINTS, [(TARGET, 1.0)])
+        goal.goal_tolerance = [JointTolerance(name=j, position=1e-9, velocity=1e-9) for j in ARM_JOINTS]
+        goal.goal_time_tolerance = rospy.Duration(-1.0)  # negative: no time beyond the trajectory's end
+        state, result = self.run_goal(goal)
+        self.assertEqual(state, GoalStatus.ABORTED)
+        self.assertEqual(result.error_code, FollowJointTrajectoryResult.GOAL_TOLERANCE_VIOLATED, result.error_string)
+
+    def test_path_tolerance_violated(self) -> None:
+        # Far beyond the joints' effort limits: the arm cannot follow.
+        goal = trajectory_goal(ARM_JOINTS, [([1.5, 1.0, -1.5, 1.0, 1.0, 1.0], 0.1)])
+        goal.path_tolerance = [JointTolerance(name=j, position=0.05) for j in ARM_JOINTS]
+        state, result = self.run_goal(goal)
+        self.assertEqual(state, GoalStatus.ABORTED)
+        self.assertEqual(result.error_code, FollowJointTrajectoryResult.PATH_TOLERANCE_VIOLATED, result.error_string)
+        self.assertIn("path tolerance", result.error_string)
+
+    def test_preemption(self) -> None:
+        self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 3.0)]))
+        rospy.sleep(1.0)
+        first = self.arm.gh  # the first goal's handle, before the client moves on
+        state, result = self.run_goal(trajectory_goal(ARM_JOINTS, [(TARGET_B, 2.0)]))
+        self.assertEqual(first.get_goal_status(), GoalStatus.PREEMPTED)
+        self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
+        self.assert_near(self.joints.positions(ARM_JOINTS), TARGET_B, 0.011)
+
+    def test_cancel_holds_position(self) -> None:
+        self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 2.0)]))
+        rospy.sleep(1.0)
+        self.arm.cancel_goal()
+        self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
+        self.assertEqual(self.arm.get_state(), GoalStatus.PREEMPTED)
+        rospy.sleep(0.5)
+        held = self.joints.positions(ARM_JOINTS)
+        rospy.sleep(1.0)
+        self.assert_near(self.joints.positions(ARM_JOINTS), held, 0.005)
+        self.assertGreater(abs(held[0]), 0.05)  # it had moved, and stopped short of the target
+        self.assertLess(abs(held[0]), abs(TARGET[0]) - 0.02)
+
+    def test_gripper_trajectory_checks_the_mimic_finger(self) -> None:
+        goal = trajectory_goal(FINGER_JOINTS, [([0.03, 0.01], 1.0)])
+        self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_GOAL, "mimics", self.fingers)
+        state, result = self.run_goal(trajectory_goal(FINGER_JOINTS, [([0.03, 0.03], 1.0)]), self.fingers)
+        self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
+        self.assert_near(self.joints.positions(FINGER_JOINTS), [0.03, 0.03], 0.0025)
+
+    def test_bad_requests_leave_the_node_serving(self) -> None:
+        bad = SimObject(name="box", shape=SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.1]), mass=0.1)
+        bad.pose.orientation.w = 1.0
+        response = self.spawn(bad)
+        self.assertFalse(response.success)
+        self.assertIn("BOX", response.status_message)
+        bad.shape.dimensions = [0.1, 0.1, 0.1]
+        bad.pose.orientation.w = 0.0
+        response = self.spawn(bad)
+        self.assertFalse(response.success)
+        self.assertIn("quaternion", response.status_message)
+        response = self.get_object("no_such_object")
+        self.assertFalse(response.success)
+        self.assertIn("no_such_object", response.status_message)
+        self.assert_rejected(
+            trajectory_goal(ARM_JOINTS, [([math.inf] * 6, 1.0)]), FollowJointTrajectoryResult.INVALID_GOAL, "inf"
+        )
+        good = SimObject(name="box", shape=SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.05] * 3), mass=0.1)
+        good.pose.position.x, good.pose.position.y, good.pose.position.z = 0.3, 0.3, 0.5
+        good.pose.orientation.w = 1.0
+        good.friction = 0.8
+        response = self.spawn(good)
+        self.assertTrue(response.success, response.status_message)
+        state, result = self.run_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 1.0)]))
+        self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
+        self.assertLess(self.get_object("box").object.pose.position.z, 0.5)  # it fell under gravity
+
+
+if __name__ == "__main__":
+    rostest.rosrun("sixdof_sim", "test_sim_actions", SimActionsTest)

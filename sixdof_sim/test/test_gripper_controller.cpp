@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "sixdof_sim/gripper_controller.h"
+
+namespace sixdof_sim {
+namespace {
+
+constexpr double kDt = 0.001;
+
+GripperControllerConfig fingerConfig(bool allow_stalling) {
+  GripperControllerConfig c;
+  c.name = "gripper_controller";
+  c.joint = "finger1_joint";
+  c.lower = 0.0;
+  c.upper = 0.04;
+  c.effort_limit = 20.0;
+  c.goal_tolerance = 0.001;
+  c.stall_velocity_threshold = 0.001;
+  c.stall_timeout = 0.2;
+  c.allow_stalling = allow_stalling;
+  return c;
+}
+
+// A finger servoing towards the command at a bounded speed, blocked below `obstacle` (an object between
+// the fingers).
+struct Finger {
+  double q = 0.04;
+  double v = 0.0;
+  double obstacle = -1.0;
+  void apply(const GripperUpdate& u) {
+    const double step = std::clamp(u.command_position - q, -0.05 * kDt, 0.05 * kDt);
+    const double next = std::max(q + step, obstacle);
+    v = (next - q) / kDt;
+    q = next;
+  }
+};
+
+GripperUpdate run(GripperController& c, Finger& f, double& now, double max_time) {
+  GripperUpdate u;
+  const double end = now + max_time;
+  while (now < end) {
+    u = c.update(now, f.q, f.v);
+    f.apply(u);
+    now += kDt;
+    if (u.finished) {
+      break;
+    }
+  }
+  return u;
+}
+
+TEST(GripperController, ReachesTheTargetAndSucceeds) {
+  GripperController c(fingerConfig(true));
+  Finger f;
+  double now = 0.0;
+  ASSERT_TRUE(c.setGoal({0.01, 5.0}, now).ok);
+  GripperUpdate u = run(c, f, now, 5.0);
+  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_TRUE(u.reached_goal);
+  EXPECT_FALSE(u.stalled);
+  EXPECT_NEAR(u.position, 0.01, 0.001);
+  EXPECT_DOUBLE_EQ(u.command_max_effort, 5.0);
+}
+
+TEST(GripperController, ClosingOnAnObjectStallsAndSucceedsWhenStallingIsAllowed) {
+  GripperController c(fingerConfig(true));
+  Finger f;
+  f.obstacle = 0.02;  // a 4 cm cube
+  double now = 0.0;
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  GripperUpdate u = run(c, f, now, 5.0);
+  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_TRUE(u.stalled);
+  EXPECT_FALSE(u.reached_goal);
+  EXPECT_NEAR(u.position, 0.02, 1e-12);
+  // Reached the cube after 0.4 s, then stall_timeout without movement.
+  EXPECT_NEAR(now, 0.4 + 0.2, 0.01);
+  // max_effort 0 means the URDF effort limit, and the grip keeps squeezing after the goal ended.
+  EXPECT_DOUBLE_EQ(u.command_max_effort, 20.0);
+  u = c.update(now + 1.0, f.q, f.v);
+  EXPECT_DOUBLE_EQ(u.command_position, 0.0);
+}
+
+TEST(GripperController, StallAbortsWhenStallingIsNotAllowed) {
+  GripperController c(fingerConfig(false));
+  Finger f;
+  f.obstacle = 0.02;
+  double now = 0.0;
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  GripperUpdate u = run(c, f, now, 5.0);
+  EXPECT_EQ(u.state, GoalState::ABORTED);
+  EXPECT_TRUE(u.stalled);
+}
+
+TEST(GripperController, RejectsBadGoals) {
+  GripperController c(fingerConfig(true));
+  EXPECT_NE(c.setGoal({0.05, 0.0}, 0.0).message.find("outside its limits"), std::string::npos);
+  EXPECT_NE(c.setGoal({-0.001, 0.0}, 0.0).message.find("outside its limits"), std::string::npos);
+  EXPECT_NE(c.setGoal({0.01, -1.0}, 0.0).message.find("negative"), std::string::npos);
+  EXPECT_NE(c.setGoal({0.01, 25.0}, 0.0).message.find("exceeds the effort limit"), std::string::npos);
+  EXPECT_NE(c.setGoal({std::nan(""), 1.0}, 0.0).message.find("finite"), std::string::npos);
+  EXPECT_FALSE(c.setGoal({0.01, 25.0}, 0.0).ok);
+  EXPECT_FALSE(c.active());
+}
+
+TEST(GripperController, CancelHoldsTheActualPositionAndPreemptionRestartsTheStallClock) {
+  GripperController c(fingerConfig(true));
+  Finger f;
+  double now = 0.0;
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  run(c, f, now, 0.1);
+  c.cancel(f.q);
+  EXPECT_EQ(c.state(), GoalState::CANCELED);
+  const double held = f.q;
+  GripperUpdate u = c.update(now, f.q, f.v);
+  EXPECT_DOUBLE_EQ(u.command_position, held);
+  EXPECT_FALSE(u.finished);
+
+  // A new goal while one is active replaces it.
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.03, 0.0}, now).ok);
+  u = run(c, f, now, 5.0);
+  EXPECT_TRUE(u.reached_goal);
+  EXPECT_NEAR(f.q, 0.03, 0.001);
+}
+
+TEST(GripperController, BadConfigThrows) {
+  GripperControllerConfig c = fingerConfig(true);
+  c.effort_limit = 0.0;
+  EXPECT_THROW(GripperController{c}, std::invalid_argument);
+  c = fingerConfig(true);
+  c.lower = 0.1;
+  EXPECT_THROW(GripperController{c}, std::invalid_argument);
+  c = fingerConfig(true);
+  c.goal_tolerance = -1.0;
+  EXPECT_THROW(GripperController{c}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sixdof_sim
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -24,8 +24,13 @@ from sixdof_commander.mesh import load_stl
 from sixdof_commander.planning_scene import default_touch_links, resolve_resource
 from sixdof_commander.robot_model import parse_srdf, parse_urdf
 
-from sixdof_bringup.mirror import SceneMirror, SceneSnapshot, SimObjectState, non_colliding_objects
-from sixdof_bringup.mirror import template_from_sim_object
+from sixdof_bringup.mirror import (
+    SceneMirror,
+    SceneSnapshot,
+    SimObjectState,
+    non_colliding_objects,
+    template_from_sim_object,
+)
 from sixdof_msgs.msg import ObjectStates, PlanningScene
 from sixdof_msgs.srv import ApplyPlanningScene, GetObjectState, GetPlanningScene
 

@@ -40,7 +40,10 @@ def test_bad_shapes_are_named():
 
 
 def test_marker_ids_are_stable_and_unknown_objects_skipped():
-    descriptions = {"b": sim_object("b", SolidPrimitive.SPHERE, [0.1]), "a": sim_object("a", SolidPrimitive.SPHERE, [0.1])}
+    descriptions = {
+        "b": sim_object("b", SolidPrimitive.SPHERE, [0.1]),
+        "a": sim_object("a", SolidPrimitive.SPHERE, [0.1]),
+    }
     array = object_markers(descriptions, ["b", "x", "a"], [Pose(), Pose(), Pose()], "world")
     assert [m.id for m in array.markers] == [1, 0]
     with pytest.raises(ValueError, match="poses"):

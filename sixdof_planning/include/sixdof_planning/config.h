@@ -1,0 +1,69 @@
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <ros/node_handle.h>
+
+#include <sixdof_core/robot_model.h>
+
+namespace sixdof_planning {
+
+// Thrown on missing or malformed parameters; the message names the parameter and what is wrong.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// robot_description_kinematics/<group>/... (kinematics.yaml).
+struct GroupKinematicsConfig {
+  std::string solver;               // kinematics_solver: analytic | kdl | numeric
+  double search_resolution = 0.005;  // kinematics_solver_search_resolution
+  double timeout = 0.005;            // kinematics_solver_timeout, s
+  int attempts = 3;                  // kinematics_solver_attempts
+  bool position_only = false;        // position_only_ik
+};
+
+// robot_description_planning/joint_limits/<joint>/... (joint_limits.yaml), overriding the URDF.
+struct JointLimitConfig {
+  double max_velocity = 0.0;
+  double max_acceleration = 0.0;
+};
+
+// One entry of controller_list (moveit_simple_controller_manager's format).
+struct ControllerConfig {
+  std::string name;       // e.g. arm_controller
+  std::string action_ns;  // e.g. follow_joint_trajectory
+  std::string type;       // FollowJointTrajectory
+  std::vector<std::string> joints;
+
+  std::string actionName() const { return action_ns.empty() ? name : name + "/" + action_ns; }
+};
+
+struct MoveGroupConfig {
+  std::string urdf;
+  std::string srdf;
+  std::map<std::string, GroupKinematicsConfig> kinematics;  // by group
+  std::map<std::string, JointLimitConfig> joint_limits;     // by active joint, every one filled
+  std::vector<ControllerConfig> controllers;
+  // Private parameters of the node.
+  double default_planning_time = 5.0;     // ~default_planning_time, s
+  std::string default_planner_id = "RRTConnect";  // ~default_planner_id
+  double execution_duration_scaling = 1.2;  // ~allowed_execution_duration_scaling
+  double execution_goal_margin = 0.5;       // ~allowed_goal_duration_margin, s
+  double start_state_tolerance = 0.01;      // ~allowed_start_tolerance, rad or m
+  double joint_state_timeout = 1.0;         // ~joint_state_timeout: how long a request waits for joint_states, s
+};
+
+// Reads every parameter the node needs from `nh` (its namespace) and `private_nh`. Throws ConfigError.
+MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+
+// Cross-checks the configuration against the model (groups, joints, controllers). Fills joint limits the
+// YAML leaves out from the URDF (velocity) and throws ConfigError when an active joint ends up without a
+// velocity or acceleration limit, when a kinematics entry names an unknown group or solver, or a controller
+// an unknown joint or a joint already taken by another controller.
+void checkConfig(const sixdof_core::RobotModel& model, MoveGroupConfig* config);
+
+}  // namespace sixdof_planning

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <sixdof_core/collision.h>
+#include <sixdof_core/planning.h>
+#include <sixdof_core/planning_context.h>
+#include <sixdof_core/robot_model.h>
+#include <sixdof_msgs/MotionPlanRequest.h>
+#include <sixdof_msgs/MotionPlanResponse.h>
+
+#include "sixdof_planning/errors.h"
+#include "sixdof_planning/move_group_context.h"
+
+namespace sixdof_planning {
+
+// Collision report of a full robot state in a scene (every colliding pair, one contact each).
+sixdof_core::CollisionReport checkStateCollision(const sixdof_core::RobotState& state,
+                                                 const sixdof_core::CollisionScene& scene);
+// "joint2 = 2.5 is outside [-1.92, 1.92]" for the first active joint out of its limits, else "".
+std::string boundsViolation(const sixdof_core::RobotState& state);
+// "link3 collides with box" for the first contact of a report.
+std::string describeContact(const sixdof_core::Contact& contact);
+
+// MoveIt's planning pipeline for one MotionPlanRequest: request checks, start state, goal
+// (joint constraints, a pose or position constraint of the tip or a link fixed to it, or a named state),
+// OMPL through sixdof_core, time parameterization. Shared by plan_kinematic_path and the move_group action.
+class MotionPlanner {
+ public:
+  explicit MotionPlanner(MoveGroupContext* context) : context_(context) {}
+
+  // Fills the whole response, error_code included. base_scene: the scene to plan in (null: the current one).
+  void plan(const sixdof_msgs::MotionPlanRequest& request, const std::string& source,
+            sixdof_msgs::MotionPlanResponse* response, std::shared_ptr<const SceneStore> base_scene = nullptr) const;
+
+ private:
+  // Plans to one goal alternative.
+  ErrorCode planToGoal(const sixdof_core::PlanningContext& planning, const sixdof_core::RobotState& start,
+                       const sixdof_msgs::Constraints& goal, const std::string& what,
+                       const sixdof_core::PlanningOptions& options, const std::string& source,
+                       sixdof_core::PlanningResult* result) const;
+
+  MoveGroupContext* context_;
+};
+
+ErrorCode planningStatusToError(const sixdof_core::PlanningResult& result, const std::string& source);
+
+}  // namespace sixdof_planning

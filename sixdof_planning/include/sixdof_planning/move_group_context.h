@@ -1,0 +1,83 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include <sixdof_core/ik_solver.h>
+#include <sixdof_core/robot_model.h>
+#include <sixdof_core/trajectory.h>
+#include <sixdof_msgs/PlanningScene.h>
+#include <sixdof_msgs/RobotState.h>
+
+#include "sixdof_planning/config.h"
+#include "sixdof_planning/errors.h"
+#include "sixdof_planning/scene_store.h"
+#include "sixdof_planning/state_monitor.h"
+
+namespace sixdof_planning {
+
+// What every capability shares (MoveIt's MoveGroupContext): the robot model, IK solvers, the planning
+// scene, the current state and the output topics. Thread-safe: capabilities run on an AsyncSpinner.
+class MoveGroupContext {
+ public:
+  // Builds the model from the configuration; throws ConfigError naming what is wrong.
+  MoveGroupContext(ros::NodeHandle nh, MoveGroupConfig config);
+
+  const MoveGroupConfig& config() const { return config_; }
+  const sixdof_core::RobotModelConstPtr& model() const { return model_; }
+  const std::string& planningFrame() const { return model_->rootLink(); }
+  ros::NodeHandle& nodeHandle() { return nh_; }
+
+  // The group's IK solver (null for groups without kinematics configuration) and its configured options
+  // (time budget = kinematics_solver_timeout x kinematics_solver_attempts, as MoveIt calls the solver
+  // `attempts` times).
+  std::shared_ptr<const sixdof_core::IkSolver> ikSolver(const std::string& group) const;
+  sixdof_core::IkOptions ikOptions(const std::string& group) const;
+
+  // The current state from joint_states (waits up to joint_state_timeout for missing joints).
+  ErrorCode currentState(const std::string& source, sixdof_core::RobotState* state) const;
+  // A request's robot state: its joints on top of the current state (the current state is only needed for
+  // joints the message leaves out), and `base_scene` (null: the current scene) with the message's attached
+  // objects added (attached objects in a request are always additions). `what` names the field.
+  ErrorCode resolveRobotState(const sixdof_msgs::RobotState& msg, const std::string& what, const std::string& source,
+                              sixdof_core::RobotState* state, std::shared_ptr<const SceneStore>* scene,
+                              std::shared_ptr<const SceneStore> base_scene = nullptr) const;
+
+  std::shared_ptr<const SceneStore> scene() const;
+  // Applies a scene message to the persistent scene (all or nothing) and publishes the markers.
+  ErrorCode applyScene(const sixdof_msgs::PlanningScene& msg, const std::string& source);
+
+  // The pose of `link` in the frame of the group's IK tip link, for a link rigidly fixed to the tip (the tip
+  // itself, or e.g. a tcp link); INVALID_LINK_NAME otherwise. An empty link means the tip.
+  ErrorCode linkInTip(const std::string& group, const std::string& link, const std::string& source,
+                      Eigen::Isometry3d* link_in_tip) const;
+
+  // Time-optimal parameterization of a joint path under the configured limits and the scaling factors.
+  ErrorCode timeParameterize(const std::vector<std::string>& joints, const std::vector<Eigen::VectorXd>& path,
+                             double velocity_scaling, double acceleration_scaling, const std::string& source,
+                             sixdof_core::Trajectory* trajectory) const;
+
+  void publishDisplayTrajectory(const sixdof_core::RobotState& start, const trajectory_msgs::JointTrajectory& path);
+  void publishSceneMarkers();
+
+ private:
+  ros::NodeHandle nh_;
+  MoveGroupConfig config_;
+  sixdof_core::RobotModelConstPtr model_;
+  std::map<std::string, std::shared_ptr<const sixdof_core::IkSolver>> ik_solvers_;
+  std::unique_ptr<CurrentStateMonitor> state_monitor_;
+
+  mutable std::mutex scene_mutex_;
+  std::shared_ptr<const SceneStore> scene_;
+
+  ros::Publisher display_path_pub_;
+  ros::Publisher markers_pub_;
+};
+
+}  // namespace sixdof_planning

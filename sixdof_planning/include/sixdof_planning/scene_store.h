@@ -1,0 +1,71 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <sixdof_core/collision.h>
+#include <sixdof_core/robot_model.h>
+#include <sixdof_msgs/AttachedCollisionObject.h>
+#include <sixdof_msgs/CollisionObject.h>
+#include <sixdof_msgs/PlanningScene.h>
+
+#include "sixdof_planning/errors.h"
+
+namespace sixdof_planning {
+
+// The planning scene's objects: the core's CollisionScene plus the messages that describe its world and
+// attached objects (what get_planning_scene returns and the markers show). World object messages are kept in
+// the planning frame, attached ones in their link's frame.
+//
+// A store is a value: copies are deep, so a request can apply a diff to a copy while others keep using
+// the original, and the node swaps in a modified copy (copy-on-write).
+class SceneStore {
+ public:
+  explicit SceneStore(sixdof_core::RobotModelConstPtr model);
+  SceneStore(const SceneStore& other);
+  SceneStore& operator=(const SceneStore&) = delete;
+
+  const sixdof_core::RobotModel& model() const { return *model_; }
+  std::shared_ptr<const sixdof_core::CollisionScene> collision() const { return collision_; }
+
+  // Applies a PlanningScene message (a diff, or with is_diff false a full replacement of the objects) at the
+  // robot state `state` (which places attached objects and resolves link frames). The robot_state's joint
+  // values are not part of the scene (the node follows joint_states), so setting them is an error.
+  // On error the store may be partly modified: apply to a copy and keep it only on success.
+  ErrorCode apply(const sixdof_msgs::PlanningScene& scene, const sixdof_core::RobotState& state,
+                  const std::string& source);
+  ErrorCode applyCollisionObject(const sixdof_msgs::CollisionObject& object, const sixdof_core::RobotState& state,
+                                 const std::string& source);
+  ErrorCode applyAttachedObject(const sixdof_msgs::AttachedCollisionObject& attached,
+                                const sixdof_core::RobotState& state, const std::string& source);
+
+  // World and attached objects as messages (ADD operations).
+  std::vector<sixdof_msgs::CollisionObject> worldObjects() const;
+  std::vector<sixdof_msgs::AttachedCollisionObject> attachedObjects() const;
+  // Markers of every object (world objects in the planning frame, attached ones in their link frame),
+  // preceded by a DELETEALL marker so removed objects disappear.
+  visualization_msgs::MarkerArray markers() const;
+
+  // Pose in the planning frame of `frame` (the planning frame, the virtual joint's parent frame, or a link).
+  static ErrorCode frameTransform(const sixdof_core::RobotState& state, const std::string& frame,
+                                  const std::string& source, Eigen::Isometry3d* frame_pose);
+
+ private:
+  // Shapes of a validated message.
+  ErrorCode toShapes(const sixdof_msgs::CollisionObject& object, const std::string& source,
+                     std::vector<sixdof_core::PlacedShape>* shapes) const;
+  ErrorCode sceneError(const sixdof_core::SceneStatus& status, const std::string& source) const;
+  ErrorCode detach(const std::string& id, const sixdof_core::RobotState& state, const std::string& source);
+
+  sixdof_core::RobotModelConstPtr model_;
+  std::shared_ptr<sixdof_core::CollisionScene> collision_;
+  std::map<std::string, sixdof_msgs::CollisionObject> world_;
+  std::map<std::string, sixdof_msgs::AttachedCollisionObject> attached_;
+};
+
+}  // namespace sixdof_planning

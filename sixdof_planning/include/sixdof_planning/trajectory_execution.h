@@ -1,0 +1,49 @@
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <actionlib/client/simple_action_client.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include <sixdof_msgs/FollowJointTrajectoryAction.h>
+
+#include "sixdof_planning/errors.h"
+#include "sixdof_planning/move_group_context.h"
+
+namespace sixdof_planning {
+
+// MoveIt's TrajectoryExecutionManager with the simple controller manager: a trajectory is split among the
+// FollowJointTrajectory controllers of controller_list, sent to all of them at once and watched until every
+// controller reports, the allowed duration (expected x scaling + margin) passes, or the caller preempts.
+class TrajectoryExecutor {
+ public:
+  explicit TrajectoryExecutor(MoveGroupContext* context);
+
+  // Blocks until the execution ends. `preempt_requested` is polled; when it returns true the controllers'
+  // goals are cancelled and PREEMPTED is returned. One execution at a time: a second caller waits.
+  ErrorCode execute(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
+                    const std::function<bool()>& preempt_requested);
+
+  // Stops whatever is executing (cancels the controllers' goals).
+  void stop();
+
+ private:
+  using Client = actionlib::SimpleActionClient<sixdof_msgs::FollowJointTrajectoryAction>;
+
+  ErrorCode validate(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source) const;
+  // One goal per controller that has joints in the trajectory (plus mimic joints of trajectory joints).
+  ErrorCode split(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
+                  std::map<std::string, trajectory_msgs::JointTrajectory>* parts) const;
+  void cancelAll(const std::map<std::string, trajectory_msgs::JointTrajectory>& parts);
+
+  MoveGroupContext* context_;
+  std::map<std::string, std::unique_ptr<Client>> clients_;  // by controller name
+  std::map<std::string, std::string> action_names_;        // by controller name
+  std::mutex execution_mutex_;
+};
+
+}  // namespace sixdof_planning

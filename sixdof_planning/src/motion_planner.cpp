@@ -1,0 +1,267 @@
+#include "sixdof_planning/motion_planner.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/validation.h"
+
+namespace sixdof_planning {
+
+namespace {
+
+std::string str(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+ErrorCode goalError(const std::string& what, const std::string& message, const std::string& source) {
+  return makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS, what + ": " + message, source);
+}
+
+}  // namespace
+
+sixdof_core::CollisionReport checkStateCollision(const sixdof_core::RobotState& state,
+                                                 const sixdof_core::CollisionScene& scene) {
+  std::vector<Eigen::Isometry3d> poses;
+  for (const auto& link : scene.linkNames()) poses.push_back(state.linkTransform(link));
+  return scene.checkCollision(poses);
+}
+
+std::string boundsViolation(const sixdof_core::RobotState& state) {
+  const auto& model = state.model();
+  for (size_t i = 0; i < model.variableCount(); ++i) {
+    const auto& joint = model.variableJoint(i);
+    const double value = state.positions()[i];
+    if (joint.limits.bounded && (value < joint.limits.lower || value > joint.limits.upper)) {
+      return joint.name + " = " + str(value) + " is outside [" + str(joint.limits.lower) + ", " +
+             str(joint.limits.upper) + "]";
+    }
+  }
+  return "";
+}
+
+std::string describeContact(const sixdof_core::Contact& contact) {
+  return "'" + contact.body1 + "' collides with '" + contact.body2 + "'";
+}
+
+ErrorCode planningStatusToError(const sixdof_core::PlanningResult& result, const std::string& source) {
+  using S = sixdof_core::PlanningStatus;
+  const std::string source_name = source + " (OMPL " + result.planner_id + ")";
+  switch (result.status) {
+    case S::kSuccess:
+      return makeSuccess(source_name);
+    case S::kInvalidRequest:
+      return makeError(ErrorCode::INVALID_REQUEST, result.message, source_name);
+    case S::kInvalidStart:
+      return makeError(ErrorCode::START_STATE_INVALID, result.message, source_name);
+    case S::kInvalidGoal:
+      return makeError(ErrorCode::GOAL_STATE_INVALID, result.message, source_name);
+    case S::kGoalInCollision:
+      return makeError(ErrorCode::GOAL_IN_COLLISION, result.message, source_name);
+    case S::kNoIkSolution:
+      return makeError(ErrorCode::NO_IK_SOLUTION, result.message, source_name);
+    case S::kTimeout:
+      return makeError(ErrorCode::TIMED_OUT, result.message, source_name);
+    case S::kPlanningFailed:
+      break;
+  }
+  return makeError(ErrorCode::PLANNING_FAILED, result.message, source_name);
+}
+
+ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning, const sixdof_core::RobotState& start,
+                                    const sixdof_msgs::Constraints& goal, const std::string& what,
+                                    const sixdof_core::PlanningOptions& options, const std::string& source,
+                                    sixdof_core::PlanningResult* result) const {
+  const auto& model = *context_->model();
+  const std::string& group = planning.group();
+  const bool has_joints = !goal.joint_constraints.empty();
+  const bool has_pose = !goal.position_constraints.empty() || !goal.orientation_constraints.empty();
+  if (has_joints && has_pose) {
+    return goalError(what, "mixing joint constraints with position/orientation constraints is not supported", source);
+  }
+  if (!has_joints && !has_pose) {
+    // sixdof extension: a Constraints with only a name is the group's SRDF state of that name.
+    if (goal.name.empty()) return goalError(what, "has no constraints and no named state", source);
+    ErrorCode code = validateNamedState(model, group, goal.name, source);
+    if (!isSuccess(code)) return code;
+    *result = planning.planToNamed(start, goal.name, 0.0, options);
+    return planningStatusToError(*result, source);
+  }
+  if (has_joints) {
+    const auto* joint_group = model.findGroup(group);
+    const auto& active = joint_group->active_joints;
+    Eigen::VectorXd target = start.groupPositions(group);
+    Eigen::VectorXd tolerance = Eigen::VectorXd::Zero(target.size());
+    std::vector<bool> seen(active.size(), false);
+    for (size_t i = 0; i < goal.joint_constraints.size(); ++i) {
+      const auto& c = goal.joint_constraints[i];
+      const std::string cwhat = what + ".joint_constraints[" + std::to_string(i) + "]";
+      if (model.jointIndex(c.joint_name) < 0) return goalError(cwhat, "unknown joint '" + c.joint_name + "'", source);
+      const auto it = std::find(active.begin(), active.end(), c.joint_name);
+      if (it == active.end()) {
+        return goalError(cwhat, "joint '" + c.joint_name + "' is not an active joint of group '" + group +
+                                    "' (its joints: " + joinNames(active) + ")",
+                         source);
+      }
+      const size_t k = static_cast<size_t>(it - active.begin());
+      if (seen[k]) return goalError(cwhat, "joint '" + c.joint_name + "' is constrained twice", source);
+      seen[k] = true;
+      if (!std::isfinite(c.position) || !std::isfinite(c.tolerance_above) || !std::isfinite(c.tolerance_below) ||
+          c.tolerance_above < 0.0 || c.tolerance_below < 0.0) {
+        return goalError(cwhat, "position must be finite and tolerances finite and >= 0 (joint '" + c.joint_name + "')",
+                         source);
+      }
+      target[k] = c.position;
+      // The core's goal region is symmetric: the smaller side keeps every accepted state inside the request's.
+      tolerance[k] = std::min(c.tolerance_above, c.tolerance_below);
+    }
+    auto problem = planning.problem(start, options);
+    problem.joint_goal = sixdof_core::JointGoal{target, tolerance};
+    *result = sixdof_core::plan(problem);
+    return planningStatusToError(*result, source);
+  }
+  // Pose or position goal.
+  if (goal.position_constraints.size() != 1 || goal.orientation_constraints.size() > 1) {
+    return goalError(what,
+                     "pose goals need exactly one position constraint and at most one orientation constraint "
+                     "(orientation-only goals are not supported)",
+                     source);
+  }
+  const auto& pc = goal.position_constraints[0];
+  const std::string pwhat = what + ".position_constraints[0]";
+  Eigen::Isometry3d link_in_tip;
+  ErrorCode code = context_->linkInTip(group, pc.link_name, source, &link_in_tip);
+  if (!isSuccess(code)) {
+    code.message = pwhat + ": " + code.message;
+    return code;
+  }
+  for (double v : {pc.position.x, pc.position.y, pc.position.z, pc.target_point_offset.x, pc.target_point_offset.y,
+                   pc.target_point_offset.z}) {
+    if (!std::isfinite(v)) return makeError(ErrorCode::INVALID_REQUEST, pwhat + " has a non-finite value", source);
+  }
+  if (!std::isfinite(pc.tolerance) || pc.tolerance < 0.0) {
+    return makeError(ErrorCode::INVALID_REQUEST, pwhat + ".tolerance must be finite and >= 0, got " + str(pc.tolerance),
+                     source);
+  }
+  Eigen::Isometry3d frame;
+  code = SceneStore::frameTransform(start, pc.header.frame_id, source, &frame);
+  if (!isSuccess(code)) return code;
+  const Eigen::Vector3d position = frame * Eigen::Vector3d(pc.position.x, pc.position.y, pc.position.z);
+  const Eigen::Vector3d offset(pc.target_point_offset.x, pc.target_point_offset.y, pc.target_point_offset.z);
+  const auto solver = context_->ikSolver(group);
+  const Eigen::Isometry3d base_pose = start.linkTransform(solver->chain().baseLink());
+  sixdof_core::PoseGoalOptions pose_options;
+  pose_options.ik = context_->ikOptions(group);
+  if (goal.orientation_constraints.empty()) {
+    if (!offset.isZero() || !link_in_tip.translation().isZero()) {
+      return goalError(pwhat, "a position-only goal needs the tip link itself (no target_point_offset, no offset link)",
+                       source);
+    }
+    *result = planning.planToPosition(start, base_pose.inverse() * position, pose_options, options);
+    return planningStatusToError(*result, source);
+  }
+  const auto& oc = goal.orientation_constraints[0];
+  const std::string owhat = what + ".orientation_constraints[0]";
+  if (oc.link_name != pc.link_name) {
+    return goalError(owhat, "link '" + oc.link_name + "' differs from the position constraint's '" + pc.link_name + "'",
+                     source);
+  }
+  geometry_msgs::Pose orientation_pose;
+  orientation_pose.orientation = oc.orientation;
+  code = validatePose(orientation_pose, owhat, source);
+  if (!isSuccess(code)) return code;
+  Eigen::Isometry3d oframe;
+  code = SceneStore::frameTransform(start, oc.header.frame_id, source, &oframe);
+  if (!isSuccess(code)) return code;
+  Eigen::Isometry3d link_pose = Eigen::Isometry3d::Identity();
+  link_pose.linear() = oframe.rotation() * poseToEigen(orientation_pose).rotation();
+  link_pose.translation() = position - link_pose.rotation() * offset;
+  const Eigen::Isometry3d tip_pose = link_pose * link_in_tip.inverse();
+  *result = planning.planToPose(start, base_pose.inverse() * tip_pose, pose_options, options);
+  return planningStatusToError(*result, source);
+}
+
+void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const std::string& source,
+                         sixdof_msgs::MotionPlanResponse* response,
+                         std::shared_ptr<const SceneStore> base_scene) const {
+  const auto& model = *context_->model();
+  const auto& config = context_->config();
+  response->group_name = request.group_name;
+  ErrorCode& code = response->error_code;
+  code = validateGroup(model, request.group_name, source);
+  if (!isSuccess(code)) return;
+  double velocity_scaling = 1.0;
+  double acceleration_scaling = 1.0;
+  code = validateScalingFactor(request.max_velocity_scaling_factor, "max_velocity_scaling_factor", source,
+                               &velocity_scaling);
+  if (!isSuccess(code)) return;
+  code = validateScalingFactor(request.max_acceleration_scaling_factor, "max_acceleration_scaling_factor", source,
+                               &acceleration_scaling);
+  if (!isSuccess(code)) return;
+  if (!std::isfinite(request.allowed_planning_time) || request.allowed_planning_time < 0.0) {
+    code = makeError(ErrorCode::INVALID_REQUEST,
+                     "allowed_planning_time must be >= 0 (0: the default), got " + str(request.allowed_planning_time),
+                     source);
+    return;
+  }
+  if (request.num_planning_attempts < 0) {
+    code = makeError(ErrorCode::INVALID_REQUEST,
+                     "num_planning_attempts must be >= 0 (0: 1), got " + std::to_string(request.num_planning_attempts),
+                     source);
+    return;
+  }
+  if (request.goal_constraints.empty()) {
+    code = makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS, "goal_constraints is empty", source);
+    return;
+  }
+  sixdof_core::RobotState start(context_->model());
+  std::shared_ptr<const SceneStore> scene;
+  code = context_->resolveRobotState(request.start_state, "start_state", source, &start, &scene, base_scene);
+  if (!isSuccess(code)) return;
+  response->trajectory_start.joint_state = toJointState(start);
+  const std::string out_of_bounds = boundsViolation(start);
+  if (!out_of_bounds.empty()) {
+    code = makeError(ErrorCode::START_STATE_INVALID, "start state: " + out_of_bounds, source);
+    return;
+  }
+  const auto report = checkStateCollision(start, *scene->collision());
+  if (report.colliding) {
+    code = makeError(ErrorCode::START_STATE_IN_COLLISION,
+                     "start state in collision: " + describeContact(report.contacts.front()), source);
+    return;
+  }
+  sixdof_core::PlanningOptions options;
+  options.planner_id = request.planner_id.empty() ? config.default_planner_id : request.planner_id;
+  options.allowed_planning_time =
+      request.allowed_planning_time > 0.0 ? request.allowed_planning_time : config.default_planning_time;
+  options.num_planning_attempts = std::max(1, request.num_planning_attempts);
+  std::unique_ptr<sixdof_core::PlanningContext> planning;
+  try {
+    planning = std::make_unique<sixdof_core::PlanningContext>(context_->model(), scene->collision(),
+                                                              request.group_name, context_->ikSolver(request.group_name));
+  } catch (const std::exception& e) {
+    code = makeError(ErrorCode::INVALID_GROUP_NAME, e.what(), source);
+    return;
+  }
+  sixdof_core::PlanningResult result;
+  for (size_t i = 0; i < request.goal_constraints.size(); ++i) {
+    code = planToGoal(*planning, start, request.goal_constraints[i], "goal_constraints[" + std::to_string(i) + "]",
+                      options, source, &result);
+    if (isSuccess(code)) break;
+  }
+  response->planning_time = result.planning_time;
+  if (!isSuccess(code)) return;
+  sixdof_core::Trajectory trajectory;
+  const auto& joints = model.findGroup(request.group_name)->active_joints;
+  code = context_->timeParameterize(joints, result.path, velocity_scaling, acceleration_scaling, source, &trajectory);
+  if (!isSuccess(code)) return;
+  response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
+  response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();
+  code = makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
+                                      str(result.planning_time) + " s, trajectory " + str(trajectory.duration()) + " s");
+  context_->publishDisplayTrajectory(start, response->trajectory.joint_trajectory);
+}
+
+}  // namespace sixdof_planning

@@ -1,0 +1,214 @@
+#include "sixdof_planning/move_group_context.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include <sixdof_core/time_parameterization.h>
+#include <sixdof_msgs/DisplayTrajectory.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/validation.h"
+
+namespace sixdof_planning {
+
+namespace {
+
+// Mimic joints given in a request must agree with their source joint to this tolerance.
+constexpr double kMimicTolerance = 1e-4;
+
+}  // namespace
+
+MoveGroupContext::MoveGroupContext(ros::NodeHandle nh, MoveGroupConfig config)
+    : nh_(std::move(nh)), config_(std::move(config)) {
+  const char* package_path = std::getenv("ROS_PACKAGE_PATH");
+  try {
+    model_ = std::make_shared<const sixdof_core::RobotModel>(
+        config_.urdf, config_.srdf, sixdof_core::PackageResolver::fromRosPackagePath(package_path ? package_path : ""));
+  } catch (const std::exception& e) {
+    throw ConfigError(std::string("robot_description / robot_description_semantic: ") + e.what());
+  }
+  checkConfig(*model_, &config_);
+  for (const auto& entry : config_.kinematics) {
+    try {
+      ik_solvers_[entry.first] = sixdof_core::createIkSolver(entry.second.solver, *model_, entry.first);
+    } catch (const std::exception& e) {
+      throw ConfigError("robot_description_kinematics/" + entry.first + ": " + e.what());
+    }
+  }
+  try {
+    scene_ = std::make_shared<const SceneStore>(model_);
+  } catch (const std::exception& e) {
+    throw ConfigError(std::string("collision geometry of robot_description: ") + e.what());
+  }
+  state_monitor_ = std::make_unique<CurrentStateMonitor>(nh_, model_, "joint_states");
+  display_path_pub_ = nh_.advertise<sixdof_msgs::DisplayTrajectory>("move_group/display_planned_path", 1, true);
+  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("move_group/planning_scene_markers", 1, true);
+  publishSceneMarkers();
+}
+
+std::shared_ptr<const sixdof_core::IkSolver> MoveGroupContext::ikSolver(const std::string& group) const {
+  auto it = ik_solvers_.find(group);
+  return it == ik_solvers_.end() ? nullptr : it->second;
+}
+
+sixdof_core::IkOptions MoveGroupContext::ikOptions(const std::string& group) const {
+  sixdof_core::IkOptions options;
+  auto it = config_.kinematics.find(group);
+  if (it != config_.kinematics.end()) {
+    options.timeout = it->second.timeout * it->second.attempts;
+    options.position_only = it->second.position_only;
+  }
+  return options;
+}
+
+ErrorCode MoveGroupContext::currentState(const std::string& source, sixdof_core::RobotState* state) const {
+  std::string missing;
+  if (!state_monitor_->currentState(config_.joint_state_timeout, state, &missing)) {
+    return makeError(ErrorCode::ROBOT_STATE_STALE, "no joint_states received for joints: " + missing, source);
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg, const std::string& what,
+                                              const std::string& source, sixdof_core::RobotState* state,
+                                              std::shared_ptr<const SceneStore>* scene,
+                                              std::shared_ptr<const SceneStore> base_scene) const {
+  const auto& joint_state = msg.joint_state;
+  ErrorCode code = validateJointState(*model_, joint_state, source);
+  if (!isSuccess(code)) {
+    code.message = what + ": " + code.message;
+    return code;
+  }
+  size_t active_given = 0;
+  for (const auto& name : joint_state.name) active_given += model_->joint(name).isActive() ? 1 : 0;
+  if (active_given < model_->variableCount()) {
+    std::string missing;
+    if (!state_monitor_->currentState(config_.joint_state_timeout, state, &missing)) {
+      return makeError(ErrorCode::ROBOT_STATE_STALE,
+                       "no joint_states received for joints " + missing + " and " + what + " does not set them",
+                       source);
+    }
+  }
+  for (size_t i = 0; i < joint_state.name.size(); ++i) {
+    if (model_->joint(joint_state.name[i]).isActive()) state->setJointPosition(joint_state.name[i], joint_state.position[i]);
+  }
+  for (size_t i = 0; i < joint_state.name.size(); ++i) {
+    const double derived = state->jointPosition(joint_state.name[i]);
+    if (std::abs(derived - joint_state.position[i]) > kMimicTolerance) {
+      return makeError(ErrorCode::INVALID_ROBOT_STATE,
+                       what + ": mimic joint '" + joint_state.name[i] + "' is " + std::to_string(joint_state.position[i]) +
+                           " but its source joint puts it at " + std::to_string(derived),
+                       source);
+    }
+  }
+  *scene = base_scene ? base_scene : this->scene();
+  if (!msg.attached_collision_objects.empty()) {
+    auto copy = std::make_shared<SceneStore>(**scene);
+    for (size_t i = 0; i < msg.attached_collision_objects.size(); ++i) {
+      code = copy->applyAttachedObject(msg.attached_collision_objects[i], *state, source);
+      if (!isSuccess(code)) {
+        code.message = what + ".attached_collision_objects[" + std::to_string(i) + "]: " + code.message;
+        return code;
+      }
+    }
+    *scene = copy;
+  }
+  return makeSuccess(source);
+}
+
+std::shared_ptr<const SceneStore> MoveGroupContext::scene() const {
+  std::lock_guard<std::mutex> lock(scene_mutex_);
+  return scene_;
+}
+
+ErrorCode MoveGroupContext::applyScene(const sixdof_msgs::PlanningScene& msg, const std::string& source) {
+  sixdof_core::RobotState state(model_);
+  // Attached objects and objects given in link frames are placed at the current state; objects in the planning
+  // frame need none, so the scene can be set up before the robot publishes joint_states.
+  bool needs_state = !msg.robot_state.attached_collision_objects.empty();
+  for (const auto& object : msg.world.collision_objects) {
+    const std::string& frame = object.header.frame_id;
+    needs_state = needs_state || (model_->linkIndex(frame) >= 0 && frame != planningFrame());
+  }
+  ErrorCode code = makeSuccess(source);
+  if (needs_state) {
+    code = currentState(source, &state);
+    if (!isSuccess(code)) return code;
+  }
+  {
+    // One writer at a time; readers keep using the old scene until the swap.
+    std::lock_guard<std::mutex> lock(scene_mutex_);
+    auto copy = std::make_shared<SceneStore>(*scene_);
+    code = copy->apply(msg, state, source);
+    if (!isSuccess(code)) return code;
+    scene_ = copy;
+  }
+  publishSceneMarkers();
+  return makeSuccess(source);
+}
+
+ErrorCode MoveGroupContext::linkInTip(const std::string& group, const std::string& link, const std::string& source,
+                                      Eigen::Isometry3d* link_in_tip) const {
+  const auto solver = ikSolver(group);
+  if (!solver) {
+    return makeError(ErrorCode::NO_IK_SOLUTION,
+                     "group '" + group + "' has no IK solver (no entry in robot_description_kinematics)", source);
+  }
+  const std::string& tip = solver->chain().tipLink();
+  *link_in_tip = Eigen::Isometry3d::Identity();
+  if (link.empty() || link == tip) return makeSuccess(source);
+  ErrorCode code = validateLink(*model_, link, source);
+  if (!isSuccess(code)) return code;
+  // Walk up from the link: only fixed joints may separate it from the tip.
+  int index = model_->linkIndex(link);
+  while (index >= 0 && model_->links()[index].name != tip) {
+    const auto& parent_joint = model_->joints()[model_->links()[index].parent_joint];
+    if (parent_joint.type != sixdof_core::JointType::kFixed) break;
+    *link_in_tip = parent_joint.origin * *link_in_tip;
+    index = model_->links()[index].parent_link;
+  }
+  if (index < 0 || model_->links()[index].name != tip) {
+    return makeError(ErrorCode::INVALID_LINK_NAME,
+                     "link '" + link + "' is neither the tip link '" + tip + "' of group '" + group +
+                         "' nor rigidly fixed to it",
+                     source);
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode MoveGroupContext::timeParameterize(const std::vector<std::string>& joints,
+                                             const std::vector<Eigen::VectorXd>& path, double velocity_scaling,
+                                             double acceleration_scaling, const std::string& source,
+                                             sixdof_core::Trajectory* trajectory) const {
+  sixdof_core::TimeParameterizationOptions options;
+  for (const auto& joint : joints) {
+    const auto& limits = config_.joint_limits.at(joint);
+    options.max_velocity.push_back(limits.max_velocity);
+    options.max_acceleration.push_back(limits.max_acceleration);
+  }
+  options.velocity_scaling = velocity_scaling;
+  options.acceleration_scaling = acceleration_scaling;
+  std::vector<std::vector<double>> waypoints;
+  for (const auto& q : path) waypoints.emplace_back(q.data(), q.data() + q.size());
+  const auto result = sixdof_core::computeTimeOptimalTrajectory(joints, waypoints, options);
+  if (!result.ok()) {
+    return makeError(ErrorCode::PLANNING_FAILED, "time parameterization failed: " + result.message, source);
+  }
+  *trajectory = result.trajectory;
+  return makeSuccess(source);
+}
+
+void MoveGroupContext::publishDisplayTrajectory(const sixdof_core::RobotState& start,
+                                                const trajectory_msgs::JointTrajectory& path) {
+  sixdof_msgs::DisplayTrajectory msg;
+  msg.model_id = model_->name();
+  msg.trajectory.resize(1);
+  msg.trajectory[0].joint_trajectory = path;
+  msg.trajectory_start.joint_state = toJointState(start);
+  display_path_pub_.publish(msg);
+}
+
+void MoveGroupContext::publishSceneMarkers() { markers_pub_.publish(scene()->markers()); }
+
+}  // namespace sixdof_planning

@@ -1,0 +1,144 @@
+#include <cmath>
+#include <sstream>
+
+#include <sixdof_core/cartesian_path.h>
+#include <sixdof_core/planning_context.h>
+
+#include "sixdof_planning/capabilities.h"
+#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/validation.h"
+
+namespace sixdof_planning {
+
+namespace {
+const char* const kPlanSource = "plan_kinematic_path";
+const char* const kCartesianSource = "compute_cartesian_path";
+
+ErrorCode nonNegative(double value, const std::string& what) {
+  if (!std::isfinite(value) || value < 0.0) {
+    std::ostringstream out;
+    out << what << " must be finite and >= 0, got " << value;
+    return makeError(ErrorCode::INVALID_REQUEST, out.str(), kCartesianSource);
+  }
+  return makeSuccess(kCartesianSource);
+}
+}  // namespace
+
+MotionPlanService::MotionPlanService(MoveGroupContext* context) : context_(context), planner_(context) {
+  server_ = context_->nodeHandle().advertiseService("plan_kinematic_path", &MotionPlanService::handle, this);
+}
+
+bool MotionPlanService::handle(sixdof_msgs::GetMotionPlan::Request& request,
+                               sixdof_msgs::GetMotionPlan::Response& response) {
+  planner_.plan(request.motion_plan_request, kPlanSource, &response.motion_plan_response);
+  return true;
+}
+
+CartesianPathService::CartesianPathService(MoveGroupContext* context) : context_(context) {
+  server_ = context_->nodeHandle().advertiseService("compute_cartesian_path", &CartesianPathService::handle, this);
+}
+
+bool CartesianPathService::handle(sixdof_msgs::GetCartesianPath::Request& request,
+                                  sixdof_msgs::GetCartesianPath::Response& response) {
+  response.fraction = 0.0;
+  response.error_code = compute(request, &response);
+  return true;
+}
+
+ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPath::Request& request,
+                                        sixdof_msgs::GetCartesianPath::Response* response) const {
+  const auto& model = *context_->model();
+  ErrorCode code = validateGroup(model, request.group_name, kCartesianSource);
+  if (!isSuccess(code)) return code;
+  if (request.waypoints.empty()) return makeError(ErrorCode::INVALID_REQUEST, "waypoints is empty", kCartesianSource);
+  for (size_t i = 0; i < request.waypoints.size(); ++i) {
+    code = validatePose(request.waypoints[i], "waypoints[" + std::to_string(i) + "]", kCartesianSource);
+    if (!isSuccess(code)) return code;
+  }
+  if (!std::isfinite(request.max_step) || request.max_step <= 0.0) {
+    std::ostringstream out;
+    out << "max_step must be > 0, got " << request.max_step;
+    return makeError(ErrorCode::INVALID_REQUEST, out.str(), kCartesianSource);
+  }
+  for (const auto& check : {nonNegative(request.jump_threshold, "jump_threshold"),
+                            nonNegative(request.prismatic_jump_threshold, "prismatic_jump_threshold"),
+                            nonNegative(request.revolute_jump_threshold, "revolute_jump_threshold")}) {
+    if (!isSuccess(check)) return check;
+  }
+  double velocity_scaling = 1.0;
+  double acceleration_scaling = 1.0;
+  code = validateScalingFactor(request.max_velocity_scaling_factor, "max_velocity_scaling_factor", kCartesianSource,
+                               &velocity_scaling);
+  if (!isSuccess(code)) return code;
+  code = validateScalingFactor(request.max_acceleration_scaling_factor, "max_acceleration_scaling_factor",
+                               kCartesianSource, &acceleration_scaling);
+  if (!isSuccess(code)) return code;
+  Eigen::Isometry3d link_in_tip;
+  code = context_->linkInTip(request.group_name, request.link_name, kCartesianSource, &link_in_tip);
+  if (!isSuccess(code)) return code;
+
+  sixdof_core::RobotState start(context_->model());
+  std::shared_ptr<const SceneStore> scene;
+  code = context_->resolveRobotState(request.start_state, "start_state", kCartesianSource, &start, &scene);
+  if (!isSuccess(code)) return code;
+  response->start_state.joint_state = toJointState(start);
+  Eigen::Isometry3d frame;
+  code = SceneStore::frameTransform(start, request.header.frame_id, kCartesianSource, &frame);
+  if (!isSuccess(code)) return code;
+  const auto solver = context_->ikSolver(request.group_name);
+  const Eigen::Isometry3d base = start.linkTransform(solver->chain().baseLink());
+  std::vector<Eigen::Isometry3d> waypoints;
+  for (const auto& pose : request.waypoints) {
+    waypoints.push_back(base.inverse() * frame * poseToEigen(pose) * link_in_tip.inverse());
+  }
+  sixdof_core::JumpThreshold jump;
+  jump.relative = request.jump_threshold;
+  jump.prismatic = request.prismatic_jump_threshold;
+  jump.revolute = request.revolute_jump_threshold;
+
+  std::unique_ptr<sixdof_core::PlanningContext> planning;
+  try {
+    planning = std::make_unique<sixdof_core::PlanningContext>(context_->model(), scene->collision(),
+                                                              request.group_name, solver);
+  } catch (const std::exception& e) {
+    return makeError(ErrorCode::INVALID_GROUP_NAME, e.what(), kCartesianSource);
+  }
+  // The tip moves by at most max_step between points, so a link fixed to it does as well when the
+  // rotation is small; MoveIt interpolates the requested link the same way.
+  const auto result = planning->cartesianPath(start, waypoints, request.max_step, jump, request.avoid_collisions,
+                                              context_->ikOptions(request.group_name));
+  using S = sixdof_core::CartesianStatus;
+  if (result.status == S::kInvalidRequest) {
+    return makeError(ErrorCode::INVALID_REQUEST, result.message, kCartesianSource);
+  }
+  if (result.status == S::kInvalidStart) {
+    return makeError(ErrorCode::START_STATE_IN_COLLISION, result.message, kCartesianSource);
+  }
+  if (result.path.empty()) {
+    return makeError(ErrorCode::FAILURE, "Cartesian path without a start point: " + result.message, kCartesianSource);
+  }
+  response->fraction = result.fraction;
+  const auto& joints = model.findGroup(request.group_name)->active_joints;
+  sixdof_core::Trajectory trajectory;
+  if (result.path.size() >= 2) {
+    code = context_->timeParameterize(joints, result.path, velocity_scaling, acceleration_scaling, kCartesianSource,
+                                      &trajectory);
+    if (!isSuccess(code)) return code;
+  } else {
+    // Nothing achieved: the path is the start state alone.
+    trajectory.joint_names = joints;
+    sixdof_core::TrajectoryPoint point;
+    point.positions.assign(result.path.front().data(), result.path.front().data() + result.path.front().size());
+    trajectory.points.push_back(point);
+  }
+  response->solution.joint_trajectory = toJointTrajectory(trajectory);
+  response->solution.joint_trajectory.header.frame_id = context_->planningFrame();
+  if (trajectory.points.size() > 1) context_->publishDisplayTrajectory(start, response->solution.joint_trajectory);
+  // As in MoveIt, a partial path is a successful call; the fraction and message say how far it got.
+  std::ostringstream message;
+  message << "fraction " << result.fraction;
+  if (result.status != S::kSuccess) message << ": " << sixdof_core::toString(result.status) << ": " << result.message;
+  return makeSuccess(kCartesianSource, message.str());
+}
+
+}  // namespace sixdof_planning

@@ -1,0 +1,101 @@
+#include "sixdof_planning/capabilities.h"
+#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/validation.h"
+
+namespace sixdof_planning {
+
+namespace {
+const char* const kValiditySource = "check_state_validity";
+const char* const kApplySource = "apply_planning_scene";
+
+uint32_t bodyType(sixdof_core::BodyType type) {
+  switch (type) {
+    case sixdof_core::BodyType::kRobotLink:
+      return sixdof_msgs::ContactInformation::ROBOT_LINK;
+    case sixdof_core::BodyType::kAttachedObject:
+      return sixdof_msgs::ContactInformation::ROBOT_ATTACHED;
+    case sixdof_core::BodyType::kWorldObject:
+      break;
+  }
+  return sixdof_msgs::ContactInformation::WORLD_OBJECT;
+}
+}  // namespace
+
+StateValidityService::StateValidityService(MoveGroupContext* context) : context_(context) {
+  server_ = context_->nodeHandle().advertiseService("check_state_validity", &StateValidityService::handle, this);
+}
+
+bool StateValidityService::handle(sixdof_msgs::GetStateValidity::Request& request,
+                                  sixdof_msgs::GetStateValidity::Response& response) {
+  ErrorCode& code = response.error_code;
+  response.valid = false;
+  if (!request.group_name.empty()) {
+    code = validateGroup(*context_->model(), request.group_name, kValiditySource);
+    if (!isSuccess(code)) return true;
+  }
+  sixdof_core::RobotState state(context_->model());
+  std::shared_ptr<const SceneStore> scene;
+  code = context_->resolveRobotState(request.robot_state, "robot_state", kValiditySource, &state, &scene);
+  if (!isSuccess(code)) return true;
+  const auto report = checkStateCollision(state, *scene->collision());
+  for (const auto& contact : report.contacts) {
+    sixdof_msgs::ContactInformation info;
+    info.header.frame_id = context_->planningFrame();
+    info.header.stamp = ros::Time::now();
+    info.position.x = contact.position.x();
+    info.position.y = contact.position.y();
+    info.position.z = contact.position.z();
+    info.normal.x = contact.normal.x();
+    info.normal.y = contact.normal.y();
+    info.normal.z = contact.normal.z();
+    info.depth = contact.depth;
+    info.contact_body_1 = contact.body1;
+    info.contact_body_2 = contact.body2;
+    info.body_type_1 = bodyType(contact.type1);
+    info.body_type_2 = bodyType(contact.type2);
+    response.contacts.push_back(info);
+  }
+  const std::string bounds = boundsViolation(state);
+  response.valid = !report.colliding && bounds.empty();
+  // The check itself succeeded: the code is SUCCESS, the message says why the state is invalid.
+  std::string message = "state is valid";
+  if (report.colliding) {
+    message = std::to_string(report.contacts.size()) + " contact(s), e.g. " + describeContact(report.contacts.front());
+  }
+  if (!bounds.empty()) message = (report.colliding ? message + "; " : "") + bounds;
+  code = makeSuccess(kValiditySource, message);
+  return true;
+}
+
+GetPlanningSceneService::GetPlanningSceneService(MoveGroupContext* context) : context_(context) {
+  server_ = context_->nodeHandle().advertiseService("get_planning_scene", &GetPlanningSceneService::handle, this);
+}
+
+bool GetPlanningSceneService::handle(sixdof_msgs::GetPlanningScene::Request&,
+                                     sixdof_msgs::GetPlanningScene::Response& response) {
+  const auto scene = context_->scene();
+  response.scene.name = "move_group";
+  response.scene.robot_model_name = context_->model()->name();
+  response.scene.is_diff = false;
+  sixdof_core::RobotState state(context_->model());
+  // The scene has objects even before joint_states arrive; the joint values are then left empty.
+  if (isSuccess(context_->currentState("get_planning_scene", &state))) {
+    response.scene.robot_state.joint_state = toJointState(state);
+  }
+  response.scene.robot_state.attached_collision_objects = scene->attachedObjects();
+  response.scene.world.collision_objects = scene->worldObjects();
+  return true;
+}
+
+ApplyPlanningSceneService::ApplyPlanningSceneService(MoveGroupContext* context) : context_(context) {
+  server_ = context_->nodeHandle().advertiseService("apply_planning_scene", &ApplyPlanningSceneService::handle, this);
+}
+
+bool ApplyPlanningSceneService::handle(sixdof_msgs::ApplyPlanningScene::Request& request,
+                                       sixdof_msgs::ApplyPlanningScene::Response& response) {
+  response.error_code = context_->applyScene(request.scene, kApplySource);
+  response.success = isSuccess(response.error_code);
+  return true;
+}
+
+}  // namespace sixdof_planning

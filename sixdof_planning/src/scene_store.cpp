@@ -1,0 +1,408 @@
+#include "sixdof_planning/scene_store.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include <shape_msgs/SolidPrimitive.h>
+
+#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/validation.h"
+
+namespace sixdof_planning {
+
+namespace {
+
+using sixdof_msgs::CollisionObject;
+
+// The core loads meshes from files (and caches them by path): a message mesh becomes an OBJ file named
+// after its content, in a per-process directory.
+std::string writeMeshFile(const shape_msgs::Mesh& mesh) {
+  std::ostringstream obj;
+  obj.precision(17);
+  for (const auto& v : mesh.vertices) obj << "v " << v.x << " " << v.y << " " << v.z << "\n";
+  for (const auto& t : mesh.triangles) {
+    obj << "f " << t.vertex_indices[0] + 1 << " " << t.vertex_indices[1] + 1 << " " << t.vertex_indices[2] + 1 << "\n";
+  }
+  const std::string text = obj.str();
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("sixdof_planning_meshes_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / (std::to_string(std::hash<std::string>()(text)) + ".obj");
+  if (!std::filesystem::exists(path)) {
+    std::ofstream out(path);
+    out << text;
+  }
+  return path.string();
+}
+
+std::string planningFrame(const sixdof_core::RobotModel& model) { return model.rootLink(); }
+
+visualization_msgs::Marker shapeMarker(const std::string& frame, const std::string& ns, int id,
+                                       const Eigen::Isometry3d& pose, bool attached) {
+  visualization_msgs::Marker marker;
+  marker.header.frame_id = frame;
+  marker.ns = ns;
+  marker.id = id;
+  marker.action = visualization_msgs::Marker::ADD;
+  marker.pose = eigenToPose(pose);
+  marker.color.a = 0.8;
+  // MoveIt's colours: world objects green, attached objects purple.
+  marker.color.r = attached ? 0.6 : 0.2;
+  marker.color.g = attached ? 0.2 : 0.8;
+  marker.color.b = attached ? 0.8 : 0.2;
+  return marker;
+}
+
+void addObjectMarkers(const CollisionObject& object, const std::string& frame, bool attached,
+                      visualization_msgs::MarkerArray* markers) {
+  const Eigen::Isometry3d object_pose = poseToEigen(object.pose);
+  int id = 0;
+  for (size_t i = 0; i < object.primitives.size(); ++i) {
+    const auto& primitive = object.primitives[i];
+    auto marker = shapeMarker(frame, object.id, id++, object_pose * poseToEigen(object.primitive_poses[i]), attached);
+    if (primitive.type == shape_msgs::SolidPrimitive::BOX) {
+      marker.type = visualization_msgs::Marker::CUBE;
+      marker.scale.x = primitive.dimensions[0];
+      marker.scale.y = primitive.dimensions[1];
+      marker.scale.z = primitive.dimensions[2];
+    } else if (primitive.type == shape_msgs::SolidPrimitive::SPHERE) {
+      marker.type = visualization_msgs::Marker::SPHERE;
+      marker.scale.x = marker.scale.y = marker.scale.z = 2.0 * primitive.dimensions[0];
+    } else {
+      marker.type = visualization_msgs::Marker::CYLINDER;
+      marker.scale.x = marker.scale.y = 2.0 * primitive.dimensions[1];
+      marker.scale.z = primitive.dimensions[0];
+    }
+    markers->markers.push_back(marker);
+  }
+  for (size_t i = 0; i < object.meshes.size(); ++i) {
+    auto marker = shapeMarker(frame, object.id, id++, object_pose * poseToEigen(object.mesh_poses[i]), attached);
+    marker.type = visualization_msgs::Marker::TRIANGLE_LIST;
+    marker.scale.x = marker.scale.y = marker.scale.z = 1.0;
+    for (const auto& t : object.meshes[i].triangles) {
+      for (auto index : t.vertex_indices) marker.points.push_back(object.meshes[i].vertices[index]);
+    }
+    markers->markers.push_back(marker);
+  }
+}
+
+}  // namespace
+
+SceneStore::SceneStore(sixdof_core::RobotModelConstPtr model) : model_(std::move(model)) {
+  const auto geometry = model_->collisionGeometry();
+  std::set<std::string> with_geometry;
+  for (const auto& link : geometry) with_geometry.insert(link.link_name);
+  // SRDF pairs may name links without collision geometry (Adjacent through geometry-less links); those
+  // never collide anyway.
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const auto& pair : model_->disabledCollisionPairs()) {
+    if (with_geometry.count(pair.link1) && with_geometry.count(pair.link2)) pairs.emplace_back(pair.link1, pair.link2);
+  }
+  collision_ = std::make_shared<sixdof_core::CollisionScene>(geometry, pairs);
+}
+
+SceneStore::SceneStore(const SceneStore& other)
+    : model_(other.model_),
+      collision_(std::make_shared<sixdof_core::CollisionScene>(*other.collision_)),
+      world_(other.world_),
+      attached_(other.attached_) {}
+
+ErrorCode SceneStore::frameTransform(const sixdof_core::RobotState& state, const std::string& frame,
+                                     const std::string& source, Eigen::Isometry3d* frame_pose) {
+  const auto& model = state.model();
+  if (frame.empty() || frame == model.rootLink()) {
+    *frame_pose = Eigen::Isometry3d::Identity();
+    return makeSuccess(source);
+  }
+  for (const auto& joint : model.virtualJoints()) {
+    if (joint.type == "fixed" && joint.parent_frame == frame && joint.child_link == model.rootLink()) {
+      *frame_pose = Eigen::Isometry3d::Identity();
+      return makeSuccess(source);
+    }
+  }
+  if (model.linkIndex(frame) >= 0) {
+    *frame_pose = state.linkTransform(frame);
+    return makeSuccess(source);
+  }
+  return makeError(ErrorCode::FRAME_TRANSFORM_FAILURE,
+                   "unknown frame '" + frame + "' (use the planning frame '" + model.rootLink() +
+                       "', its fixed parent frame or a robot link)",
+                   source);
+}
+
+ErrorCode SceneStore::sceneError(const sixdof_core::SceneStatus& status, const std::string& source) const {
+  using Code = sixdof_core::SceneStatusCode;
+  switch (status.code) {
+    case Code::kOk:
+      return makeSuccess(source);
+    case Code::kUnknownName:
+    case Code::kDuplicateName:
+      return makeError(ErrorCode::INVALID_OBJECT_NAME, status.message, source);
+    default:
+      return makeError(ErrorCode::INVALID_REQUEST, status.message, source);
+  }
+}
+
+ErrorCode SceneStore::toShapes(const CollisionObject& object, const std::string& source,
+                               std::vector<sixdof_core::PlacedShape>* shapes) const {
+  for (size_t i = 0; i < object.primitives.size(); ++i) {
+    const auto& primitive = object.primitives[i];
+    sixdof_core::PlacedShape placed;
+    placed.origin = poseToEigen(object.primitive_poses[i]);
+    if (primitive.type == shape_msgs::SolidPrimitive::BOX) {
+      placed.shape.type = sixdof_core::Shape::Type::kBox;
+      placed.shape.box_size = Eigen::Vector3d(primitive.dimensions[0], primitive.dimensions[1], primitive.dimensions[2]);
+    } else if (primitive.type == shape_msgs::SolidPrimitive::SPHERE) {
+      placed.shape.type = sixdof_core::Shape::Type::kSphere;
+      placed.shape.radius = primitive.dimensions[0];
+    } else {
+      placed.shape.type = sixdof_core::Shape::Type::kCylinder;
+      placed.shape.length = primitive.dimensions[0];
+      placed.shape.radius = primitive.dimensions[1];
+    }
+    shapes->push_back(placed);
+  }
+  for (size_t i = 0; i < object.meshes.size(); ++i) {
+    sixdof_core::PlacedShape placed;
+    placed.origin = poseToEigen(object.mesh_poses[i]);
+    placed.shape.type = sixdof_core::Shape::Type::kMesh;
+    try {
+      placed.shape.mesh_path = writeMeshFile(object.meshes[i]);
+    } catch (const std::exception& e) {
+      return makeError(ErrorCode::FAILURE, "cannot store mesh " + std::to_string(i) + " of '" + object.id + "': " + e.what(),
+                       source);
+    }
+    shapes->push_back(placed);
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode SceneStore::applyCollisionObject(const CollisionObject& object, const sixdof_core::RobotState& state,
+                                           const std::string& source) {
+  ErrorCode code = validateCollisionObject(object, "collision object", source);
+  if (!isSuccess(code)) return code;
+  const bool exists = world_.count(object.id) > 0;
+  if (object.operation == CollisionObject::REMOVE) {
+    if (object.id.empty()) {
+      collision_->clearWorld();
+      world_.clear();
+      return makeSuccess(source);
+    }
+    if (!exists) {
+      return makeError(ErrorCode::INVALID_OBJECT_NAME,
+                       "cannot remove '" + object.id + "': no such world object" +
+                           (attached_.count(object.id) ? " (it is attached: detach it first)" : ""),
+                       source);
+    }
+    code = sceneError(collision_->removeWorldObject(object.id), source);
+    if (isSuccess(code)) world_.erase(object.id);
+    return code;
+  }
+  Eigen::Isometry3d frame_pose;
+  code = frameTransform(state, object.header.frame_id, source, &frame_pose);
+  if (!isSuccess(code)) return code;
+  const Eigen::Isometry3d pose = frame_pose * poseToEigen(object.pose);
+  if (object.operation == CollisionObject::MOVE) {
+    if (!exists) return makeError(ErrorCode::INVALID_OBJECT_NAME, "cannot move '" + object.id + "': no such world object", source);
+    code = sceneError(collision_->moveWorldObject(object.id, pose), source);
+    if (isSuccess(code)) world_[object.id].pose = eigenToPose(pose);
+    return code;
+  }
+  CollisionObject stored = object;
+  stored.header.frame_id = planningFrame(*model_);
+  stored.header.stamp = ros::Time();
+  stored.pose = eigenToPose(pose);
+  stored.operation = CollisionObject::ADD;
+  if (object.operation == CollisionObject::APPEND && exists) {
+    // The new shapes join the existing object: re-express their poses in its frame.
+    const CollisionObject& old = world_.at(object.id);
+    const Eigen::Isometry3d to_old = poseToEigen(old.pose).inverse() * pose;
+    stored = old;
+    for (size_t i = 0; i < object.primitives.size(); ++i) {
+      stored.primitives.push_back(object.primitives[i]);
+      stored.primitive_poses.push_back(eigenToPose(to_old * poseToEigen(object.primitive_poses[i])));
+    }
+    for (size_t i = 0; i < object.meshes.size(); ++i) {
+      stored.meshes.push_back(object.meshes[i]);
+      stored.mesh_poses.push_back(eigenToPose(to_old * poseToEigen(object.mesh_poses[i])));
+    }
+  }
+  sixdof_core::WorldObject world_object;
+  world_object.id = stored.id;
+  world_object.pose = poseToEigen(stored.pose);
+  code = toShapes(stored, source, &world_object.shapes);
+  if (!isSuccess(code)) return code;
+  // ADD replaces an object of the same id, as in MoveIt.
+  if (exists) {
+    code = sceneError(collision_->removeWorldObject(object.id), source);
+    if (!isSuccess(code)) return code;
+    world_.erase(object.id);
+  }
+  code = sceneError(collision_->addWorldObject(world_object), source);
+  if (isSuccess(code)) world_[stored.id] = stored;
+  return code;
+}
+
+ErrorCode SceneStore::detach(const std::string& id, const sixdof_core::RobotState& state, const std::string& source) {
+  const auto& attached = attached_.at(id);
+  const Eigen::Isometry3d link_pose = state.linkTransform(attached.link_name);
+  ErrorCode code = sceneError(collision_->detachObject(id, link_pose), source);
+  if (!isSuccess(code)) return code;
+  CollisionObject object = attached.object;
+  object.header.frame_id = planningFrame(*model_);
+  object.pose = eigenToPose(link_pose * poseToEigen(attached.object.pose));
+  object.operation = CollisionObject::ADD;
+  world_[id] = object;
+  attached_.erase(id);
+  return makeSuccess(source);
+}
+
+ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionObject& attached,
+                                          const sixdof_core::RobotState& state, const std::string& source) {
+  const CollisionObject& object = attached.object;
+  ErrorCode code = validateCollisionObject(object, "attached object", source, false);
+  if (!isSuccess(code)) return code;
+  if (object.operation == CollisionObject::REMOVE) {
+    if (object.id.empty()) {
+      std::vector<std::string> ids;
+      for (const auto& entry : attached_) ids.push_back(entry.first);
+      for (const auto& id : ids) {
+        code = detach(id, state, source);
+        if (!isSuccess(code)) return code;
+      }
+      return makeSuccess(source);
+    }
+    if (!attached_.count(object.id)) {
+      return makeError(ErrorCode::INVALID_OBJECT_NAME, "cannot detach '" + object.id + "': it is not attached", source);
+    }
+    return detach(object.id, state, source);
+  }
+  if (object.operation != CollisionObject::ADD) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     "attached object '" + object.id + "': only ADD (attach) and REMOVE (detach) are supported", source);
+  }
+  code = validateLink(*model_, attached.link_name, source);
+  if (!isSuccess(code)) {
+    code.message = "attached object '" + object.id + "': " + code.message;
+    return code;
+  }
+  for (const auto& link : attached.touch_links) {
+    code = validateLink(*model_, link, source);
+    if (!isSuccess(code)) {
+      code.message = "attached object '" + object.id + "' touch_links: " + code.message;
+      return code;
+    }
+  }
+  const Eigen::Isometry3d link_pose = state.linkTransform(attached.link_name);
+  sixdof_msgs::AttachedCollisionObject stored = attached;
+  stored.object.header.frame_id = attached.link_name;
+  stored.object.header.stamp = ros::Time();
+  stored.object.operation = CollisionObject::ADD;
+  if (object.primitives.empty() && object.meshes.empty()) {
+    // Attach an existing world object where it is.
+    auto it = world_.find(object.id);
+    if (it == world_.end()) {
+      return makeError(ErrorCode::INVALID_OBJECT_NAME,
+                       "cannot attach '" + object.id + "': no such world object (give shapes to attach a new object)",
+                       source);
+    }
+    code = sceneError(collision_->attachWorldObject(object.id, attached.link_name, link_pose, attached.touch_links),
+                      source);
+    if (!isSuccess(code)) return code;
+    const CollisionObject world_object = it->second;
+    stored.object.primitives = world_object.primitives;
+    stored.object.primitive_poses = world_object.primitive_poses;
+    stored.object.meshes = world_object.meshes;
+    stored.object.mesh_poses = world_object.mesh_poses;
+    stored.object.pose = eigenToPose(link_pose.inverse() * poseToEigen(world_object.pose));
+    world_.erase(it);
+    attached_[object.id] = stored;
+    return makeSuccess(source);
+  }
+  Eigen::Isometry3d frame_pose;
+  code = frameTransform(state, object.header.frame_id, source, &frame_pose);
+  if (!isSuccess(code)) return code;
+  stored.object.pose = eigenToPose(link_pose.inverse() * frame_pose * poseToEigen(object.pose));
+  sixdof_core::AttachedObject core_object;
+  core_object.id = object.id;
+  core_object.link_name = attached.link_name;
+  core_object.pose_in_link = poseToEigen(stored.object.pose);
+  core_object.touch_links = attached.touch_links;
+  code = toShapes(object, source, &core_object.shapes);
+  if (!isSuccess(code)) return code;
+  // A new attached object replaces a world or attached object of the same id, as in MoveIt.
+  if (world_.count(object.id)) {
+    code = sceneError(collision_->removeWorldObject(object.id), source);
+    if (!isSuccess(code)) return code;
+    world_.erase(object.id);
+  }
+  if (attached_.count(object.id)) {
+    code = sceneError(collision_->removeAttachedObject(object.id), source);
+    if (!isSuccess(code)) return code;
+    attached_.erase(object.id);
+  }
+  code = sceneError(collision_->attachObject(core_object), source);
+  if (isSuccess(code)) attached_[object.id] = stored;
+  return code;
+}
+
+ErrorCode SceneStore::apply(const sixdof_msgs::PlanningScene& scene, const sixdof_core::RobotState& state,
+                            const std::string& source) {
+  if (!scene.robot_state.joint_state.name.empty()) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     "scene.robot_state.joint_state sets joints (" + joinNames(scene.robot_state.joint_state.name) +
+                         "): the planning scene follows joint_states, its joint values cannot be set",
+                     source);
+  }
+  if (!scene.is_diff) {
+    for (const auto& entry : attached_) collision_->removeAttachedObject(entry.first);
+    attached_.clear();
+    collision_->clearWorld();
+    world_.clear();
+  }
+  for (size_t i = 0; i < scene.world.collision_objects.size(); ++i) {
+    ErrorCode code = applyCollisionObject(scene.world.collision_objects[i], state, source);
+    if (!isSuccess(code)) {
+      code.message = "world.collision_objects[" + std::to_string(i) + "]: " + code.message;
+      return code;
+    }
+  }
+  for (size_t i = 0; i < scene.robot_state.attached_collision_objects.size(); ++i) {
+    ErrorCode code = applyAttachedObject(scene.robot_state.attached_collision_objects[i], state, source);
+    if (!isSuccess(code)) {
+      code.message = "robot_state.attached_collision_objects[" + std::to_string(i) + "]: " + code.message;
+      return code;
+    }
+  }
+  return makeSuccess(source);
+}
+
+std::vector<CollisionObject> SceneStore::worldObjects() const {
+  std::vector<CollisionObject> result;
+  for (const auto& entry : world_) result.push_back(entry.second);
+  return result;
+}
+
+std::vector<sixdof_msgs::AttachedCollisionObject> SceneStore::attachedObjects() const {
+  std::vector<sixdof_msgs::AttachedCollisionObject> result;
+  for (const auto& entry : attached_) result.push_back(entry.second);
+  return result;
+}
+
+visualization_msgs::MarkerArray SceneStore::markers() const {
+  visualization_msgs::MarkerArray markers;
+  visualization_msgs::Marker clear;
+  clear.header.frame_id = planningFrame(*model_);
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  markers.markers.push_back(clear);
+  for (const auto& entry : world_) addObjectMarkers(entry.second, planningFrame(*model_), false, &markers);
+  for (const auto& entry : attached_) addObjectMarkers(entry.second.object, entry.second.link_name, true, &markers);
+  return markers;
+}
+
+}  // namespace sixdof_planning

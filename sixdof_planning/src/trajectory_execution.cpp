@@ -1,0 +1,228 @@
+#include "sixdof_planning/trajectory_execution.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include <sixdof_core/trajectory.h>
+
+#include "sixdof_planning/conversions.h"
+
+namespace sixdof_planning {
+
+namespace {
+
+// How long to wait for a controller's action server before giving up on it.
+constexpr double kServerWaitSeconds = 1.0;
+
+std::string followErrorName(int code) {
+  using R = sixdof_msgs::FollowJointTrajectoryResult;
+  switch (code) {
+    case R::SUCCESSFUL:
+      return "SUCCESSFUL";
+    case R::INVALID_GOAL:
+      return "INVALID_GOAL";
+    case R::INVALID_JOINTS:
+      return "INVALID_JOINTS";
+    case R::OLD_HEADER_TIMESTAMP:
+      return "OLD_HEADER_TIMESTAMP";
+    case R::PATH_TOLERANCE_VIOLATED:
+      return "PATH_TOLERANCE_VIOLATED";
+    case R::GOAL_TOLERANCE_VIOLATED:
+      return "GOAL_TOLERANCE_VIOLATED";
+    default:
+      return "error " + std::to_string(code);
+  }
+}
+
+std::string str(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+TrajectoryExecutor::TrajectoryExecutor(MoveGroupContext* context) : context_(context) {
+  for (const auto& controller : context_->config().controllers) {
+    // Callbacks are served by the node's spinner, not a thread per client.
+    clients_[controller.name] = std::make_unique<Client>(context_->nodeHandle(), controller.actionName(), false);
+    action_names_[controller.name] = controller.actionName();
+  }
+}
+
+ErrorCode TrajectoryExecutor::validate(const trajectory_msgs::JointTrajectory& trajectory,
+                                       const std::string& source) const {
+  const auto& model = *context_->model();
+  const std::string problem = sixdof_core::validateTrajectory(fromJointTrajectory(trajectory));
+  if (!problem.empty()) return makeError(ErrorCode::INVALID_MOTION_PLAN, "invalid trajectory: " + problem, source);
+  std::set<std::string> seen;
+  for (const auto& name : trajectory.joint_names) {
+    const int index = model.jointIndex(name);
+    if (index < 0) return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'", source);
+    if (!model.joints()[index].isActive()) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN,
+                       "trajectory joint '" + name + "' is fixed or a mimic joint (give its source joint)", source);
+    }
+    if (!seen.insert(name).second) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names joint '" + name + "' twice", source);
+    }
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode TrajectoryExecutor::split(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
+                                    std::map<std::string, trajectory_msgs::JointTrajectory>* parts) const {
+  const auto& model = *context_->model();
+  std::map<std::string, size_t> column;
+  for (size_t i = 0; i < trajectory.joint_names.size(); ++i) column[trajectory.joint_names[i]] = i;
+  std::set<std::string> covered;
+  for (const auto& controller : context_->config().controllers) {
+    // For each controller joint: the trajectory column it follows and the mimic factors (1, 0 for itself).
+    struct Source {
+      size_t column;
+      double multiplier;
+      double offset;
+    };
+    std::vector<std::pair<std::string, Source>> joints;
+    for (const auto& joint : controller.joints) {
+      const auto& jm = model.joint(joint);
+      if (column.count(joint)) {
+        joints.push_back({joint, {column.at(joint), 1.0, 0.0}});
+        covered.insert(joint);
+      } else if (jm.mimic && column.count(jm.mimic->joint)) {
+        joints.push_back({joint, {column.at(jm.mimic->joint), jm.mimic->multiplier, jm.mimic->offset}});
+      }
+    }
+    if (joints.empty()) continue;
+    trajectory_msgs::JointTrajectory part;
+    part.header = trajectory.header;
+    for (const auto& j : joints) part.joint_names.push_back(j.first);
+    for (const auto& point : trajectory.points) {
+      trajectory_msgs::JointTrajectoryPoint p;
+      p.time_from_start = point.time_from_start;
+      for (const auto& j : joints) {
+        const Source& s = j.second;
+        p.positions.push_back(s.multiplier * point.positions[s.column] + s.offset);
+        if (!point.velocities.empty()) p.velocities.push_back(s.multiplier * point.velocities[s.column]);
+        if (!point.accelerations.empty()) p.accelerations.push_back(s.multiplier * point.accelerations[s.column]);
+      }
+      part.points.push_back(p);
+    }
+    (*parts)[controller.name] = part;
+  }
+  for (const auto& name : trajectory.joint_names) {
+    if (!covered.count(name)) {
+      return makeError(ErrorCode::CONTROL_FAILED, "no controller in controller_list handles joint '" + name + "'",
+                       source);
+    }
+  }
+  return makeSuccess(source);
+}
+
+void TrajectoryExecutor::cancelAll(const std::map<std::string, trajectory_msgs::JointTrajectory>& parts) {
+  for (const auto& part : parts) {
+    auto& client = *clients_.at(part.first);
+    if (!client.getState().isDone()) client.cancelGoal();
+  }
+}
+
+void TrajectoryExecutor::stop() {
+  for (auto& entry : clients_) {
+    if (entry.second->isServerConnected()) entry.second->cancelAllGoals();
+  }
+}
+
+ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
+                                      const std::function<bool()>& preempt_requested) {
+  std::lock_guard<std::mutex> lock(execution_mutex_);
+  ErrorCode code = validate(trajectory, source);
+  if (!isSuccess(code)) return code;
+  std::map<std::string, trajectory_msgs::JointTrajectory> parts;
+  code = split(trajectory, source, &parts);
+  if (!isSuccess(code)) return code;
+
+  // The robot must be where the trajectory starts (MoveIt's allowed_start_tolerance).
+  sixdof_core::RobotState current(context_->model());
+  code = context_->currentState(source, &current);
+  if (!isSuccess(code)) return code;
+  const double tolerance = context_->config().start_state_tolerance;
+  if (tolerance > 0.0) {
+    const auto& first = trajectory.points.front();
+    for (size_t i = 0; i < trajectory.joint_names.size(); ++i) {
+      const auto& joint = context_->model()->joint(trajectory.joint_names[i]);
+      double delta = first.positions[i] - current.jointPosition(joint.name);
+      if (!joint.limits.bounded) delta = std::remainder(delta, 2.0 * M_PI);
+      if (std::abs(delta) > tolerance) {
+        return makeError(ErrorCode::CONTROL_FAILED,
+                         "Invalid trajectory: start point deviates from current robot state more than " +
+                             str(tolerance) + " at joint '" + joint.name + "' (trajectory " + str(first.positions[i]) +
+                             ", current " + str(current.jointPosition(joint.name)) + ")",
+                         source);
+      }
+    }
+  }
+
+  for (const auto& part : parts) {
+    auto& client = *clients_.at(part.first);
+    if (!client.isServerConnected() && !client.waitForServer(ros::Duration(kServerWaitSeconds))) {
+      return makeError(ErrorCode::CONTROL_FAILED,
+                       "controller '" + part.first + "': action server '" +
+                           context_->nodeHandle().resolveName(action_names_.at(part.first)) + "' is not available",
+                       source);
+    }
+  }
+  const double expected = trajectory.points.back().time_from_start.toSec();
+  const double allowed =
+      expected * context_->config().execution_duration_scaling + context_->config().execution_goal_margin;
+  for (const auto& part : parts) {
+    sixdof_msgs::FollowJointTrajectoryGoal goal;
+    goal.trajectory = part.second;
+    goal.trajectory.header.stamp = ros::Time(0);  // start now
+    clients_.at(part.first)->sendGoal(goal);
+  }
+  const ros::Time start = ros::Time::now();
+  ros::Rate rate(100.0);
+  while (ros::ok()) {
+    if (preempt_requested && preempt_requested()) {
+      cancelAll(parts);
+      return makeError(ErrorCode::PREEMPTED, "execution preempted by the client", source);
+    }
+    bool all_done = true;
+    for (const auto& part : parts) {
+      auto& client = *clients_.at(part.first);
+      const auto state = client.getState();
+      if (!state.isDone()) {
+        all_done = false;
+        continue;
+      }
+      const auto result = client.getResult();
+      const bool succeeded = state == actionlib::SimpleClientGoalState::SUCCEEDED && result &&
+                             result->error_code == sixdof_msgs::FollowJointTrajectoryResult::SUCCESSFUL;
+      if (!succeeded) {
+        cancelAll(parts);
+        std::string detail = "goal " + state.toString();
+        if (result) detail += ", " + followErrorName(result->error_code) + ": " + result->error_string;
+        return makeError(ErrorCode::CONTROL_FAILED, "controller '" + part.first + "' failed (" + detail + ")",
+                         source);
+      }
+    }
+    if (all_done) {
+      return makeSuccess(source, "executed " + str(expected) + " s trajectory on " + std::to_string(parts.size()) +
+                                     " controller(s)");
+    }
+    if ((ros::Time::now() - start).toSec() > allowed) {
+      cancelAll(parts);
+      return makeError(ErrorCode::TIMED_OUT,
+                       "Controller is taking too long to execute trajectory (the expected upper bound for the "
+                       "trajectory execution was " +
+                           str(allowed) + " seconds). Stopping trajectory.",
+                       source);
+    }
+    rate.sleep();
+  }
+  cancelAll(parts);
+  return makeError(ErrorCode::PREEMPTED, "node shutting down", source);
+}
+
+}  // namespace sixdof_planning

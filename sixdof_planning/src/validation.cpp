@@ -1,0 +1,209 @@
+#include "sixdof_planning/validation.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include <shape_msgs/SolidPrimitive.h>
+
+namespace sixdof_planning {
+
+namespace {
+
+std::string str(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string result;
+  for (const auto& name : names) result += (result.empty() ? "" : ", ") + ("'" + name + "'");
+  return result;
+}
+
+ErrorCode validateFinite(double value, const std::string& what, const std::string& source) {
+  if (!std::isfinite(value)) return makeError(ErrorCode::INVALID_REQUEST, what + " is " + str(value), source);
+  return makeSuccess(source);
+}
+
+ErrorCode validatePose(const geometry_msgs::Pose& pose, const std::string& what, const std::string& source) {
+  const double values[] = {pose.position.x,    pose.position.y,    pose.position.z,   pose.orientation.x,
+                           pose.orientation.y, pose.orientation.z, pose.orientation.w};
+  const char* names[] = {"position.x",    "position.y",    "position.z",   "orientation.x",
+                         "orientation.y", "orientation.z", "orientation.w"};
+  for (int i = 0; i < 7; ++i) {
+    ErrorCode code = validateFinite(values[i], what + "." + names[i], source);
+    if (!isSuccess(code)) return code;
+  }
+  const double norm = std::sqrt(pose.orientation.x * pose.orientation.x + pose.orientation.y * pose.orientation.y +
+                                pose.orientation.z * pose.orientation.z + pose.orientation.w * pose.orientation.w);
+  if (std::abs(norm - 1.0) > kQuaternionNormTolerance) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     what + ".orientation is not a unit quaternion (norm " + str(norm) + ", tolerance " +
+                         str(kQuaternionNormTolerance) + ")",
+                     source);
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode validateScalingFactor(double value, const std::string& what, const std::string& source,
+                                double* effective) {
+  if (value == 0.0) {
+    *effective = 1.0;
+    return makeSuccess(source);
+  }
+  if (!std::isfinite(value) || value < 0.0 || value > 1.0) {
+    return makeError(ErrorCode::INVALID_REQUEST, what + " must be in (0, 1] (0 means 1), got " + str(value), source);
+  }
+  *effective = value;
+  return makeSuccess(source);
+}
+
+ErrorCode validateGroup(const sixdof_core::RobotModel& model, const std::string& group, const std::string& source) {
+  if (model.findGroup(group)) return makeSuccess(source);
+  std::vector<std::string> known;
+  for (const auto& g : model.groups()) known.push_back(g.name);
+  return makeError(ErrorCode::INVALID_GROUP_NAME,
+                   "unknown planning group '" + group + "' (known groups: " + joinNames(known) + ")", source);
+}
+
+ErrorCode validateLink(const sixdof_core::RobotModel& model, const std::string& link, const std::string& source) {
+  if (model.linkIndex(link) >= 0) return makeSuccess(source);
+  return makeError(ErrorCode::INVALID_LINK_NAME, "unknown link '" + link + "'", source);
+}
+
+ErrorCode validateNamedState(const sixdof_core::RobotModel& model, const std::string& group,
+                             const std::string& state, const std::string& source) {
+  if (model.findGroupState(group, state)) return makeSuccess(source);
+  std::vector<std::string> known;
+  for (const auto& s : model.groupStates()) {
+    if (s.group == group) known.push_back(s.name);
+  }
+  return makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS,
+                   "unknown named state '" + state + "' of group '" + group + "' (known: " + joinNames(known) + ")",
+                   source);
+}
+
+ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_msgs::JointState& joint_state,
+                             const std::string& source) {
+  if (joint_state.position.size() != joint_state.name.size()) {
+    return makeError(ErrorCode::INVALID_ROBOT_STATE,
+                     "joint_state has " + std::to_string(joint_state.name.size()) + " names but " +
+                         std::to_string(joint_state.position.size()) + " positions",
+                     source);
+  }
+  std::set<std::string> seen;
+  for (size_t i = 0; i < joint_state.name.size(); ++i) {
+    const std::string& name = joint_state.name[i];
+    const int index = model.jointIndex(name);
+    if (index < 0) return makeError(ErrorCode::INVALID_ROBOT_STATE, "unknown joint '" + name + "'", source);
+    if (model.joints()[index].type == sixdof_core::JointType::kFixed) {
+      return makeError(ErrorCode::INVALID_ROBOT_STATE, "joint '" + name + "' is fixed and has no position", source);
+    }
+    if (!seen.insert(name).second) {
+      return makeError(ErrorCode::INVALID_ROBOT_STATE, "joint '" + name + "' appears twice", source);
+    }
+    if (!std::isfinite(joint_state.position[i])) {
+      return makeError(ErrorCode::INVALID_ROBOT_STATE,
+                       "position of joint '" + name + "' is " + str(joint_state.position[i]), source);
+    }
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, const std::string& what,
+                                  const std::string& source, bool shapes_required) {
+  using Op = sixdof_msgs::CollisionObject;
+  // An empty id means "every object" for REMOVE only (MoveIt's convention).
+  if (object.id.empty() && object.operation != Op::REMOVE) {
+    return makeError(ErrorCode::INVALID_OBJECT_NAME, what + " has an empty id", source);
+  }
+  const std::string name = what + " '" + object.id + "'";
+  if (object.operation != Op::ADD && object.operation != Op::REMOVE && object.operation != Op::APPEND &&
+      object.operation != Op::MOVE) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     name + " has unknown operation " + std::to_string(static_cast<int>(object.operation)), source);
+  }
+  if (object.operation == Op::REMOVE) return makeSuccess(source);
+  ErrorCode code = validatePose(object.pose, name + " pose", source);
+  if (!isSuccess(code)) return code;
+  if (object.operation == Op::MOVE) return makeSuccess(source);
+  if (shapes_required && object.primitives.empty() && object.meshes.empty()) {
+    return makeError(ErrorCode::INVALID_REQUEST, name + " has no primitives and no meshes", source);
+  }
+  if (object.primitive_poses.size() != object.primitives.size()) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     name + " has " + std::to_string(object.primitives.size()) + " primitives but " +
+                         std::to_string(object.primitive_poses.size()) + " primitive_poses",
+                     source);
+  }
+  if (object.mesh_poses.size() != object.meshes.size()) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     name + " has " + std::to_string(object.meshes.size()) + " meshes but " +
+                         std::to_string(object.mesh_poses.size()) + " mesh_poses",
+                     source);
+  }
+  for (size_t i = 0; i < object.primitives.size(); ++i) {
+    const auto& primitive = object.primitives[i];
+    const std::string pname = name + " primitives[" + std::to_string(i) + "]";
+    size_t expected = 0;
+    switch (primitive.type) {
+      case shape_msgs::SolidPrimitive::BOX:
+        expected = 3;
+        break;
+      case shape_msgs::SolidPrimitive::SPHERE:
+        expected = 1;
+        break;
+      case shape_msgs::SolidPrimitive::CYLINDER:
+        expected = 2;
+        break;
+      default:
+        return makeError(ErrorCode::INVALID_REQUEST,
+                         pname + " has unsupported type " + std::to_string(static_cast<int>(primitive.type)) +
+                             " (BOX, SPHERE and CYLINDER are supported)",
+                         source);
+    }
+    if (primitive.dimensions.size() != expected) {
+      return makeError(ErrorCode::INVALID_REQUEST,
+                       pname + " needs " + std::to_string(expected) + " dimensions, got " +
+                           std::to_string(primitive.dimensions.size()),
+                       source);
+    }
+    for (double d : primitive.dimensions) {
+      if (!std::isfinite(d) || d <= 0.0) {
+        return makeError(ErrorCode::INVALID_REQUEST, pname + " has a non-positive dimension " + str(d), source);
+      }
+    }
+    code = validatePose(object.primitive_poses[i], name + " primitive_poses[" + std::to_string(i) + "]", source);
+    if (!isSuccess(code)) return code;
+  }
+  for (size_t i = 0; i < object.meshes.size(); ++i) {
+    const auto& mesh = object.meshes[i];
+    const std::string mname = name + " meshes[" + std::to_string(i) + "]";
+    if (mesh.vertices.empty() || mesh.triangles.empty()) {
+      return makeError(ErrorCode::INVALID_REQUEST, mname + " has no vertices or no triangles", source);
+    }
+    for (const auto& v : mesh.vertices) {
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+        return makeError(ErrorCode::INVALID_REQUEST, mname + " has a non-finite vertex", source);
+      }
+    }
+    for (const auto& t : mesh.triangles) {
+      for (auto index : t.vertex_indices) {
+        if (index >= mesh.vertices.size()) {
+          return makeError(ErrorCode::INVALID_REQUEST,
+                           mname + " has a triangle with vertex index " + std::to_string(index) + " out of range",
+                           source);
+        }
+      }
+    }
+    code = validatePose(object.mesh_poses[i], name + " mesh_poses[" + std::to_string(i) + "]", source);
+    if (!isSuccess(code)) return code;
+  }
+  return makeSuccess(source);
+}
+
+}  // namespace sixdof_planning

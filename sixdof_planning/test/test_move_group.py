@@ -1,0 +1,512 @@
+#!/usr/bin/env python3
+"""rostest of the move_group node against the real robot description and a FollowJointTrajectory fixture
+(trajectory_fixture.py) that plays trajectories onto joint_states."""
+
+import math
+import sys
+import unittest
+import xml.etree.ElementTree as ElementTree
+
+import actionlib
+import rospy
+import rostest
+from geometry_msgs.msg import Pose, Quaternion
+from sensor_msgs.msg import JointState
+from shape_msgs.msg import SolidPrimitive
+from sixdof_msgs.msg import (
+    CollisionObject,
+    Constraints,
+    ExecuteTrajectoryAction,
+    ExecuteTrajectoryGoal,
+    JointConstraint,
+    MotionPlanRequest,
+    MoveGroupAction,
+    MoveGroupGoal,
+    MoveItErrorCodes,
+    OrientationConstraint,
+    PlanningScene,
+    PositionConstraint,
+    PositionIKRequest,
+    RobotState,
+)
+from sixdof_msgs.srv import (
+    ApplyPlanningScene,
+    GetCartesianPath,
+    GetCartesianPathRequest,
+    GetMotionPlan,
+    GetPlanningScene,
+    GetPositionFK,
+    GetPositionIK,
+    GetStateValidity,
+)
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+PKG = "sixdof_planning"
+ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
+# The paper's poses of link6 in base_link (rpy fixed axes, degrees).
+PAPER_HOME = ((0.366, 0.000, 0.286), (-180.0, 0.688, 179.995))
+PAPER_TARGET = ((-0.568, 0.058, 0.396), (-133.151, 35.219, 1.048))
+# A folded arm: the forearm swung back onto the upper arm and the base (found by sampling, see the report).
+SELF_COLLIDING = {"joint1": 0.0, "joint2": 0.0, "joint3": 2.6, "joint4": 0.0, "joint5": 2.1, "joint6": 0.0}
+FIXTURE = "/trajectory_fixture"
+
+
+def quaternion_from_rpy(roll: float, pitch: float, yaw: float) -> Quaternion:
+    """Fixed-axes roll/pitch/yaw (tf2 setRPY) as a quaternion."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return Quaternion(
+        x=sr * cp * cy - cr * sp * sy,
+        y=cr * sp * cy + sr * cp * sy,
+        z=cr * cp * sy - sr * sp * cy,
+        w=cr * cp * cy + sr * sp * sy,
+    )
+
+
+def paper_pose(which: tuple) -> Pose:
+    xyz, rpy = which
+    pose = Pose()
+    pose.position.x, pose.position.y, pose.position.z = xyz
+    pose.orientation = quaternion_from_rpy(*[math.radians(a) for a in rpy])
+    return pose
+
+
+def quaternion_angle(a: Quaternion, b: Quaternion) -> float:
+    dot = abs(a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w)
+    return 2.0 * math.acos(min(1.0, dot))
+
+
+def named_states() -> dict:
+    """{(group, name): {joint: value}} from the SRDF on the parameter server."""
+    root = ElementTree.fromstring(rospy.get_param("robot_description_semantic"))
+    states = {}
+    for state in root.findall("group_state"):
+        values = {j.get("name"): float(j.get("value")) for j in state.findall("joint")}
+        states[(state.get("group"), state.get("name"))] = values
+    return states
+
+
+def robot_state(values: dict) -> RobotState:
+    state = RobotState()
+    state.joint_state.name = list(values)
+    state.joint_state.position = [values[n] for n in values]
+    state.is_diff = True
+    return state
+
+
+def joint_goal(values: dict, tolerance: float = 1e-4) -> Constraints:
+    goal = Constraints()
+    for name, value in values.items():
+        goal.joint_constraints.append(
+            JointConstraint(joint_name=name, position=value, tolerance_above=tolerance, tolerance_below=tolerance, weight=1)
+        )
+    return goal
+
+
+def box(name: str, position: tuple, size: tuple, frame: str = "base_link") -> CollisionObject:
+    obj = CollisionObject()
+    obj.header.frame_id = frame
+    obj.id = name
+    obj.pose.position.x, obj.pose.position.y, obj.pose.position.z = position
+    obj.pose.orientation.w = 1.0
+    obj.primitives.append(SolidPrimitive(type=SolidPrimitive.BOX, dimensions=list(size)))
+    identity = Pose()
+    identity.orientation.w = 1.0
+    obj.primitive_poses.append(identity)
+    obj.operation = CollisionObject.ADD
+    return obj
+
+
+class MoveGroupTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls) -> None:
+        rospy.init_node("test_move_group")
+        names = [
+            "compute_fk",
+            "compute_ik",
+            "plan_kinematic_path",
+            "compute_cartesian_path",
+            "check_state_validity",
+            "get_planning_scene",
+            "apply_planning_scene",
+        ]
+        for name in names:
+            rospy.wait_for_service(name, timeout=60.0)
+        cls.fk = rospy.ServiceProxy("compute_fk", GetPositionFK)
+        cls.ik = rospy.ServiceProxy("compute_ik", GetPositionIK)
+        cls.plan = rospy.ServiceProxy("plan_kinematic_path", GetMotionPlan)
+        cls.cartesian = rospy.ServiceProxy("compute_cartesian_path", GetCartesianPath)
+        cls.validity = rospy.ServiceProxy("check_state_validity", GetStateValidity)
+        cls.get_scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
+        cls.apply_scene = rospy.ServiceProxy("apply_planning_scene", ApplyPlanningScene)
+        cls.execute = actionlib.SimpleActionClient("execute_trajectory", ExecuteTrajectoryAction)
+        cls.move_group = actionlib.SimpleActionClient("move_group", MoveGroupAction)
+        assert cls.execute.wait_for_server(rospy.Duration(60.0))
+        assert cls.move_group.wait_for_server(rospy.Duration(60.0))
+        cls.states = named_states()
+        cls.limits = rospy.get_param("robot_description_planning/joint_limits")
+
+    # --- helpers ---------------------------------------------------------------------------------------
+    def assertCode(self, code: MoveItErrorCodes, expected: int, *fragments: str) -> None:
+        self.assertEqual(code.val, expected, f"got {code.val}: {code.message} (source {code.source})")
+        for fragment in fragments:
+            self.assertIn(fragment, code.message)
+        self.assertTrue(code.source)
+
+    def current(self) -> dict:
+        msg = rospy.wait_for_message("joint_states", JointState, timeout=10.0)
+        return dict(zip(msg.name, msg.position))
+
+    def link_pose(self, values: dict, link: str = "link6") -> Pose:
+        response = self.fk(fk_link_names=[link], robot_state=robot_state(values))
+        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        return response.pose_stamped[0].pose
+
+    def plan_request(self, goal: Constraints, group: str = "arm") -> MotionPlanRequest:
+        request = MotionPlanRequest()
+        request.group_name = group
+        request.goal_constraints.append(goal)
+        request.allowed_planning_time = 5.0
+        request.start_state.is_diff = True
+        return request
+
+    def plan_to(self, values: dict, group: str = "arm") -> object:
+        response = self.plan(motion_plan_request=self.plan_request(joint_goal(values), group)).motion_plan_response
+        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        return response
+
+    def execute_trajectory(self, trajectory: JointTrajectory) -> MoveItErrorCodes:
+        goal = ExecuteTrajectoryGoal()
+        goal.trajectory.joint_trajectory = trajectory
+        self.execute.send_goal(goal)
+        self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
+        return self.execute.get_result().error_code
+
+    def move_to(self, values: dict, group: str = "arm") -> None:
+        code = self.execute_trajectory(self.plan_to(values, group).trajectory.joint_trajectory)
+        self.assertCode(code, MoveItErrorCodes.SUCCESS)
+
+    def assertServing(self) -> None:
+        self.link_pose(self.states[("arm", "home pose")])
+
+    # --- kinematics ----------------------------------------------------------------------------------
+    def test_01_fk_of_home_state_is_the_paper_home_pose(self) -> None:
+        pose = self.link_pose(self.states[("arm", "home pose")])
+        expected = paper_pose(PAPER_HOME)
+        self.assertAlmostEqual(pose.position.x, expected.position.x, delta=1e-3)
+        self.assertAlmostEqual(pose.position.y, expected.position.y, delta=1e-3)
+        self.assertAlmostEqual(pose.position.z, expected.position.z, delta=1e-3)
+        self.assertLess(quaternion_angle(pose.orientation, expected.orientation), 1e-2)
+
+    def test_02_ik_of_paper_poses_round_trips(self) -> None:
+        for which in (PAPER_HOME, PAPER_TARGET):
+            request = PositionIKRequest(group_name="arm", avoid_collisions=True)
+            request.pose_stamped.header.frame_id = "base_link"
+            request.pose_stamped.pose = paper_pose(which)
+            response = self.ik(ik_request=request)
+            self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+            values = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position))
+            pose = self.link_pose({n: values[n] for n in ARM})
+            self.assertAlmostEqual(pose.position.x, which[0][0], delta=1e-4)
+            self.assertAlmostEqual(pose.position.y, which[0][1], delta=1e-4)
+            self.assertAlmostEqual(pose.position.z, which[0][2], delta=1e-4)
+            self.assertLess(quaternion_angle(pose.orientation, request.pose_stamped.pose.orientation), 1e-3)
+
+    # --- planning ------------------------------------------------------------------------------------
+    def test_10_plan_to_named_state_starts_at_current_state(self) -> None:
+        goal_values = self.states[("arm", "pick pose")]
+        current = self.current()
+        response = self.plan_to(goal_values)
+        trajectory = response.trajectory.joint_trajectory
+        self.assertEqual(trajectory.joint_names, ARM)
+        self.assertGreater(len(trajectory.points), 2)
+        for name, value in zip(trajectory.joint_names, trajectory.points[0].positions):
+            self.assertAlmostEqual(value, current[name], delta=1e-6)
+        for name, value in zip(trajectory.joint_names, trajectory.points[-1].positions):
+            self.assertAlmostEqual(value, goal_values[name], delta=1e-3)
+        times = [p.time_from_start.to_sec() for p in trajectory.points]
+        self.assertEqual(times[0], 0.0)
+        self.assertTrue(all(b > a for a, b in zip(times, times[1:])), "times must increase strictly")
+        for point in trajectory.points:
+            self.assertEqual(len(point.velocities), len(ARM))
+            for name, velocity in zip(trajectory.joint_names, point.velocities):
+                self.assertLessEqual(abs(velocity), self.limits[name]["max_velocity"] * 1.01)
+        start = dict(zip(response.trajectory_start.joint_state.name, response.trajectory_start.joint_state.position))
+        for name in ARM:
+            self.assertAlmostEqual(start[name], current[name], delta=1e-6)
+
+    def test_11_plan_to_named_state_by_name_and_to_a_pose(self) -> None:
+        response = self.plan(motion_plan_request=self.plan_request(Constraints(name="after pick pose")))
+        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.SUCCESS)
+        goal = Constraints()
+        target = paper_pose(PAPER_TARGET)
+        position = PositionConstraint(link_name="link6", position=target.position, tolerance=1e-4, weight=1)
+        position.header.frame_id = "base_link"
+        orientation = OrientationConstraint(link_name="link6", orientation=target.orientation, weight=1)
+        orientation.header.frame_id = "base_link"
+        orientation.absolute_x_axis_tolerance = orientation.absolute_y_axis_tolerance = 1e-3
+        orientation.absolute_z_axis_tolerance = 1e-3
+        goal.position_constraints.append(position)
+        goal.orientation_constraints.append(orientation)
+        response = self.plan(motion_plan_request=self.plan_request(goal)).motion_plan_response
+        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        last = dict(zip(ARM, response.trajectory.joint_trajectory.points[-1].positions))
+        pose = self.link_pose(last)
+        self.assertAlmostEqual(pose.position.x, target.position.x, delta=1e-3)
+        self.assertAlmostEqual(pose.position.z, target.position.z, delta=1e-3)
+
+    def test_12_cartesian_path_fraction(self) -> None:
+        start = self.link_pose({n: v for n, v in self.current().items() if n in ARM})
+        down = Pose(position=start.position, orientation=start.orientation)
+        down.position.z -= 0.05
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[down], max_step=0.005, avoid_collisions=True)
+        request.header.frame_id = "base_link"
+        request.start_state.is_diff = True
+        response = self.cartesian(request)
+        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assertAlmostEqual(response.fraction, 1.0, delta=1e-9)
+        self.assertGreaterEqual(len(response.solution.joint_trajectory.points), 10)
+        end = self.link_pose(dict(zip(ARM, response.solution.joint_trajectory.points[-1].positions)))
+        self.assertAlmostEqual(end.position.z, down.position.z, delta=1e-4)
+        # Half of the path leads out of reach: the fraction stops short of 1 and the call still succeeds.
+        far = Pose(orientation=start.orientation)
+        far.position.x, far.position.y, far.position.z = 2.0, 0.0, start.position.z
+        request.waypoints = [down, far]
+        response = self.cartesian(request)
+        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assertGreaterEqual(response.fraction, 0.5)
+        self.assertLess(response.fraction, 1.0)
+
+    def test_13_check_state_validity_detects_self_collision(self) -> None:
+        response = self.validity(robot_state=robot_state(SELF_COLLIDING), group_name="arm")
+        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assertFalse(response.valid)
+        self.assertTrue(response.contacts)
+        robot_links = {"base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2"}
+        contact = response.contacts[0]
+        self.assertIn(contact.contact_body_1, robot_links)
+        self.assertIn(contact.contact_body_2, robot_links)
+        response = self.validity(robot_state=robot_state(self.states[("arm", "home pose")]), group_name="arm")
+        self.assertTrue(response.valid, response.error_code.message)
+
+    def test_14_box_at_goal_gives_goal_in_collision(self) -> None:
+        goal_values = self.states[("arm", "place pose")]
+        tcp = self.link_pose(goal_values, "link6").position
+        scene = PlanningScene(is_diff=True)
+        scene.world.collision_objects.append(box("blocker", (tcp.x, tcp.y, tcp.z), (0.08, 0.08, 0.08)))
+        response = self.apply_scene(scene=scene)
+        self.assertTrue(response.success, response.error_code.message)
+        objects = self.get_scene().scene.world.collision_objects
+        self.assertEqual([o.id for o in objects], ["blocker"])
+        plan = self.plan(motion_plan_request=self.plan_request(joint_goal(goal_values))).motion_plan_response
+        self.assertCode(plan.error_code, MoveItErrorCodes.GOAL_IN_COLLISION)
+        validity = self.validity(robot_state=robot_state(goal_values), group_name="arm")
+        self.assertFalse(validity.valid)
+        self.assertIn("blocker", {validity.contacts[0].contact_body_1, validity.contacts[0].contact_body_2})
+        removal = CollisionObject(id="blocker", operation=CollisionObject.REMOVE)
+        scene = PlanningScene(is_diff=True)
+        scene.world.collision_objects.append(removal)
+        self.assertTrue(self.apply_scene(scene=scene).success)
+        plan = self.plan(motion_plan_request=self.plan_request(joint_goal(goal_values))).motion_plan_response
+        self.assertCode(plan.error_code, MoveItErrorCodes.SUCCESS)
+
+    # --- execution -----------------------------------------------------------------------------------
+    def test_20_execute_trajectory_reaches_the_goal(self) -> None:
+        goal_values = self.states[("arm", "after pick pose")]
+        self.move_to(goal_values)
+        current = self.current()
+        for name in ARM:
+            self.assertAlmostEqual(current[name], goal_values[name], delta=1e-3)
+        # The gripper group: finger2_joint mimics finger1_joint and is sent to the gripper controller too.
+        self.move_to({"finger1_joint": 0.03}, group="gripper")
+        current = self.current()
+        self.assertAlmostEqual(current["finger1_joint"], 0.03, delta=1e-4)
+        self.assertAlmostEqual(current["finger2_joint"], 0.03, delta=1e-4)
+
+    def test_21_trajectory_spanning_both_controllers_is_split(self) -> None:
+        current = self.current()
+        trajectory = JointTrajectory(joint_names=["joint1", "finger1_joint"])
+        start = [current["joint1"], current["finger1_joint"]]
+        end = [current["joint1"] + 0.1, 0.01]
+        for t, values in ((0.0, start), (1.0, end)):
+            trajectory.points.append(JointTrajectoryPoint(positions=values, time_from_start=rospy.Duration(t)))
+        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.SUCCESS)
+        current = self.current()
+        self.assertAlmostEqual(current["joint1"], end[0], delta=1e-4)
+        self.assertAlmostEqual(current["finger1_joint"], 0.01, delta=1e-4)
+        self.assertAlmostEqual(current["finger2_joint"], 0.01, delta=1e-4)
+
+    def test_22_start_state_deviation_is_rejected(self) -> None:
+        current = self.current()
+        trajectory = JointTrajectory(joint_names=ARM)
+        first = [current[n] for n in ARM]
+        first[1] += 0.05
+        for t in (0.0, 1.0):
+            trajectory.points.append(JointTrajectoryPoint(positions=first, time_from_start=rospy.Duration(t)))
+        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.CONTROL_FAILED, "deviates", "joint2")
+
+    def test_23_slow_controller_times_out(self) -> None:
+        trajectory = self.plan_to(self.states[("arm", "home pose")]).trajectory.joint_trajectory
+        rospy.set_param(FIXTURE + "/slowdown", 4.0)
+        try:
+            code = self.execute_trajectory(trajectory)
+        finally:
+            rospy.set_param(FIXTURE + "/slowdown", 1.0)
+        self.assertCode(code, MoveItErrorCodes.TIMED_OUT, "Controller is taking too long")
+
+    def test_24_controller_error_is_reported(self) -> None:
+        trajectory = self.plan_to(self.states[("arm", "home pose")]).trajectory.joint_trajectory
+        rospy.set_param(FIXTURE + "/fail_with", "fixture says joint3 missed its goal")
+        try:
+            code = self.execute_trajectory(trajectory)
+        finally:
+            rospy.set_param(FIXTURE + "/fail_with", "")
+        self.assertCode(code, MoveItErrorCodes.CONTROL_FAILED, "fixture says joint3 missed its goal",
+                        "GOAL_TOLERANCE_VIOLATED", "arm_controller")
+
+    def test_25_move_group_action_plans_and_executes(self) -> None:
+        goal = MoveGroupGoal()
+        goal.request = self.plan_request(joint_goal(self.states[("arm", "home pose")]))
+        goal.planning_options.plan_only = True
+        self.move_group.send_goal(goal)
+        self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
+        result = self.move_group.get_result()
+        self.assertCode(result.error_code, MoveItErrorCodes.SUCCESS)
+        self.assertTrue(result.planned_trajectory.joint_trajectory.points)
+        self.assertFalse(result.executed_trajectory.joint_trajectory.points)
+        goal.planning_options.plan_only = False
+        self.move_group.send_goal(goal)
+        self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
+        result = self.move_group.get_result()
+        self.assertCode(result.error_code, MoveItErrorCodes.SUCCESS)
+        self.assertTrue(result.executed_trajectory.joint_trajectory.points)
+        current = self.current()
+        for name in ARM:
+            self.assertAlmostEqual(current[name], self.states[("arm", "home pose")][name], delta=1e-3)
+
+    # --- bad input: an error code and a message naming the problem; the node keeps serving ------------
+    def ik_request(self, pose: Pose, group: str = "arm") -> PositionIKRequest:
+        request = PositionIKRequest(group_name=group)
+        request.pose_stamped.header.frame_id = "base_link"
+        request.pose_stamped.pose = pose
+        return request
+
+    def test_30_ik_rejects_nan_and_non_unit_quaternions(self) -> None:
+        pose = paper_pose(PAPER_HOME)
+        pose.position.y = float("nan")
+        code = self.ik(ik_request=self.ik_request(pose)).error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_REQUEST, "position.y", "nan")
+        pose = paper_pose(PAPER_HOME)
+        pose.position.z = float("inf")
+        self.assertCode(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.INVALID_REQUEST, "inf")
+        pose = paper_pose(PAPER_HOME)
+        pose.orientation.w *= 1.1
+        pose.orientation.x *= 1.1
+        pose.orientation.y *= 1.1
+        pose.orientation.z *= 1.1
+        code = self.ik(ik_request=self.ik_request(pose)).error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_REQUEST, "unit quaternion")
+        # Within the 1e-3 tolerance the quaternion is accepted.
+        pose = paper_pose(PAPER_HOME)
+        pose.orientation.w *= 1.0004
+        self.assertCode(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.SUCCESS)
+        self.assertServing()
+
+    def test_31_unknown_group_link_joint_and_state(self) -> None:
+        code = self.ik(ik_request=self.ik_request(paper_pose(PAPER_HOME), group="leg")).error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'leg'", "'arm'")
+        code = self.fk(fk_link_names=["link9"], robot_state=RobotState()).error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_LINK_NAME, "'link9'")
+        request = self.ik_request(paper_pose(PAPER_HOME))
+        request.ik_link_name = "link3"
+        self.assertCode(self.ik(ik_request=request).error_code, MoveItErrorCodes.INVALID_LINK_NAME, "'link3'")
+        response = self.plan(motion_plan_request=self.plan_request(Constraints(name="dance pose")))
+        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS,
+                        "'dance pose'", "'home pose'")
+        response = self.plan(motion_plan_request=self.plan_request(joint_goal({"joint7": 0.0})))
+        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS, "'joint7'")
+        response = self.plan(motion_plan_request=self.plan_request(joint_goal({"finger1_joint": 0.0})))
+        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS,
+                        "'finger1_joint'", "'arm'")
+        code = self.fk(fk_link_names=["link6"], robot_state=robot_state({"elbow": 1.0})).error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_ROBOT_STATE, "'elbow'")
+        code = self.fk(fk_link_names=["link6"], robot_state=robot_state({"joint2": float("nan")})).error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_ROBOT_STATE, "'joint2'")
+        request = MotionPlanRequest(group_name="wing")
+        request.goal_constraints.append(Constraints(name="home pose"))
+        code = self.plan(motion_plan_request=request).motion_plan_response.error_code
+        self.assertCode(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'wing'")
+        self.assertServing()
+
+    def test_32_scaling_factors_outside_zero_one(self) -> None:
+        for field in ("max_velocity_scaling_factor", "max_acceleration_scaling_factor"):
+            for value in (1.5, -0.1, float("nan")):
+                request = self.plan_request(joint_goal(self.states[("arm", "home pose")]))
+                setattr(request, field, value)
+                code = self.plan(motion_plan_request=request).motion_plan_response.error_code
+                self.assertCode(code, MoveItErrorCodes.INVALID_REQUEST, field, "(0, 1]")
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
+        request.max_velocity_scaling_factor = 2.0
+        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST,
+                        "max_velocity_scaling_factor")
+        self.assertServing()
+
+    def test_33_cartesian_path_bad_requests(self) -> None:
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[], max_step=0.01)
+        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "waypoints is empty")
+        pose = paper_pose(PAPER_HOME)
+        pose.orientation.w = 0.0
+        pose.orientation.x = pose.orientation.y = pose.orientation.z = 0.0
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME), pose], max_step=0.01)
+        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "waypoints[1]",
+                        "unit quaternion")
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.0)
+        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "max_step")
+        request = GetCartesianPathRequest(group_name="gripper", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
+        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.NO_IK_SOLUTION, "'gripper'")
+        self.assertServing()
+
+    def test_34_malformed_collision_objects(self) -> None:
+        def apply(obj: CollisionObject) -> MoveItErrorCodes:
+            scene = PlanningScene(is_diff=True)
+            scene.world.collision_objects.append(obj)
+            response = self.apply_scene(scene=scene)
+            self.assertEqual(response.success, response.error_code.val == MoveItErrorCodes.SUCCESS)
+            return response.error_code
+
+        obj = box("flat", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
+        obj.primitives[0].dimensions = [0.1, 0.1]
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'flat'", "3 dimensions")
+        obj = box("negative", (1.0, 1.0, 0.5), (0.1, -0.1, 0.1))
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'negative'", "non-positive")
+        obj = box("", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_OBJECT_NAME, "empty id")
+        obj = box("posed", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
+        obj.primitive_poses = []
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'posed'", "primitive_poses")
+        obj = box("tilted", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
+        obj.pose.orientation.w = 2.0
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'tilted'", "unit quaternion")
+        obj = box("shapeless", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
+        obj.primitives, obj.primitive_poses = [], []
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'shapeless'", "no primitives")
+        obj = box("elsewhere", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1), frame="moon")
+        self.assertCode(apply(obj), MoveItErrorCodes.FRAME_TRANSFORM_FAILURE, "'moon'")
+        obj = CollisionObject(id="ghost", operation=CollisionObject.REMOVE)
+        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_OBJECT_NAME, "'ghost'")
+        # Nothing of the rejected requests reached the scene.
+        self.assertEqual(self.get_scene().scene.world.collision_objects, [])
+        self.assertServing()
+
+    def test_35_execute_rejects_malformed_trajectories(self) -> None:
+        trajectory = JointTrajectory(joint_names=["joint1", "knee"])
+        trajectory.points.append(JointTrajectoryPoint(positions=[0.0, 0.0], time_from_start=rospy.Duration(0.0)))
+        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN, "'knee'")
+        trajectory = JointTrajectory(joint_names=ARM)
+        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN)
+        self.assertServing()
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PKG, "test_move_group", MoveGroupTest, sys.argv)

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Test fixture standing in for the simulator's controllers: publishes joint_states and serves
+arm_controller/follow_joint_trajectory and gripper_controller/follow_joint_trajectory by playing each goal's
+trajectory onto the joint state (linear interpolation in time).
+
+Knobs (private parameters, read per goal, set by the tests):
+  ~initial_positions  {joint: value} at start-up (others 0)
+  ~slowdown           plays trajectories this many times slower (1.0); > 1.2 makes move_group time out
+  ~fail_with          when non-empty, aborts every goal with GOAL_TOLERANCE_VIOLATED and this error string
+"""
+
+import bisect
+import threading
+
+import actionlib
+import rospy
+from sensor_msgs.msg import JointState
+from sixdof_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult
+
+JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "finger1_joint", "finger2_joint"]
+CONTROLLERS = {
+    "arm_controller": JOINTS[:6],
+    "gripper_controller": JOINTS[6:],
+}
+RATE_HZ = 100.0
+
+
+class TrajectoryFixture:
+    def __init__(self) -> None:
+        initial = rospy.get_param("~initial_positions", {})
+        self._lock = threading.Lock()
+        self._positions = {name: float(initial.get(name, 0.0)) for name in JOINTS}
+        self._publisher = rospy.Publisher("joint_states", JointState, queue_size=10)
+        self._servers = []
+        for controller, joints in CONTROLLERS.items():
+            server = actionlib.SimpleActionServer(
+                f"{controller}/follow_joint_trajectory",
+                FollowJointTrajectoryAction,
+                execute_cb=lambda goal, c=controller, j=joints: self._execute(c, j, goal),
+                auto_start=False,
+            )
+            server.start()
+            self._servers.append((controller, server))
+        self._timer = rospy.Timer(rospy.Duration(1.0 / RATE_HZ), self._publish)
+
+    def _server(self, controller: str) -> actionlib.SimpleActionServer:
+        return dict(self._servers)[controller]
+
+    def _publish(self, _event: object) -> None:
+        with self._lock:
+            msg = JointState(name=list(JOINTS), position=[self._positions[n] for n in JOINTS])
+        msg.header.stamp = rospy.Time.now()
+        self._publisher.publish(msg)
+
+    def _execute(self, controller: str, joints: list, goal: object) -> None:
+        server = self._server(controller)
+        trajectory = goal.trajectory
+        result = FollowJointTrajectoryResult()
+        unknown = [n for n in trajectory.joint_names if n not in joints]
+        if unknown or not trajectory.points:
+            result.error_code = FollowJointTrajectoryResult.INVALID_JOINTS
+            result.error_string = f"{controller}: unknown joints {unknown} or no points"
+            server.set_aborted(result, result.error_string)
+            return
+        fail_with = rospy.get_param("~fail_with", "")
+        slowdown = float(rospy.get_param("~slowdown", 1.0))
+        times = [p.time_from_start.to_sec() * slowdown for p in trajectory.points]
+        start = rospy.Time.now()
+        rate = rospy.Rate(RATE_HZ)
+        while not rospy.is_shutdown():
+            if server.is_preempt_requested():
+                server.set_preempted(result, "preempted")
+                return
+            t = (rospy.Time.now() - start).to_sec()
+            self._apply(trajectory, times, t)
+            if fail_with and t > times[-1] / 2.0:
+                result.error_code = FollowJointTrajectoryResult.GOAL_TOLERANCE_VIOLATED
+                result.error_string = fail_with
+                server.set_aborted(result, fail_with)
+                return
+            if t >= times[-1]:
+                break
+            rate.sleep()
+        result.error_code = FollowJointTrajectoryResult.SUCCESSFUL
+        server.set_succeeded(result)
+
+    def _apply(self, trajectory: object, times: list, t: float) -> None:
+        points = trajectory.points
+        i = bisect.bisect_right(times, t)
+        if i == 0:
+            values = points[0].positions
+        elif i >= len(points):
+            values = points[-1].positions
+        else:
+            a = (t - times[i - 1]) / (times[i] - times[i - 1])
+            values = [p0 + a * (p1 - p0) for p0, p1 in zip(points[i - 1].positions, points[i].positions)]
+        with self._lock:
+            for name, value in zip(trajectory.joint_names, values):
+                self._positions[name] = value
+
+
+def main() -> None:
+    rospy.init_node("trajectory_fixture")
+    TrajectoryFixture()
+    rospy.spin()
+
+
+if __name__ == "__main__":
+    main()

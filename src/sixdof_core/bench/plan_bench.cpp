@@ -1,0 +1,101 @@
+// Planning benchmark on the table-top pick-and-place world: a chain of pose queries (pre-grasp above the cube,
+// pre-place, and random top-down poses over the table), each planned from where the previous one ended with
+// RRTConnect (1 s allowed), IK-sampled goals, simplification. Reports success within 1 s over the feasible
+// queries (random poses whose every IK solution collides, or that IK cannot reach, are counted apart), median
+// and p95 planning time, and validity (collision) checks per second of planning.
+//   plan_bench [queries (default 100)] [urdf] [srdf]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <ompl/util/Console.h>
+
+#include "../test/test_planning_table_top.h"
+#include "sixdof_core/planning_context.h"
+
+namespace {
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(p * (v.size() - 1) + 0.5));
+  return v[i];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using sixdof_test::TableTop;
+  const int queries = argc > 1 ? std::atoi(argv[1]) : 100;
+  // Defaults: the description package next to this source tree; the SRDF of the core's test data until the
+  // description package ships one.
+  const std::string source(__FILE__);
+  const std::string repo = source.substr(0, source.rfind("/src/sixdof_core/"));
+  const std::string description = repo + "/sixdof_description";
+  const std::string urdf = argc > 2 ? argv[2] : description + "/urdf/sixdof.urdf";
+  std::string srdf = argc > 3 ? argv[3] : description + "/config/sixdof.srdf";
+  if (argc <= 3 && !exists(srdf)) srdf = repo + "/src/sixdof_core/test/data/sixdof.srdf";
+  if (queries < 1) {
+    std::fprintf(stderr, "usage: plan_bench [queries >= 1] [urdf] [srdf]\n");
+    return 2;
+  }
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  const TableTop t = sixdof_test::makeTableTop(urdf, srdf, description, 0.005);
+  std::printf("plan_bench: %s + %s, IK %s, %d queries\n", urdf.c_str(), srdf.c_str(), t.ik_note.c_str(), queries);
+
+  sixdof_core::PlanningOptions options;
+  options.allowed_planning_time = 1.0;
+  options.longest_valid_segment_length = 0.005;
+  options.max_joint_step = 0.05;
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> x(0.20, 0.50), y(-0.35, 0.35), z(0.08, 0.30), yaw(-1.0, 1.0);
+
+  sixdof_core::RobotState state(t.model);
+  state.setGroupPositions("arm", Eigen::VectorXd::Zero(6));
+  std::vector<double> times;
+  int solved = 0;
+  double total_time = 0.0;
+  std::size_t total_checks = 0;
+  std::vector<int> failures(8, 0);
+  for (int q = 0; q < queries; ++q) {
+    Eigen::Isometry3d tcp;
+    if (q % 3 == 0) {
+      tcp = TableTop::topDown(0.40, -0.15, 0.12, yaw(rng) * 0.3);
+    } else if (q % 3 == 1) {
+      tcp = TableTop::topDown(0.40, 0.20, 0.12, yaw(rng) * 0.3);
+    } else {
+      tcp = TableTop::topDown(x(rng), y(rng), z(rng), yaw(rng));
+    }
+    options.seed = static_cast<std::uint32_t>(q + 1);
+    const sixdof_core::PlanningResult r =
+        t.context->planToPose(state, t.tipFor(tcp), sixdof_core::PoseGoalOptions(), options);
+    times.push_back(r.planning_time);
+    total_time += r.planning_time;
+    total_checks += r.validity_checks;
+    if (r.success()) {
+      ++solved;
+      state.setGroupPositions("arm", r.path.back());
+    } else {
+      ++failures[static_cast<int>(r.status)];
+    }
+  }
+  using sixdof_core::PlanningStatus;
+  const int infeasible = failures[static_cast<int>(PlanningStatus::kGoalInCollision)] +
+                         failures[static_cast<int>(PlanningStatus::kNoIkSolution)];
+  const int feasible = queries - infeasible;
+  std::printf("success within 1 s: %d/%d feasible queries (%.1f %%); %d infeasible goals\n", solved, feasible,
+              feasible ? 100.0 * solved / feasible : 0.0, infeasible);
+  for (std::size_t s = 0; s < failures.size(); ++s) {
+    if (failures[s]) std::printf("  %s: %d\n", sixdof_core::toString(static_cast<PlanningStatus>(s)), failures[s]);
+  }
+  std::printf("planning time: median %.1f ms, p95 %.1f ms, max %.1f ms\n", 1e3 * percentile(times, 0.5),
+              1e3 * percentile(times, 0.95), 1e3 * percentile(times, 1.0));
+  std::printf("validity checks: %zu, %.0f per second of planning\n", total_checks, total_checks / total_time);
+  return 0;
+}

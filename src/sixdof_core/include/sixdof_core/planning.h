@@ -1,0 +1,125 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace sixdof_core {
+
+// Joint-space motion planning with OMPL, decoupled from the robot model and the collision scene: the
+// problem is plain data plus callbacks, so any model/scene (or a synthetic test world) plugs in.
+//
+// Joint values are in the order of PlanningProblem::joints. A continuous joint (no limits, e.g. a URDF
+// "continuous" joint) is planned on the circle (OMPL SO2): paths take the short way round and are returned
+// unwound, i.e. continuous from the start value (they may leave [-pi, pi)). A multi-turn joint with limits
+// wider than 2 pi (e.g. [-2 pi, 2 pi]) is a bounded joint, not a continuous one.
+
+// True if the joint state is valid (collision-free, ...). Called from the planning threads concurrently
+// when attempts run in parallel, so it must be thread-safe (a const query on an immutable scene is).
+using JointValidityFn = std::function<bool(const Eigen::VectorXd&)>;
+// Optional: why a state is invalid (e.g. "link3 collides with table"), used only to word error messages.
+using JointValidityExplainFn = std::function<std::string(const Eigen::VectorXd&)>;
+// Produces one goal state (e.g. one IK solution of a pose goal, randomly seeded); false = no solution.
+// Calls are serialised by the planner, so the sampler need not be thread-safe.
+using GoalSamplerFn = std::function<bool(Eigen::VectorXd* out)>;
+
+struct JointBounds {
+  std::string name;
+  double lower = 0.0;  // not used for a continuous joint
+  double upper = 0.0;
+  bool continuous = false;
+};
+
+// Joint-space goal: satisfied by any state within +-tolerance (per joint) of the target. The target itself
+// is used when valid; otherwise valid states are sampled inside the tolerance box (MoveIt's goal sampler).
+struct JointGoal {
+  Eigen::VectorXd target;
+  Eigen::VectorXd tolerance;  // per joint, >= 0; empty = exact (0)
+};
+
+// Sampled goal (pose / position goals: the caller's IK wraps into GoalSamplerFn). The sampler is called until
+// max_states valid distinct states were collected or max_calls calls were made; planning then connects to
+// any of them (OMPL GoalStates).
+struct SampledGoal {
+  GoalSamplerFn sampler;
+  int max_states = 8;
+  int max_calls = 64;
+};
+
+enum class PlanningStatus {
+  kSuccess,
+  kInvalidRequest,   // malformed problem: sizes, NaN, bounds, unknown planner id, bad options
+  kInvalidStart,     // start state out of bounds or invalid (message says which check failed)
+  kInvalidGoal,      // goal state out of bounds
+  kGoalInCollision,  // every goal state is invalid according to the validity function
+  kNoIkSolution,     // the goal sampler never produced a state
+  kTimeout,          // no (exact) solution within the allowed planning time
+  kPlanningFailed,   // OMPL reported another failure
+};
+
+const char* toString(PlanningStatus status);
+
+struct PlanningOptions {
+  // OMPL geometric planner: see availablePlannerIds(). MoveIt's "<id>kConfigDefault" names are accepted.
+  std::string planner_id = "RRTConnect";
+  // Planner parameters by OMPL name (e.g. {"range", "0.5"}); an unknown name is an invalid request.
+  std::map<std::string, std::string> planner_params;
+  double allowed_planning_time = 5.0;  // s, for all attempts together
+  int num_planning_attempts = 1;
+  // Parallel attempts run in threads and the shortest solution wins; sequential attempts split the time.
+  bool parallel_attempts = true;
+  // Motions are checked at this fraction of the joint space's maximum extent (MoveIt's
+  // longest_valid_segment_fraction) ...
+  double longest_valid_segment_fraction = 0.005;
+  // ... or, when > 0, at this joint-space distance (rad / m) instead.
+  double longest_valid_segment_length = 0.0;
+  bool simplify = true;  // OMPL PathSimplifier: vertex reduction, shortcutting, B-spline smoothing
+  // After simplification, points are inserted so no joint moves more than this between points (0 = off).
+  double max_joint_step = 0.0;
+  // Reseeds OMPL's process-wide random generator: planning is then repeatable for sequential attempts
+  // (or one attempt) with planners that stop at their first solution. Do not plan concurrently with it.
+  std::optional<std::uint32_t> seed;
+};
+
+struct PlanningProblem {
+  std::vector<JointBounds> joints;
+  JointValidityFn is_valid;               // required
+  JointValidityExplainFn explain_invalid;  // optional
+  Eigen::VectorXd start;
+  // Exactly one of the three goal kinds must be given.
+  std::optional<JointGoal> joint_goal;
+  std::vector<Eigen::VectorXd> goal_states;  // any of them
+  std::optional<SampledGoal> sampled_goal;
+  PlanningOptions options;
+};
+
+struct PlanningResult {
+  PlanningStatus status = PlanningStatus::kPlanningFailed;
+  std::string message;
+  std::vector<Eigen::VectorXd> path;  // start first, goal last; empty unless kSuccess
+  double planning_time = 0.0;         // s, wall clock of the whole call
+  double path_length = 0.0;           // sum of jointDistance() over the path's segments
+  std::size_t validity_checks = 0;    // calls of is_valid made by this call
+  int solved_attempts = 0;
+  std::string planner_id;             // canonical id used
+
+  bool success() const { return status == PlanningStatus::kSuccess; }
+};
+
+// Plans a collision-free joint path; never throws on bad input (returns kInvalidRequest with a message).
+PlanningResult plan(const PlanningProblem& problem);
+
+// Planner ids plan() accepts.
+std::vector<std::string> availablePlannerIds();
+
+// Euclidean joint-space distance; continuous joints contribute their shortest angle.
+double jointDistance(const std::vector<JointBounds>& joints, const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+// Largest single-joint change from a to b.
+double maxJointDelta(const std::vector<JointBounds>& joints, const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
+}  // namespace sixdof_core

@@ -1,0 +1,86 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sixdof_core/cartesian_path.h"
+#include "sixdof_core/collision.h"
+#include "sixdof_core/ik_solver.h"
+#include "sixdof_core/kinematics.h"
+#include "sixdof_core/planning.h"
+#include "sixdof_core/robot_model.h"
+
+namespace sixdof_core {
+
+// Options of IK-sampled goals (pose and position goals).
+struct PoseGoalOptions {
+  IkOptions ik;        // per IK call; ik.seed and ik.random_seed are set per sample
+  int max_states = 8;  // see SampledGoal
+  int max_calls = 32;
+};
+
+// Glue between one planning group of a RobotModel, a CollisionScene and the group's IK solver on one side and
+// the callback-based planners (plan(), computeCartesianPath()) on the other. The joints outside the group
+// (e.g. the fingers) stay where the start state has them.
+//
+// Holds shared pointers to immutable parts only; the scene must not be modified while a plan runs.
+class PlanningContext {
+ public:
+  // scene must have been built from model->collisionGeometry() (links are matched by name). ik is the group's
+  // solver (its chain must have the group's active joints, in order) and may be null: pose and position goals
+  // and Cartesian paths then fail with kInvalidRequest. Throws std::invalid_argument on an unknown group,
+  // a scene link unknown to the model, or an IK chain that does not match the group.
+  PlanningContext(RobotModelConstPtr model, std::shared_ptr<const CollisionScene> scene, const std::string& group,
+                  std::shared_ptr<const IkSolver> ik);
+
+  const std::string& group() const { return group_; }
+  const std::vector<JointBounds>& joints() const { return joints_; }
+  const RobotModel& model() const { return *model_; }
+
+  // State validity of group values with the other joints taken from reference: collision-free in the scene.
+  // Thread-safe (each call works on its own copy of the state).
+  JointValidityFn validityFn(const RobotState& reference) const;
+  // "link3 collides with box, ..." (every colliding pair) explaining an invalid state.
+  JointValidityExplainFn explainFn(const RobotState& reference) const;
+
+  // A problem without a goal: joints, validity callbacks, start = the group's values in start.
+  PlanningProblem problem(const RobotState& start, const PlanningOptions& options) const;
+
+  PlanningResult planToJoints(const RobotState& start, const Eigen::VectorXd& goal, double tolerance,
+                              const PlanningOptions& options) const;
+  // An SRDF group_state of this group; an unknown name is kInvalidRequest naming the known ones.
+  PlanningResult planToNamed(const RobotState& start, const std::string& name, double tolerance,
+                             const PlanningOptions& options) const;
+  // Pose of the group's tip link in the chain base frame, goal states sampled with IK (first seeded with the
+  // start, then with random seeds). pose_goal.ik.position_only makes it a position goal.
+  PlanningResult planToPose(const RobotState& start, const Eigen::Isometry3d& tip_pose,
+                            const PoseGoalOptions& pose_goal, const PlanningOptions& options) const;
+  PlanningResult planToPosition(const RobotState& start, const Eigen::Vector3d& tip_position,
+                                const PoseGoalOptions& pose_goal, const PlanningOptions& options) const;
+
+  // Cartesian path of the tip (waypoints in the chain base frame), IK seeded from the previous point.
+  CartesianPathResult cartesianPath(const RobotState& start, const std::vector<Eigen::Isometry3d>& waypoints,
+                                    double eef_step, const JumpThreshold& jump_threshold, bool avoid_collisions,
+                                    const IkOptions& ik_options = IkOptions()) const;
+
+  // World poses of the scene's links for a full robot state (in the scene's link order).
+  std::vector<Eigen::Isometry3d> sceneLinkPoses(const RobotState& state) const;
+
+ private:
+  RobotState withGroup(const RobotState& reference, const Eigen::VectorXd& values) const;
+  SampledGoal poseSampler(const RobotState& start, const Eigen::Isometry3d& tip_pose, const PoseGoalOptions& pose_goal,
+                          const PlanningOptions& options) const;
+
+  RobotModelConstPtr model_;
+  std::shared_ptr<const CollisionScene> scene_;
+  std::shared_ptr<const IkSolver> ik_;
+  std::string group_;
+  std::vector<JointBounds> joints_;
+  std::vector<bool> prismatic_;
+  std::vector<int> scene_link_to_model_;  // model link index of each scene link
+};
+
+}  // namespace sixdof_core

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sixdof_core/trajectory.h"
+
+namespace sixdof_core {
+
+struct TimeParameterizationOptions {
+  // Per joint, in the order of the joint names; all > 0 and finite.
+  std::vector<double> max_velocity;
+  std::vector<double> max_acceleration;
+  // MoveIt's scaling factors: 0 < f <= 1, anything else is rejected.
+  double velocity_scaling = 1.0;
+  double acceleration_scaling = 1.0;
+  // How far (joint-space norm, rad) the path may cut an interior waypoint with a circular blend.
+  // 0 stops at every corner. Straight-through waypoints are never blended nor stopped at.
+  double max_deviation = 0.01;
+  // Time between output points (s).
+  double sample_period = 0.01;
+  // Grid step along the path (joint-space arc length, rad) of the phase-plane solution.
+  double path_resolution = 1e-3;
+};
+
+enum class TimeParameterizationStatus { kSuccess, kInvalidInput };
+
+struct TimeParameterizationResult {
+  TimeParameterizationStatus status = TimeParameterizationStatus::kInvalidInput;
+  std::string message;
+  Trajectory trajectory;
+  bool ok() const { return status == TimeParameterizationStatus::kSuccess; }
+};
+
+// Time-optimal parameterization along a path with circular blends (the path of Kunz & Stilman,
+// "Time-optimal trajectory generation for path following with bounded acceleration and velocity",
+// RSS 2012). The phase plane (path speed squared over arc length) is solved on a fine grid by a backward
+// pass of maximal deceleration and a forward pass of maximal acceleration; each grid interval has a
+// constant path acceleration chosen so that every joint's velocity and acceleration limit holds at
+// both ends of the interval (exact on straight segments, within the grid's curvature error on blends,
+// which a 0.1% margin on the limits absorbs). The output starts and ends at rest, passes through the
+// first and last waypoints exactly, stops exactly at waypoints where the path reverses or max_deviation
+// is 0, and stays within max_deviation of every other waypoint. Positions are C1 along the path,
+// velocities are continuous, accelerations are piecewise continuous (bang-bang, as any time-optimal
+// profile).
+TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::string>& joint_names,
+                                                        const std::vector<std::vector<double>>& waypoints,
+                                                        const TimeParameterizationOptions& options);
+
+}  // namespace sixdof_core

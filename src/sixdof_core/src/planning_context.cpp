@@ -1,0 +1,192 @@
+#include "sixdof_core/planning_context.h"
+
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+namespace sixdof_core {
+
+PlanningContext::PlanningContext(RobotModelConstPtr model, std::shared_ptr<const CollisionScene> scene,
+                                 const std::string& group, std::shared_ptr<const IkSolver> ik)
+    : model_(std::move(model)), scene_(std::move(scene)), ik_(std::move(ik)), group_(group) {
+  if (!model_ || !scene_) throw std::invalid_argument("PlanningContext needs a robot model and a collision scene");
+  const JointGroup* g = model_->findGroup(group);
+  if (!g) throw std::invalid_argument("unknown planning group '" + group + "'");
+  for (const std::string& name : g->active_joints) {
+    const JointModel& joint = model_->joint(name);
+    JointBounds bounds{name, joint.limits.lower, joint.limits.upper, !joint.limits.bounded};
+    if (bounds.continuous) bounds.lower = bounds.upper = 0.0;
+    joints_.push_back(bounds);
+    prismatic_.push_back(joint.type == JointType::kPrismatic);
+  }
+  if (joints_.empty()) throw std::invalid_argument("planning group '" + group + "' has no active joints");
+  if (ik_ && ik_->chain().jointNames() != g->active_joints) {
+    throw std::invalid_argument("IK solver chain " + ik_->chain().baseLink() + " -> " + ik_->chain().tipLink() +
+                                " does not have the joints of group '" + group + "'");
+  }
+  for (const std::string& link : scene_->linkNames()) {
+    const int index = model_->linkIndex(link);
+    if (index < 0) throw std::invalid_argument("collision scene link '" + link + "' is not in the robot model");
+    scene_link_to_model_.push_back(index);
+  }
+}
+
+RobotState PlanningContext::withGroup(const RobotState& reference, const Eigen::VectorXd& values) const {
+  RobotState state = reference;
+  state.setGroupPositions(group_, values);
+  return state;
+}
+
+std::vector<Eigen::Isometry3d> PlanningContext::sceneLinkPoses(const RobotState& state) const {
+  std::vector<Eigen::Isometry3d> poses;
+  poses.reserve(scene_link_to_model_.size());
+  for (int index : scene_link_to_model_) poses.push_back(state.linkTransform(index));
+  return poses;
+}
+
+JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
+  // Copies keep the callback valid after this context or the reference state are gone.
+  return [scene = scene_, self = *this, reference](const Eigen::VectorXd& q) {
+    return !scene->isColliding(self.sceneLinkPoses(self.withGroup(reference, q)));
+  };
+}
+
+JointValidityExplainFn PlanningContext::explainFn(const RobotState& reference) const {
+  return [scene = scene_, self = *this, reference](const Eigen::VectorXd& q) -> std::string {
+    const CollisionReport report = scene->checkCollision(self.sceneLinkPoses(self.withGroup(reference, q)));
+    std::string why;
+    std::set<std::pair<std::string, std::string>> pairs;
+    for (const Contact& c : report.contacts) {
+      if (pairs.insert({c.body1, c.body2}).second) {
+        why += (why.empty() ? "" : ", ") + c.body1 + " collides with " + c.body2;
+      }
+    }
+    return why;
+  };
+}
+
+PlanningProblem PlanningContext::problem(const RobotState& start, const PlanningOptions& options) const {
+  PlanningProblem p;
+  p.joints = joints_;
+  p.is_valid = validityFn(start);
+  p.explain_invalid = explainFn(start);
+  p.start = start.groupPositions(group_);
+  p.options = options;
+  return p;
+}
+
+PlanningResult PlanningContext::planToJoints(const RobotState& start, const Eigen::VectorXd& goal, double tolerance,
+                                             const PlanningOptions& options) const {
+  PlanningProblem p = problem(start, options);
+  p.joint_goal = JointGoal{goal, Eigen::VectorXd::Constant(goal.size(), tolerance)};
+  return plan(p);
+}
+
+PlanningResult PlanningContext::planToNamed(const RobotState& start, const std::string& name, double tolerance,
+                                            const PlanningOptions& options) const {
+  const GroupState* named = model_->findGroupState(group_, name);
+  if (!named) {
+    PlanningResult result;
+    result.status = PlanningStatus::kInvalidRequest;
+    result.message = "group '" + group_ + "' has no named state '" + name + "'; known:";
+    for (const GroupState& s : model_->groupStates()) {
+      if (s.group == group_) result.message += " '" + s.name + "'";
+    }
+    return result;
+  }
+  RobotState goal_state = start;
+  goal_state.setToNamedState(group_, name);
+  return planToJoints(start, goal_state.groupPositions(group_), tolerance, options);
+}
+
+SampledGoal PlanningContext::poseSampler(const RobotState& start, const Eigen::Isometry3d& tip_pose,
+                                         const PoseGoalOptions& pose_goal, const PlanningOptions& options) const {
+  struct SamplerState {
+    std::mt19937_64 rng;
+    int calls = 0;
+  };
+  auto state = std::make_shared<SamplerState>();
+  state->rng.seed(options.seed ? *options.seed : std::random_device()());
+  SampledGoal goal;
+  goal.max_states = pose_goal.max_states;
+  goal.max_calls = pose_goal.max_calls;
+  goal.sampler = [ik = ik_, joints = joints_, seed0 = start.groupPositions(group_), tip_pose, ik_options = pose_goal.ik,
+                  state](Eigen::VectorXd* out) {
+    IkOptions o = ik_options;
+    // The first solution is the one nearest the start; later ones start from random seeds to find other branches.
+    o.seed = seed0;
+    if (state->calls > 0) {
+      for (std::size_t i = 0; i < joints.size(); ++i) {
+        const double lo = joints[i].continuous ? -M_PI : joints[i].lower;
+        const double hi = joints[i].continuous ? M_PI : joints[i].upper;
+        o.seed[i] = std::uniform_real_distribution<double>(lo, hi)(state->rng);
+      }
+    }
+    o.random_seed = state->rng();
+    ++state->calls;
+    const IkResult r = ik->solve(tip_pose, o);
+    if (!r.success()) return false;
+    *out = r.solution;
+    return true;
+  };
+  return goal;
+}
+
+PlanningResult PlanningContext::planToPose(const RobotState& start, const Eigen::Isometry3d& tip_pose,
+                                           const PoseGoalOptions& pose_goal, const PlanningOptions& options) const {
+  if (!ik_) {
+    PlanningResult result;
+    result.status = PlanningStatus::kInvalidRequest;
+    result.message = "group '" + group_ + "' has no IK solver: pose goals are unavailable";
+    return result;
+  }
+  PlanningProblem p = problem(start, options);
+  p.sampled_goal = poseSampler(start, tip_pose, pose_goal, options);
+  return plan(p);
+}
+
+PlanningResult PlanningContext::planToPosition(const RobotState& start, const Eigen::Vector3d& tip_position,
+                                               const PoseGoalOptions& pose_goal,
+                                               const PlanningOptions& options) const {
+  PoseGoalOptions position_goal = pose_goal;
+  position_goal.ik.position_only = true;
+  Eigen::Isometry3d target = Eigen::Isometry3d::Identity();
+  target.translation() = tip_position;
+  return planToPose(start, target, position_goal, options);
+}
+
+CartesianPathResult PlanningContext::cartesianPath(const RobotState& start,
+                                                   const std::vector<Eigen::Isometry3d>& waypoints, double eef_step,
+                                                   const JumpThreshold& jump_threshold, bool avoid_collisions,
+                                                   const IkOptions& ik_options) const {
+  if (!ik_) {
+    CartesianPathResult result;
+    result.message = "group '" + group_ + "' has no IK solver: Cartesian paths are unavailable";
+    return result;
+  }
+  CartesianPathRequest request;
+  request.start = start.groupPositions(group_);
+  request.waypoints = waypoints;
+  request.eef_step = eef_step;
+  request.jump_threshold = jump_threshold;
+  request.avoid_collisions = avoid_collisions;
+  request.prismatic = prismatic_;
+  request.fk = [ik = ik_](const Eigen::VectorXd& q) { return ik->chain().forward(q); };
+  // Only the seed: random restarts would land on other branches, which is what jump detection is there to stop.
+  request.ik = [ik = ik_, ik_options](const Eigen::Isometry3d& target, const Eigen::VectorXd& seed,
+                                      Eigen::VectorXd* out) {
+    IkOptions o = ik_options;
+    o.seed = seed;
+    o.attempts = 1;
+    const IkResult r = ik->solve(target, o);
+    if (!r.success()) return false;
+    *out = r.solution;
+    return true;
+  };
+  request.is_valid = validityFn(start);
+  request.explain_invalid = explainFn(start);
+  return computeCartesianPath(request);
+}
+
+}  // namespace sixdof_core

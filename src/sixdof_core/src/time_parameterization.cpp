@@ -1,0 +1,456 @@
+#include "sixdof_core/time_parameterization.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace sixdof_core {
+namespace {
+
+// Limits used internally are this fraction of the requested ones, so that the curvature error of the
+// grid on blends (evaluated at interval ends only) cannot push a sampled state over a limit.
+constexpr double kLimitMargin = 0.999;
+// Waypoints closer than this (joint-space norm) are the same point.
+constexpr double kSamePoint = 1e-9;
+
+// One piece of the path: a straight line or a circular arc in joint space, parameterized by arc length.
+struct Segment {
+  bool circular = false;
+  double start = 0.0;   // arc length at the segment's start
+  double length = 0.0;
+  Eigen::VectorXd a;    // line: start point; arc: centre
+  Eigen::VectorXd x;    // line: unit direction; arc: unit vector centre -> arc start
+  Eigen::VectorXd y;    // arc: unit tangent at the arc start
+  double radius = 0.0;
+
+  Eigen::VectorXd position(double s) const {
+    if (!circular) return a + x * s;
+    const double angle = s / radius;
+    return a + radius * (x * std::cos(angle) + y * std::sin(angle));
+  }
+  Eigen::VectorXd tangent(double s) const {
+    if (!circular) return x;
+    const double angle = s / radius;
+    return -x * std::sin(angle) + y * std::cos(angle);
+  }
+  Eigen::VectorXd curvature(double s) const {
+    if (!circular) return Eigen::VectorXd::Zero(x.size());
+    const double angle = s / radius;
+    return -(x * std::cos(angle) + y * std::sin(angle)) / radius;
+  }
+};
+
+struct PathPoint {
+  double s = 0.0;
+  int segment = 0;         // segment of the interval that starts here (the last point: the last segment)
+  bool stop = false;       // path speed must be zero here (ends, sharp corners)
+};
+
+// Joint velocities are q' * sd and accelerations q' * sdd + q'' * sd^2 with x = sd^2 and u = sdd.
+struct Limits {
+  Eigen::VectorXd velocity;
+  Eigen::VectorXd acceleration;
+};
+
+// Intersects [*lo, *hi] with {x : -limit <= c0 + c1 * x <= limit}. Returns false when empty.
+bool intersect(double c0, double c1, double limit, double* lo, double* hi) {
+  const double tol = 1e-12 * (1.0 + limit);
+  if (std::abs(c1) < 1e-14) return std::abs(c0) <= limit + tol;
+  double a = (-limit - c0) / c1, b = (limit - c0) / c1;
+  if (a > b) std::swap(a, b);
+  *lo = std::max(*lo, a);
+  *hi = std::min(*hi, b);
+  return *lo <= *hi + tol;
+}
+
+class Solver {
+ public:
+  Solver(std::vector<Segment> segments, std::vector<PathPoint> grid, Limits limits)
+      : segments_(std::move(segments)), grid_(std::move(grid)), limits_(std::move(limits)) {
+    // Tangent and curvature at both ends of every interval, on the interval's own segment (a point on a
+    // segment boundary has one curvature per side).
+    ends_.resize(grid_.size() - 1);
+    for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
+      const Segment& seg = segmentOf(i);
+      for (int e = 0; e < 2; ++e) {
+        const double s = std::clamp(grid_[i + e].s - seg.start, 0.0, seg.length);
+        ends_[i].d1[e] = seg.tangent(s);
+        ends_[i].d2[e] = seg.curvature(s);
+      }
+    }
+  }
+
+  // Fills x_ (squared path speed per grid point) and the per-interval path acceleration u_.
+  void solve() {
+    const std::size_t n = grid_.size();
+    std::vector<double> limit(n);
+    for (std::size_t i = 0; i < n; ++i) limit[i] = grid_[i].stop ? 0.0 : pointLimit(i);
+    // Backward pass: the largest speed at each point from which the end can still be reached.
+    std::vector<double> upper(n);
+    upper[n - 1] = 0.0;
+    for (std::size_t i = n - 1; i-- > 0;) upper[i] = maxStart(i, limit[i], upper[i + 1]);
+    // Forward pass: accelerate as hard as allowed below the backward bound.
+    x_.assign(n, 0.0);
+    u_.assign(n - 1, 0.0);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      double lo = 0.0, hi = upper[i + 1];
+      // The feasible set of (x_i, x_i+1) is convex and holds (0, 0) and (upper_i, some x_i+1 <= upper_i+1),
+      // so from any x_i <= upper_i the interval is not empty (up to rounding).
+      transition(i, x_[i], &lo, &hi);
+      x_[i + 1] = std::max(0.0, hi);
+      u_[i] = (x_[i + 1] - x_[i]) / (2.0 * step(i));
+    }
+  }
+
+  Trajectory sample(const std::vector<std::string>& names, double period) const {
+    const std::size_t n = grid_.size();
+    std::vector<double> times(n, 0.0);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const double v = std::sqrt(x_[i]) + std::sqrt(x_[i + 1]);
+      times[i + 1] = times[i] + 2.0 * step(i) / v;
+    }
+    Trajectory trajectory;
+    trajectory.joint_names = names;
+    const double total = times.back();
+    std::vector<double> sample_times;
+    for (long k = 0; k * period < total - 1e-9; ++k) sample_times.push_back(k * period);
+    sample_times.push_back(total);
+    std::size_t interval = 0;
+    for (double t : sample_times) {
+      while (interval + 2 < n && times[interval + 1] <= t) ++interval;
+      trajectory.points.push_back(state(interval, t - times[interval], t));
+    }
+    std::fill(trajectory.points.back().velocities.begin(), trajectory.points.back().velocities.end(), 0.0);
+    return trajectory;
+  }
+
+ private:
+  double step(std::size_t i) const { return grid_[i + 1].s - grid_[i].s; }
+
+  const Segment& segmentOf(std::size_t interval) const { return segments_[grid_[interval].segment]; }
+
+  // Largest x at grid point p, for one adjacent interval, with some admissible acceleration.
+  double speedLimit(std::size_t interval, int end) const {
+    const Eigen::VectorXd& d1 = ends_[interval].d1[end];
+    const Eigen::VectorXd& d2 = ends_[interval].d2[end];
+    double x = std::numeric_limits<double>::infinity();
+    const Eigen::Index m = d1.size();
+    for (Eigen::Index j = 0; j < m; ++j) {
+      if (std::abs(d1[j]) > 1e-12) x = std::min(x, std::pow(limits_.velocity[j] / d1[j], 2));
+    }
+    // On a straight segment any x allows u = 0.
+    if (d2.isZero()) return x;
+    // u must lie in every joint's band [(-A - b x) / a, (A - b x) / a]; bands with a = 0 bound x directly.
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const double aj = d1[j], bj = d2[j], Aj = limits_.acceleration[j];
+      if (std::abs(aj) <= 1e-12) {
+        if (std::abs(bj) > 1e-12) x = std::min(x, Aj / std::abs(bj));
+        continue;
+      }
+      for (Eigen::Index k = 0; k < m; ++k) {
+        const double ak = d1[k], bk = d2[k], Ak = limits_.acceleration[k];
+        if (k == j || std::abs(ak) <= 1e-12) continue;
+        // lower_j(x) = (-Aj sgn aj - bj x) / aj <= upper_k(x) = (Ak sgn ak - bk x) / ak
+        const double l0 = -Aj / std::abs(aj), l1 = -bj / aj;
+        const double h0 = Ak / std::abs(ak), h1 = -bk / ak;
+        const double coeff = l1 - h1;
+        if (coeff > 1e-12) x = std::min(x, (h0 - l0) / coeff);
+      }
+    }
+    return x;
+  }
+
+  double pointLimit(std::size_t p) const {
+    double x = std::numeric_limits<double>::infinity();
+    if (p > 0) x = std::min(x, speedLimit(p - 1, 1));
+    if (p + 1 < grid_.size()) x = std::min(x, speedLimit(p, 0));
+    return x;
+  }
+
+  // Intersects [*lo, *hi] with the x_{i+1} that interval i allows after x_i = x: the constant path
+  // acceleration u = (x_{i+1} - x) / (2 ds) must respect every joint's acceleration limit at both ends.
+  bool transition(std::size_t i, double x, double* lo, double* hi) const {
+    const double h = 2.0 * step(i);
+    const Eigen::VectorXd& a0 = ends_[i].d1[0];
+    const Eigen::VectorXd& b0 = ends_[i].d2[0];
+    const Eigen::VectorXd& a1 = ends_[i].d1[1];
+    const Eigen::VectorXd& b1 = ends_[i].d2[1];
+    bool ok = true;
+    for (Eigen::Index j = 0; j < a0.size(); ++j) {
+      const double A = limits_.acceleration[j];
+      // Start: a0 (x' - x) / h + b0 x;  end: a1 (x' - x) / h + b1 x'.
+      ok &= intersect(-a0[j] * x / h + b0[j] * x, a0[j] / h, A, lo, hi);
+      ok &= intersect(-a1[j] * x / h, a1[j] / h + b1[j], A, lo, hi);
+    }
+    return ok;
+  }
+
+  // Largest x_i <= limit from which interval i can reach some x_{i+1} in [0, next_upper]. Every joint
+  // constraint reads -A <= p x_{i+1} + r x_i <= A, i.e. bounds x_{i+1} between lines in x_i; the answer
+  // is the largest x_i where every lower line stays under every upper line (a 2-D LP solved exactly).
+  double maxStart(std::size_t i, double limit, double next_upper) {
+    if (limit == 0.0) return 0.0;
+    const double h = 2.0 * step(i);
+    const Eigen::VectorXd& a0 = ends_[i].d1[0];
+    const Eigen::VectorXd& b0 = ends_[i].d2[0];
+    const Eigen::VectorXd& a1 = ends_[i].d1[1];
+    const Eigen::VectorXd& b1 = ends_[i].d2[1];
+    // Lines x_{i+1} = c + m x_i.
+    std::vector<std::pair<double, double>>& lower = lower_lines_;
+    std::vector<std::pair<double, double>>& upper = upper_lines_;
+    lower.assign(1, {0.0, 0.0});
+    upper.assign(1, {next_upper, 0.0});
+    double best = limit;
+    auto add = [&](double p, double r, double A) {
+      if (std::abs(p) < 1e-14) {
+        if (std::abs(r) > 1e-14) best = std::min(best, A / std::abs(r));
+        return;
+      }
+      std::pair<double, double> lo{-A / p, -r / p}, hi{A / p, -r / p};
+      if (p < 0.0) std::swap(lo, hi);
+      lower.push_back(lo);
+      upper.push_back(hi);
+    };
+    for (Eigen::Index j = 0; j < a0.size(); ++j) {
+      const double A = limits_.acceleration[j];
+      add(a0[j] / h, b0[j] - a0[j] / h, A);
+      add(a1[j] / h + b1[j], -a1[j] / h, A);
+    }
+    for (const auto& [lc, lm] : lower) {
+      for (const auto& [hc, hm] : upper) {
+        // lc + lm x <= hc + hm x; it holds at x = 0 ((0, 0) is feasible), so only a rising gap bounds x.
+        const double slope = lm - hm;
+        if (slope > 1e-14) best = std::min(best, (hc - lc) / slope);
+      }
+    }
+    return std::max(0.0, best);
+  }
+
+  static std::vector<double> toStd(const Eigen::VectorXd& v) {
+    return std::vector<double>(v.data(), v.data() + v.size());
+  }
+
+  TrajectoryPoint state(std::size_t i, double tau, double t) const {
+    const Segment& seg = segmentOf(i);
+    const double sd0 = std::sqrt(x_[i]);
+    const double ds = std::clamp(sd0 * tau + 0.5 * u_[i] * tau * tau, 0.0, step(i));
+    const double sd = std::max(0.0, sd0 + u_[i] * tau);
+    const double s = std::clamp(grid_[i].s + ds - seg.start, 0.0, seg.length);
+    TrajectoryPoint point;
+    point.time_from_start = t;
+    point.positions = toStd(seg.position(s));
+    const Eigen::VectorXd d1 = seg.tangent(s);
+    point.velocities = toStd(d1 * sd);
+    point.accelerations = toStd(d1 * u_[i] + seg.curvature(s) * sd * sd);
+    return point;
+  }
+
+  std::vector<Segment> segments_;
+  std::vector<PathPoint> grid_;
+  Limits limits_;
+  struct IntervalEnds {
+    Eigen::VectorXd d1[2];
+    Eigen::VectorXd d2[2];
+  };
+  std::vector<IntervalEnds> ends_;
+  std::vector<double> x_;
+  std::vector<double> u_;
+  std::vector<std::pair<double, double>> lower_lines_;  // maxStart's scratch space
+  std::vector<std::pair<double, double>> upper_lines_;
+};
+
+std::string checkInputs(const std::vector<std::string>& names, const std::vector<std::vector<double>>& waypoints,
+                        const TimeParameterizationOptions& o) {
+  std::ostringstream msg;
+  const std::size_t n = names.size();
+  if (n == 0) return "no joint names";
+  if (std::set<std::string>(names.begin(), names.end()).size() != n) return "duplicate joint names";
+  if (waypoints.empty()) return "no waypoints";
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    if (waypoints[i].size() != n) {
+      msg << "waypoint " << i << " has " << waypoints[i].size() << " values for " << n << " joints";
+      return msg.str();
+    }
+    for (double v : waypoints[i]) {
+      if (!std::isfinite(v)) {
+        msg << "waypoint " << i << " is not finite";
+        return msg.str();
+      }
+    }
+  }
+  if (o.max_velocity.size() != n || o.max_acceleration.size() != n) {
+    msg << "max_velocity and max_acceleration need " << n << " values (got " << o.max_velocity.size() << " and "
+        << o.max_acceleration.size() << ")";
+    return msg.str();
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!std::isfinite(o.max_velocity[j]) || o.max_velocity[j] <= 0.0) {
+      msg << "max_velocity of " << names[j] << " must be > 0 and finite, got " << o.max_velocity[j];
+      return msg.str();
+    }
+    if (!std::isfinite(o.max_acceleration[j]) || o.max_acceleration[j] <= 0.0) {
+      msg << "max_acceleration of " << names[j] << " must be > 0 and finite, got " << o.max_acceleration[j];
+      return msg.str();
+    }
+  }
+  if (!(o.velocity_scaling > 0.0 && o.velocity_scaling <= 1.0)) {
+    msg << "velocity scaling factor must be in (0, 1], got " << o.velocity_scaling;
+    return msg.str();
+  }
+  if (!(o.acceleration_scaling > 0.0 && o.acceleration_scaling <= 1.0)) {
+    msg << "acceleration scaling factor must be in (0, 1], got " << o.acceleration_scaling;
+    return msg.str();
+  }
+  if (!std::isfinite(o.max_deviation) || o.max_deviation < 0.0) {
+    msg << "max_deviation must be >= 0 and finite, got " << o.max_deviation;
+    return msg.str();
+  }
+  if (!std::isfinite(o.sample_period) || o.sample_period <= 0.0) {
+    msg << "sample_period must be > 0 and finite, got " << o.sample_period;
+    return msg.str();
+  }
+  if (!std::isfinite(o.path_resolution) || o.path_resolution <= 0.0) {
+    msg << "path_resolution must be > 0 and finite, got " << o.path_resolution;
+    return msg.str();
+  }
+  return "";
+}
+
+Segment line(const Eigen::VectorXd& from, const Eigen::VectorXd& to) {
+  Segment seg;
+  seg.length = (to - from).norm();
+  seg.a = from;
+  seg.x = (to - from) / seg.length;
+  return seg;
+}
+
+// Lines between waypoints with a circular blend at each interior corner (Kunz & Stilman's construction),
+// and the arc-length positions where the path must stop (corners that cannot be blended).
+void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation, std::vector<Segment>* segments,
+               std::vector<double>* stops) {
+  const std::size_t m = points.size();
+  // Trim at each interior corner: how much of each adjacent line the blend replaces.
+  std::vector<double> trim(m, 0.0);
+  std::vector<Segment> arcs(m);
+  std::vector<bool> blended(m, false), sharp(m, false);
+  for (std::size_t i = 1; i + 1 < m; ++i) {
+    const Eigen::VectorXd in = (points[i] - points[i - 1]).normalized();
+    const Eigen::VectorXd out = (points[i + 1] - points[i]).normalized();
+    const double angle = std::acos(std::clamp(in.dot(out), -1.0, 1.0));
+    if (angle < 1e-9) continue;  // straight through
+    const double half = 0.5 * angle;
+    const double by_deviation = max_deviation * std::sin(half) / (1.0 - std::cos(half));
+    const double length = std::min({0.5 * (points[i] - points[i - 1]).norm(),
+                                    0.5 * (points[i + 1] - points[i]).norm(), by_deviation});
+    const double radius = length / std::tan(half);
+    if (angle > M_PI - 1e-6 || length < 1e-9 || radius < 1e-9) {
+      sharp[i] = true;
+      continue;
+    }
+    trim[i] = length;
+    Segment& arc = arcs[i];
+    arc.circular = true;
+    arc.radius = radius;
+    const Eigen::VectorXd start = points[i] - in * length;
+    arc.a = points[i] + (out - in).normalized() * (radius / std::cos(half));
+    arc.x = (start - arc.a).normalized();
+    arc.y = in;
+    arc.length = radius * angle;
+    blended[i] = true;
+  }
+  double s = 0.0;
+  for (std::size_t i = 0; i + 1 < m; ++i) {
+    const Eigen::VectorXd dir = (points[i + 1] - points[i]).normalized();
+    const Eigen::VectorXd from = points[i] + dir * trim[i];
+    const Eigen::VectorXd to = points[i + 1] - dir * trim[i + 1];
+    if ((to - from).norm() > kSamePoint) {
+      Segment seg = line(from, to);
+      seg.start = s;
+      s += seg.length;
+      segments->push_back(seg);
+    }
+    if (blended[i + 1]) {
+      Segment arc = arcs[i + 1];
+      arc.start = s;
+      s += arc.length;
+      segments->push_back(arc);
+    } else if (sharp[i + 1]) {
+      stops->push_back(s);
+    }
+  }
+}
+
+}  // namespace
+
+TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::string>& joint_names,
+                                                        const std::vector<std::vector<double>>& waypoints,
+                                                        const TimeParameterizationOptions& options) {
+  TimeParameterizationResult result;
+  result.message = checkInputs(joint_names, waypoints, options);
+  if (!result.message.empty()) {
+    result.message = "time parameterization: " + result.message;
+    return result;
+  }
+  const std::size_t n = joint_names.size();
+  std::vector<Eigen::VectorXd> points;
+  for (const auto& w : waypoints) {
+    const Eigen::VectorXd p = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(n));
+    // Repeated waypoints add no path: dropping them changes nothing.
+    if (points.empty() || (p - points.back()).norm() > kSamePoint) points.push_back(p);
+  }
+  result.status = TimeParameterizationStatus::kSuccess;
+  result.trajectory.joint_names = joint_names;
+  if (points.size() == 1) {
+    TrajectoryPoint rest;
+    rest.positions = waypoints.front();
+    rest.velocities.assign(n, 0.0);
+    rest.accelerations.assign(n, 0.0);
+    result.trajectory.points.push_back(rest);
+    return result;
+  }
+
+  std::vector<Segment> segments;
+  std::vector<double> stops;
+  buildPath(points, options.max_deviation, &segments, &stops);
+
+  // Grid: every segment split into equal steps no longer than the resolution (at least two, so that a
+  // segment between two stops has an interior point to move through). On a blend the step also turns
+  // the tangent by at most kMaxStepAngle: the limits hold at interval ends, and between them the error
+  // grows with the square of that angle (1e-2 rad: ~1e-5 of a limit, well inside the margin).
+  constexpr double kMaxStepAngle = 0.01;
+  std::vector<PathPoint> grid;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const Segment& seg = segments[k];
+    const double max_step =
+        seg.circular ? std::min(options.path_resolution, kMaxStepAngle * seg.radius) : options.path_resolution;
+    const int steps = std::max(2, static_cast<int>(std::ceil(seg.length / max_step)));
+    for (int i = 0; i < steps; ++i) grid.push_back(PathPoint{seg.start + seg.length * i / steps, static_cast<int>(k)});
+  }
+  grid.push_back(PathPoint{segments.back().start + segments.back().length, static_cast<int>(segments.size() - 1)});
+  grid.front().stop = true;
+  grid.back().stop = true;
+  for (double stop : stops) {
+    for (PathPoint& p : grid) {
+      if (std::abs(p.s - stop) < 1e-12) p.stop = true;
+    }
+  }
+
+  Limits limits;
+  limits.velocity = Eigen::Map<const Eigen::VectorXd>(options.max_velocity.data(), static_cast<Eigen::Index>(n)) *
+                    (options.velocity_scaling * kLimitMargin);
+  limits.acceleration =
+      Eigen::Map<const Eigen::VectorXd>(options.max_acceleration.data(), static_cast<Eigen::Index>(n)) *
+      (options.acceleration_scaling * kLimitMargin);
+  Solver solver(std::move(segments), std::move(grid), std::move(limits));
+  solver.solve();
+  result.trajectory = solver.sample(joint_names, options.sample_period);
+  // Exact end points (the path's own ends differ by rounding only).
+  result.trajectory.points.front().positions = waypoints.front();
+  result.trajectory.points.back().positions = std::vector<double>(points.back().data(), points.back().data() + n);
+  return result;
+}
+
+}  // namespace sixdof_core

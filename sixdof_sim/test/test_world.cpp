@@ -191,6 +191,25 @@ TEST_F(WorldTest, SpawnDeleteAndTeleportObjects) {
   EXPECT_EQ(world.deleteObject("ball").status, Status::kUnknownObject);
 }
 
+TEST_F(WorldTest, MeshObjectsAreConvexHullsInTheMeshFrame) {
+  // A 40 mm box in millimetres whose frame origin is the centre of its bottom face.
+  ObjectSpec mesh;
+  mesh.name = "mesh_box";
+  mesh.shape.type = ShapeType::kMesh;
+  mesh.shape.mesh_resource = "package://sixdof_sim/test/data/box40_bottom_origin.stl";
+  mesh.shape.mesh_scale = Eigen::Vector3d::Constant(0.001);
+  mesh.mass = 0.1;
+  mesh.pose.translation() = Eigen::Vector3d(0.2, 0.35, 0.1);
+  ASSERT_TRUE(world.spawnObject(mesh).ok()) << world.spawnObject(mesh).message;
+  world.step(1500);
+  ObjectState state;
+  ASSERT_TRUE(world.objectState("mesh_box", &state).ok());
+  // Resting on the table: the frame (bottom face) at z = 0, upright.
+  EXPECT_NEAR(state.spec.pose.translation().z(), 0.0, 2e-3);
+  EXPECT_NEAR(state.spec.pose.translation().x(), 0.2, 1e-3);
+  EXPECT_GT(state.spec.pose.linear()(2, 2), 0.9999);
+}
+
 TEST_F(WorldTest, MarkersDoNotCollide) {
   ObjectState marker;
   ASSERT_TRUE(world.objectState("place_marker", &marker).ok());

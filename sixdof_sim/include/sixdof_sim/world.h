@@ -29,7 +29,9 @@ Result validateObjectSpec(const ObjectSpec& spec);
 
 struct WorldOptions {
   double time_step = 0.001;    // s, fixed physics step
-  int solver_iterations = 50;  // Bullet constraint solver iterations per step
+  // Bullet constraint solver iterations per step. 20 keeps every world test passing with margin
+  // (they pass with 10 too) at ~1.7x the speed of 50.
+  int solver_iterations = 20;
   // Servo position gain (1/s) of kPosition mode: time constant 1/gain. gain * time_step must be <= 1.
   double position_gain = 100.0;
   // Directories that package://<pkg>/<path> URIs resolve against: <root>/<pkg>/<path>, first match.

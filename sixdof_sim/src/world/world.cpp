@@ -28,6 +28,10 @@ namespace {
 constexpr double kMargin = 0.001;
 // Friction of robot links without <gazebo><mu1> (Gazebo's default mu is 1).
 constexpr double kDefaultLinkFriction = 1.0;
+// Objects at rest (below these speeds for 2 s) sleep until something touches them: resting objects
+// then cost no solver time, and sit exactly still.
+constexpr double kSleepLinearVelocity = 0.005;
+constexpr double kSleepAngularVelocity = 0.02;
 // Mimic coupling: position error correction per step and force bound (N or N m; far above any
 // joint effort limit so the coupling does not give).
 constexpr double kGearErp = 0.2;
@@ -582,7 +586,7 @@ Result World::Impl::addObject(const ObjectSpec& object_spec) {
   ci.m_spinningFriction = 1e-4;
   object->body = std::make_unique<btRigidBody>(ci);
   object->body->setWorldTransform(toBt(object_spec.pose * object->frame_to_body));
-  object->body->setActivationState(DISABLE_DEACTIVATION);
+  object->body->setSleepingThresholds(kSleepLinearVelocity, kSleepAngularVelocity);
   object->body->setUserIndex(kObjectBody);
   int group = btBroadphaseProxy::DefaultFilter;
   int mask = btBroadphaseProxy::AllFilter;
@@ -1126,6 +1130,7 @@ Result World::setObjectState(const std::string& name, const Eigen::Isometry3d& p
   object->body->setLinearVelocity(toBt(twist.linear + twist.angular.cross(com - pose.translation())));
   object->body->setAngularVelocity(toBt(twist.angular));
   object->body->clearForces();
+  object->body->activate(true);
   // Static bodies have no motion integration: the broadphase must learn the new pose now.
   d.world->updateSingleAabb(object->body.get());
   return Result::success();

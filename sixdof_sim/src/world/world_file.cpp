@@ -106,16 +106,17 @@ class Parser {
 
   ObjectSpec object(const YAML::Node& node, const std::string& context, bool table) const {
     ObjectSpec spec;
-    if (table) {
-      checkKeys(node, context, {"name", "size", "position", "rpy", "friction", "restitution", "color"});
-    } else {
-      checkKeys(node, context,
-                {"name", "shape", "size", "radius", "length", "mesh", "scale", "position", "rpy", "mass", "static",
-                 "collision", "friction", "restitution", "color"});
-    }
+    if (!node.IsMap()) fail(node, context, "must be a mapping");
     if (!node["name"]) fail(node, context, "'name' is required");
     spec.name = text(node["name"], context, "name");
     const std::string named = context + " (" + spec.name + ")";
+    if (table) {
+      checkKeys(node, named, {"name", "size", "position", "rpy", "friction", "restitution", "color"});
+    } else {
+      checkKeys(node, named,
+                {"name", "shape", "size", "radius", "length", "mesh", "scale", "position", "rpy", "mass", "static",
+                 "collision", "friction", "restitution", "color"});
+    }
     const std::string shape = table ? "box" : (node["shape"] ? text(node["shape"], named, "shape") : "");
     auto require = [&](const char* key) {
       if (!node[key]) fail(node, named, "a " + shape + " needs '" + key + "'");

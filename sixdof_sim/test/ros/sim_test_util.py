@@ -29,7 +29,8 @@ def trajectory_goal(
 
 
 class JointStateListener:
-    """Keeps the latest joint_states message."""
+    """Keeps the latest joint_states message. A free-running simulator publishes far faster than rospy
+    delivers, so the latest message may lag: checks wait for a condition instead of reading once."""
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
@@ -43,10 +44,33 @@ class JointStateListener:
     def positions(self, joints: list[str]) -> list[float]:
         deadline = rospy.Time.now() + rospy.Duration(30.0)
         while self._msg is None and rospy.Time.now() < deadline and not rospy.is_shutdown():
-            rospy.sleep(0.01)
+            rospy.rostime.wallsleep(0.01)
         with self._lock:
             by_name = dict(zip(self._msg.name, self._msg.position, strict=True))
         return [by_name[j] for j in joints]
+
+    def wait_near(self, joints: list[str], target: list[float], tolerance: float, timeout: float = 10.0) -> bool:
+        """Whether all joints come within tolerance of target within timeout simulated seconds."""
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        while not rospy.is_shutdown():
+            if all(abs(a - t) < tolerance for a, t in zip(self.positions(joints), target, strict=True)):
+                return True
+            if rospy.Time.now() > deadline:
+                return False
+            rospy.rostime.wallsleep(0.01)
+        return False
+
+    def settled(self, joints: list[str], still: float = 1e-4, timeout: float = 10.0) -> list[float]:
+        """Positions once two readings 0.2 simulated seconds apart differ by less than `still`."""
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        previous = self.positions(joints)
+        while rospy.Time.now() < deadline and not rospy.is_shutdown():
+            rospy.sleep(0.2)
+            current = self.positions(joints)
+            if all(abs(a - b) < still for a, b in zip(current, previous, strict=True)):
+                return current
+            previous = current
+        raise AssertionError(f"joints {joints} did not come to rest")
 
 
 class GraspEventListener:
@@ -61,7 +85,7 @@ class GraspEventListener:
         while rospy.Time.now() < deadline and not rospy.is_shutdown():
             if any(e.event == event and e.object == obj for e in self.events):
                 return True
-            rospy.sleep(0.01)
+            rospy.rostime.wallsleep(0.01)
         return False
 
 

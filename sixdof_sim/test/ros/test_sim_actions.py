@@ -53,9 +53,9 @@ class SimActionsTest(unittest.TestCase):
         self.assertEqual(result.error_code, code, result.error_string)
         self.assertIn(text, result.error_string)
 
-    def assert_near(self, actual: list[float], expected: list[float], tolerance: float) -> None:
-        for a, e in zip(actual, expected, strict=True):
-            self.assertLess(abs(a - e), tolerance, f"{actual} != {expected}")
+    def assert_reaches(self, joints: list[str], expected: list[float], tolerance: float) -> None:
+        reached = self.joints.wait_near(joints, expected, tolerance)
+        self.assertTrue(reached, f"{self.joints.positions(joints)} != {expected}")
 
     def test_trajectory_reaches_the_goal(self) -> None:
         feedback = []
@@ -64,7 +64,7 @@ class SimActionsTest(unittest.TestCase):
         self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
         self.assertEqual(self.arm.get_state(), GoalStatus.SUCCEEDED)
         self.assertEqual(self.arm.get_result().error_code, FollowJointTrajectoryResult.SUCCESSFUL)
-        self.assert_near(self.joints.positions(ARM_JOINTS), TARGET, 0.011)
+        self.assert_reaches(ARM_JOINTS, TARGET, 0.011)
         self.assertGreater(len(feedback), 10)
         self.assertEqual(feedback[-1].joint_names, ARM_JOINTS)
 
@@ -74,7 +74,7 @@ class SimActionsTest(unittest.TestCase):
         goal = trajectory_goal(order, [(list(reversed(mid)), 1.0), (list(reversed(TARGET)), 2.0)], False)
         state, result = self.run_goal(goal)
         self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
-        self.assert_near(self.joints.positions(ARM_JOINTS), TARGET, 0.011)
+        self.assert_reaches(ARM_JOINTS, TARGET, 0.011)
 
     def test_invalid_joints(self) -> None:
         goal = trajectory_goal(ARM_JOINTS[:5] + ["elbow"], [(TARGET, 1.0)])
@@ -118,7 +118,7 @@ class SimActionsTest(unittest.TestCase):
         state, result = self.run_goal(trajectory_goal(ARM_JOINTS, [(TARGET_B, 2.0)]))
         self.assertEqual(first.get_goal_status(), GoalStatus.PREEMPTED)
         self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
-        self.assert_near(self.joints.positions(ARM_JOINTS), TARGET_B, 0.011)
+        self.assert_reaches(ARM_JOINTS, TARGET_B, 0.011)
 
     def test_cancel_holds_position(self) -> None:
         self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 2.0)]))
@@ -126,10 +126,9 @@ class SimActionsTest(unittest.TestCase):
         self.arm.cancel_goal()
         self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
         self.assertEqual(self.arm.get_state(), GoalStatus.PREEMPTED)
-        rospy.sleep(0.5)
-        held = self.joints.positions(ARM_JOINTS)
+        held = self.joints.settled(ARM_JOINTS)
         rospy.sleep(1.0)
-        self.assert_near(self.joints.positions(ARM_JOINTS), held, 0.005)
+        self.assertTrue(self.joints.wait_near(ARM_JOINTS, held, 0.005, timeout=0.0))
         self.assertGreater(abs(held[0]), 0.05)  # it had moved, and stopped short of the target
         self.assertLess(abs(held[0]), abs(TARGET[0]) - 0.02)
 
@@ -138,7 +137,7 @@ class SimActionsTest(unittest.TestCase):
         self.assert_rejected(goal, FollowJointTrajectoryResult.INVALID_GOAL, "mimics", self.fingers)
         state, result = self.run_goal(trajectory_goal(FINGER_JOINTS, [([0.03, 0.03], 1.0)]), self.fingers)
         self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
-        self.assert_near(self.joints.positions(FINGER_JOINTS), [0.03, 0.03], 0.0025)
+        self.assert_reaches(FINGER_JOINTS, [0.03, 0.03], 0.0025)
 
     def test_bad_requests_leave_the_node_serving(self) -> None:
         bad = SimObject(name="box", shape=SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.1]), mass=0.1)

@@ -77,7 +77,7 @@ class SimGraspTest(unittest.TestCase):
         state, result, _ = self.gripper_goal(0.03)
         self.assertEqual(state, GoalStatus.SUCCEEDED)
         self.assertTrue(result.reached_goal)
-        self.assertAlmostEqual(self.joints.positions(FINGER_JOINTS)[1], 0.03, delta=0.0025)
+        self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.03, 0.03], 0.0025))
 
     def test_grasp_lift_release(self) -> None:
         state, result, _ = self.gripper_goal(0.04)

@@ -9,6 +9,7 @@ Private parameters:
   ~position_threshold  MOVE an object when it moved more than this (m, 0.001)
   ~angle_threshold     ... or turned more than this (rad, 0.01)
   ~grace               seconds to leave a grasp-fix attach/detach to the script that caused it (0.5)
+  ~support_clearance   static objects (the table the robot stands on) are mirrored this much lower (m, 0.002)
   ~world_file          world YAML; its objects with `collision: false` are not mirrored ('' : none)
   ~ignore              object names never mirrored ([])
 """
@@ -16,6 +17,7 @@ Private parameters:
 import math
 import sys
 import time
+from xml.etree import ElementTree
 
 import rospy
 import yaml
@@ -55,16 +57,25 @@ class SceneMirrorNode:
         if world_file:
             with open(world_file, encoding="utf-8") as stream:
                 self.skip |= non_colliding_objects(yaml.safe_load(stream))
-        urdf = parse_urdf(rospy.get_param("robot_description"))
+        urdf_text = rospy.get_param("robot_description")
+        urdf = parse_urdf(urdf_text)
+        # Links without collision geometry can touch nothing, and the planner's collision scene does not know
+        # them: touch links are the links that have geometry.
+        colliding = {
+            link.get("name")
+            for link in ElementTree.fromstring(urdf_text).iter("link")
+            if link.find("collision") is not None
+        }
         srdf = parse_srdf(rospy.get_param("robot_description_semantic"))
         planning_frame = srdf.virtual_joint_parent or urdf.root_link
         self.mirror = SceneMirror(
             shapes={},
             planning_frame=planning_frame,
-            touch_links=lambda link: default_touch_links(urdf, srdf, link),
+            touch_links=lambda link: [t for t in default_touch_links(urdf, srdf, link) if t in colliding],
             position_threshold=positive_param("~position_threshold", 0.001),
             angle_threshold=positive_param("~angle_threshold", 0.01),
             grace=positive_param("~grace", 0.5),
+            support_clearance=positive_param("~support_clearance", 0.002),
         )
         for service in ("sixdof_sim/get_object_state", "get_planning_scene", "apply_planning_scene"):
             rospy.loginfo("scene_mirror: waiting for %s", rospy.resolve_name(service))
@@ -89,6 +100,8 @@ class SceneMirrorNode:
             self.mirror.shapes[name] = template_from_sim_object(
                 response.object, lambda uri, scale: load_stl(resolve_resource(uri), scale)
             )
+            if response.object.is_static:
+                self.mirror.static.add(name)
             rospy.loginfo("scene_mirror: mirroring '%s'", name)
 
     def cycle(self) -> None:

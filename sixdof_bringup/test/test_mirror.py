@@ -162,3 +162,14 @@ def test_non_colliding_objects_from_the_world_file():
     assert non_colliding_objects(world) == {"marker"}
     with pytest.raises(ValueError, match="objects"):
         non_colliding_objects({"objects": {"name": "x"}})
+
+
+def test_static_objects_are_mirrored_lowered_by_the_support_clearance():
+    mirror = make_mirror()
+    mirror.shapes["table"] = cube_template()
+    mirror.static.add("table")
+    (added,) = mirror.update([SimObjectState("table", pose(0.2, 0.0, -0.375), "")], scene(), now=0.0).world_objects
+    assert added.pose.position.z == pytest.approx(-0.377)
+    # The lowered pose is the mirrored one: no MOVE back and forth.
+    known = scene(world={"table": added.pose})
+    assert mirror.update([SimObjectState("table", pose(0.2, 0.0, -0.375), "")], known, now=1.0).empty()

@@ -7,6 +7,7 @@ and detaches the object it grasps) are respected rather than fought over.
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -81,6 +82,8 @@ class SceneMirror:
     Attaching and detaching wait `grace` seconds after the simulator changed, so that a script managing
     its own grasps (ArmDriver) does it first; the mirror only repairs what nobody else did.
     Objects the mirror added that disappear from the simulator are removed from the scene.
+    Static objects (names in `static`: tables, walls) are mirrored support_clearance lower: the robot stands
+    on the table, and the planning-scene message has no allowed-collision entries to let base_link touch it.
     """
 
     def __init__(
@@ -91,6 +94,7 @@ class SceneMirror:
         position_threshold: float = 0.001,
         angle_threshold: float = 0.01,
         grace: float = 0.5,
+        support_clearance: float = 0.002,
     ) -> None:
         if not planning_frame:
             raise ValueError("planning_frame must be a non-empty frame name")
@@ -100,15 +104,24 @@ class SceneMirror:
         self.position_threshold = _check_threshold(position_threshold, "position_threshold")
         self.angle_threshold = _check_threshold(angle_threshold, "angle_threshold")
         self.grace = _check_threshold(grace, "grace")
+        self.support_clearance = _check_threshold(support_clearance, "support_clearance")
+        self.static: set[str] = set()
         self.managed: set[str] = set()
         self._mismatch_since: dict[str, float] = {}
+
+    def _scene_pose(self, name: str, pose: Pose) -> Pose:
+        if name not in self.static:
+            return pose
+        lowered = copy.deepcopy(pose)
+        lowered.position.z -= self.support_clearance
+        return lowered
 
     def _placed(self, name: str, pose: Pose, operation: int) -> CollisionObject:
         template = self.shapes[name]
         obj = CollisionObject()
         obj.header.frame_id = self.planning_frame
         obj.id = name
-        obj.pose = pose
+        obj.pose = self._scene_pose(name, pose)
         obj.operation = operation
         if operation == CollisionObject.ADD:
             obj.primitives = list(template.primitives)
@@ -145,7 +158,7 @@ class SceneMirror:
                 updates.world_objects.append(self._placed(state.name, state.pose, CollisionObject.ADD))
                 self.managed.add(state.name)
             elif (
-                position_distance(known, state.pose) > self.position_threshold
+                position_distance(known, self._scene_pose(state.name, state.pose)) > self.position_threshold
                 or rotation_angle(known, state.pose) > self.angle_threshold
             ):
                 updates.world_objects.append(self._placed(state.name, state.pose, CollisionObject.MOVE))

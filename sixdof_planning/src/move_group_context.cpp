@@ -1,6 +1,7 @@
 #include "sixdof_planning/move_group_context.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
 
 #include <sixdof_core/time_parameterization.h>
@@ -63,9 +64,10 @@ sixdof_core::IkOptions MoveGroupContext::ikOptions(const std::string& group) con
 }
 
 ErrorCode MoveGroupContext::currentState(const std::string& source, sixdof_core::RobotState* state) const {
-  std::string missing;
+  std::vector<std::string> missing;
   if (!state_monitor_->currentState(config_.joint_state_timeout, state, &missing)) {
-    return makeError(ErrorCode::ROBOT_STATE_STALE, "no joint_states received for joints: " + missing, source);
+    return makeError(ErrorCode::ROBOT_STATE_STALE, "no joint_states received for joints " + joinNames(missing),
+                     source);
   }
   return makeSuccess(source);
 }
@@ -83,11 +85,19 @@ ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg
   size_t active_given = 0;
   for (const auto& name : joint_state.name) active_given += model_->joint(name).isActive() ? 1 : 0;
   if (active_given < model_->variableCount()) {
-    std::string missing;
+    std::vector<std::string> missing;
     if (!state_monitor_->currentState(config_.joint_state_timeout, state, &missing)) {
-      return makeError(ErrorCode::ROBOT_STATE_STALE,
-                       "no joint_states received for joints " + missing + " and " + what + " does not set them",
-                       source);
+      std::vector<std::string> needed;
+      for (const auto& name : missing) {
+        if (std::find(joint_state.name.begin(), joint_state.name.end(), name) == joint_state.name.end()) {
+          needed.push_back(name);
+        }
+      }
+      if (!needed.empty()) {
+        return makeError(ErrorCode::ROBOT_STATE_STALE,
+                         what + " does not set joints " + joinNames(needed) + " and no joint_states were received for them",
+                         source);
+      }
     }
   }
   for (size_t i = 0; i < joint_state.name.size(); ++i) {

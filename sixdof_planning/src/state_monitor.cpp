@@ -25,30 +25,34 @@ void CurrentStateMonitor::update(const sensor_msgs::JointState& msg) {
   changed_.notify_all();
 }
 
-std::string CurrentStateMonitor::missingJoints() const {
-  std::string missing;
+std::vector<std::string> CurrentStateMonitor::missingJoints() const {
+  std::vector<std::string> missing;
   for (const auto& name : model_->variableNames()) {
-    if (!positions_.count(name)) missing += (missing.empty() ? "" : ", ") + name;
+    if (!positions_.count(name)) missing.push_back(name);
   }
   return missing;
 }
 
-bool CurrentStateMonitor::currentState(double timeout, sixdof_core::RobotState* state, std::string* missing) const {
+bool CurrentStateMonitor::currentState(double timeout, sixdof_core::RobotState* state,
+                                       std::vector<std::string>* missing) const {
   std::unique_lock<std::mutex> lock(mutex_);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
-  std::string absent = missingJoints();
+  std::vector<std::string> absent = missingJoints();
   while (!absent.empty() && changed_.wait_until(lock, deadline) != std::cv_status::timeout) {
     absent = missingJoints();
   }
   absent = missingJoints();
+  Eigen::VectorXd positions = state->positions();
+  for (size_t i = 0; i < model_->variableCount(); ++i) {
+    const auto it = positions_.find(model_->variableNames()[i]);
+    if (it != positions_.end()) positions[i] = it->second;
+  }
+  lock.unlock();
+  state->setPositions(positions);
   if (!absent.empty()) {
     if (missing) *missing = absent;
     return false;
   }
-  Eigen::VectorXd positions(model_->variableCount());
-  for (size_t i = 0; i < model_->variableCount(); ++i) positions[i] = positions_.at(model_->variableNames()[i]);
-  lock.unlock();
-  state->setPositions(positions);
   return true;
 }
 

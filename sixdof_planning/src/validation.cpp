@@ -128,12 +128,13 @@ ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, co
                      name + " has unknown operation " + std::to_string(static_cast<int>(object.operation)), source);
   }
   if (object.operation == Op::REMOVE) return makeSuccess(source);
+  const bool shapeless = object.primitives.empty() && object.meshes.empty();
+  // Attaching an existing object by id: its pose stays what the scene has, so the message's is not used.
+  if (shapeless && !shapes_required && object.operation == Op::ADD) return makeSuccess(source);
   ErrorCode code = validatePose(object.pose, name + " pose", source);
   if (!isSuccess(code)) return code;
   if (object.operation == Op::MOVE) return makeSuccess(source);
-  if (shapes_required && object.primitives.empty() && object.meshes.empty()) {
-    return makeError(ErrorCode::INVALID_REQUEST, name + " has no primitives and no meshes", source);
-  }
+  if (shapeless) return makeError(ErrorCode::INVALID_REQUEST, name + " has no primitives and no meshes", source);
   if (object.primitive_poses.size() != object.primitives.size()) {
     return makeError(ErrorCode::INVALID_REQUEST,
                      name + " has " + std::to_string(object.primitives.size()) + " primitives but " +

@@ -40,7 +40,7 @@ class ConfigErrorsTest(unittest.TestCase):
             check=False,
         )
 
-    def assertRefused(self, params: dict, *fragments: str) -> None:
+    def assert_refused(self, params: dict, *fragments: str) -> None:
         result = self.start(params)
         output = result.stdout + result.stderr
         self.assertEqual(result.returncode, 1, output)
@@ -51,41 +51,41 @@ class ConfigErrorsTest(unittest.TestCase):
     def test_missing_semantic_description(self) -> None:
         params = dict(self.good)
         del params["robot_description_semantic"]
-        self.assertRefused(params, "robot_description_semantic")
+        self.assert_refused(params, "robot_description_semantic")
 
     def test_malformed_urdf(self) -> None:
         params = dict(self.good, robot_description="<robot name='x'><link name=")
-        self.assertRefused(params, "robot_description")
+        self.assert_refused(params, "robot_description")
 
     def test_unknown_ik_solver(self) -> None:
         kinematics = yaml.safe_load(yaml.safe_dump(self.good["robot_description_kinematics"]))
         kinematics["arm"]["kinematics_solver"] = "magic"
-        self.assertRefused(dict(self.good, robot_description_kinematics=kinematics), "'magic'", "arm")
+        self.assert_refused(dict(self.good, robot_description_kinematics=kinematics), "'magic'", "arm")
 
     def test_kinematics_for_unknown_group(self) -> None:
         kinematics = yaml.safe_load(yaml.safe_dump(self.good["robot_description_kinematics"]))
         kinematics["leg"] = dict(kinematics["arm"])
-        self.assertRefused(dict(self.good, robot_description_kinematics=kinematics), "'leg'")
+        self.assert_refused(dict(self.good, robot_description_kinematics=kinematics), "'leg'")
 
     def test_missing_acceleration_limit(self) -> None:
         planning = yaml.safe_load(yaml.safe_dump(self.good["robot_description_planning"]))
         planning["joint_limits"]["joint3"]["has_acceleration_limits"] = False
-        self.assertRefused(dict(self.good, robot_description_planning=planning), "joint3", "acceleration")
+        self.assert_refused(dict(self.good, robot_description_planning=planning), "joint3", "acceleration")
 
     def test_missing_controller_list(self) -> None:
         params = dict(self.good)
         del params["controller_list"]
-        self.assertRefused(params, "controller_list")
+        self.assert_refused(params, "controller_list")
 
     def test_controller_with_unknown_joint(self) -> None:
         controllers = yaml.safe_load(yaml.safe_dump(self.good["controller_list"]))
         controllers[0]["joints"].append("joint9")
-        self.assertRefused(dict(self.good, controller_list=controllers), "'joint9'", "arm_controller")
+        self.assert_refused(dict(self.good, controller_list=controllers), "'joint9'", "arm_controller")
 
     def test_joint_in_two_controllers(self) -> None:
         controllers = yaml.safe_load(yaml.safe_dump(self.good["controller_list"]))
         controllers[1]["joints"].append("joint1")
-        self.assertRefused(dict(self.good, controller_list=controllers), "'joint1'", "more than one controller")
+        self.assert_refused(dict(self.good, controller_list=controllers), "'joint1'", "more than one controller")
 
     def test_negative_planning_time(self) -> None:
         result = self.start(dict(self.good, **{"move_group/default_planning_time": -1.0}))

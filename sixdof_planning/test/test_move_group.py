@@ -2,6 +2,7 @@
 """rostest of the move_group node against the real robot description and a FollowJointTrajectory fixture
 (trajectory_fixture.py) that plays trajectories onto joint_states."""
 
+import itertools
 import math
 import sys
 import unittest
@@ -13,6 +14,8 @@ import rostest
 from geometry_msgs.msg import Pose, Quaternion
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
 from sixdof_msgs.msg import (
     CollisionObject,
     Constraints,
@@ -39,15 +42,15 @@ from sixdof_msgs.srv import (
     GetPositionIK,
     GetStateValidity,
 )
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 PKG = "sixdof_planning"
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 # The paper's poses of link6 in base_link (rpy fixed axes, degrees).
 PAPER_HOME = ((0.366, 0.000, 0.286), (-180.0, 0.688, 179.995))
 PAPER_TARGET = ((-0.568, 0.058, 0.396), (-133.151, 35.219, 1.048))
-# A folded arm: the forearm swung back onto the upper arm and the base (found by sampling, see the report).
-SELF_COLLIDING = {"joint1": 0.0, "joint2": 0.0, "joint3": 2.6, "joint4": 0.0, "joint5": 2.1, "joint6": 0.0}
+# The elbow folded back so far that the forearm (link4) hits the shoulder (link1); found by sampling the
+# node's check_state_validity over joint2/joint3/joint5.
+SELF_COLLIDING = {"joint1": 0.0, "joint2": 0.15, "joint3": 1.87, "joint4": 0.0, "joint5": -1.12, "joint6": 0.0}
 FIXTURE = "/trajectory_fixture"
 
 
@@ -99,7 +102,9 @@ def joint_goal(values: dict, tolerance: float = 1e-4) -> Constraints:
     goal = Constraints()
     for name, value in values.items():
         goal.joint_constraints.append(
-            JointConstraint(joint_name=name, position=value, tolerance_above=tolerance, tolerance_below=tolerance, weight=1)
+            JointConstraint(
+                joint_name=name, position=value, tolerance_above=tolerance, tolerance_below=tolerance, weight=1
+            )
         )
     return goal
 
@@ -148,7 +153,7 @@ class MoveGroupTest(unittest.TestCase):
         cls.limits = rospy.get_param("robot_description_planning/joint_limits")
 
     # --- helpers ---------------------------------------------------------------------------------------
-    def assertCode(self, code: MoveItErrorCodes, expected: int, *fragments: str) -> None:
+    def assert_code(self, code: MoveItErrorCodes, expected: int, *fragments: str) -> None:
         self.assertEqual(code.val, expected, f"got {code.val}: {code.message} (source {code.source})")
         for fragment in fragments:
             self.assertIn(fragment, code.message)
@@ -156,11 +161,11 @@ class MoveGroupTest(unittest.TestCase):
 
     def current(self) -> dict:
         msg = rospy.wait_for_message("joint_states", JointState, timeout=10.0)
-        return dict(zip(msg.name, msg.position))
+        return dict(zip(msg.name, msg.position, strict=True))
 
     def link_pose(self, values: dict, link: str = "link6") -> Pose:
         response = self.fk(fk_link_names=[link], robot_state=robot_state(values))
-        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         return response.pose_stamped[0].pose
 
     def plan_request(self, goal: Constraints, group: str = "arm") -> MotionPlanRequest:
@@ -173,7 +178,7 @@ class MoveGroupTest(unittest.TestCase):
 
     def plan_to(self, values: dict, group: str = "arm") -> object:
         response = self.plan(motion_plan_request=self.plan_request(joint_goal(values), group)).motion_plan_response
-        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         return response
 
     def execute_trajectory(self, trajectory: JointTrajectory) -> MoveItErrorCodes:
@@ -185,9 +190,9 @@ class MoveGroupTest(unittest.TestCase):
 
     def move_to(self, values: dict, group: str = "arm") -> None:
         code = self.execute_trajectory(self.plan_to(values, group).trajectory.joint_trajectory)
-        self.assertCode(code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(code, MoveItErrorCodes.SUCCESS)
 
-    def assertServing(self) -> None:
+    def assert_serving(self) -> None:
         self.link_pose(self.states[("arm", "home pose")])
 
     # --- kinematics ----------------------------------------------------------------------------------
@@ -205,8 +210,8 @@ class MoveGroupTest(unittest.TestCase):
             request.pose_stamped.header.frame_id = "base_link"
             request.pose_stamped.pose = paper_pose(which)
             response = self.ik(ik_request=request)
-            self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
-            values = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position))
+            self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
+            values = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True))
             pose = self.link_pose({n: values[n] for n in ARM})
             self.assertAlmostEqual(pose.position.x, which[0][0], delta=1e-4)
             self.assertAlmostEqual(pose.position.y, which[0][1], delta=1e-4)
@@ -221,24 +226,26 @@ class MoveGroupTest(unittest.TestCase):
         trajectory = response.trajectory.joint_trajectory
         self.assertEqual(trajectory.joint_names, ARM)
         self.assertGreater(len(trajectory.points), 2)
-        for name, value in zip(trajectory.joint_names, trajectory.points[0].positions):
+        for name, value in zip(trajectory.joint_names, trajectory.points[0].positions, strict=True):
             self.assertAlmostEqual(value, current[name], delta=1e-6)
-        for name, value in zip(trajectory.joint_names, trajectory.points[-1].positions):
+        for name, value in zip(trajectory.joint_names, trajectory.points[-1].positions, strict=True):
             self.assertAlmostEqual(value, goal_values[name], delta=1e-3)
         times = [p.time_from_start.to_sec() for p in trajectory.points]
         self.assertEqual(times[0], 0.0)
-        self.assertTrue(all(b > a for a, b in zip(times, times[1:])), "times must increase strictly")
+        self.assertTrue(all(b > a for a, b in itertools.pairwise(times)), "times must increase strictly")
         for point in trajectory.points:
             self.assertEqual(len(point.velocities), len(ARM))
-            for name, velocity in zip(trajectory.joint_names, point.velocities):
+            for name, velocity in zip(trajectory.joint_names, point.velocities, strict=True):
                 self.assertLessEqual(abs(velocity), self.limits[name]["max_velocity"] * 1.01)
-        start = dict(zip(response.trajectory_start.joint_state.name, response.trajectory_start.joint_state.position))
+        start = dict(
+            zip(response.trajectory_start.joint_state.name, response.trajectory_start.joint_state.position, strict=True)
+        )
         for name in ARM:
             self.assertAlmostEqual(start[name], current[name], delta=1e-6)
 
     def test_11_plan_to_named_state_by_name_and_to_a_pose(self) -> None:
         response = self.plan(motion_plan_request=self.plan_request(Constraints(name="after pick pose")))
-        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(response.motion_plan_response.error_code, MoveItErrorCodes.SUCCESS)
         goal = Constraints()
         target = paper_pose(PAPER_TARGET)
         position = PositionConstraint(link_name="link6", position=target.position, tolerance=1e-4, weight=1)
@@ -250,8 +257,8 @@ class MoveGroupTest(unittest.TestCase):
         goal.position_constraints.append(position)
         goal.orientation_constraints.append(orientation)
         response = self.plan(motion_plan_request=self.plan_request(goal)).motion_plan_response
-        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
-        last = dict(zip(ARM, response.trajectory.joint_trajectory.points[-1].positions))
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
+        last = dict(zip(ARM, response.trajectory.joint_trajectory.points[-1].positions, strict=True))
         pose = self.link_pose(last)
         self.assertAlmostEqual(pose.position.x, target.position.x, delta=1e-3)
         self.assertAlmostEqual(pose.position.z, target.position.z, delta=1e-3)
@@ -264,23 +271,23 @@ class MoveGroupTest(unittest.TestCase):
         request.header.frame_id = "base_link"
         request.start_state.is_diff = True
         response = self.cartesian(request)
-        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         self.assertAlmostEqual(response.fraction, 1.0, delta=1e-9)
         self.assertGreaterEqual(len(response.solution.joint_trajectory.points), 10)
-        end = self.link_pose(dict(zip(ARM, response.solution.joint_trajectory.points[-1].positions)))
+        end = self.link_pose(dict(zip(ARM, response.solution.joint_trajectory.points[-1].positions, strict=True)))
         self.assertAlmostEqual(end.position.z, down.position.z, delta=1e-4)
         # Half of the path leads out of reach: the fraction stops short of 1 and the call still succeeds.
         far = Pose(orientation=start.orientation)
         far.position.x, far.position.y, far.position.z = 2.0, 0.0, start.position.z
         request.waypoints = [down, far]
         response = self.cartesian(request)
-        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         self.assertGreaterEqual(response.fraction, 0.5)
         self.assertLess(response.fraction, 1.0)
 
     def test_13_check_state_validity_detects_self_collision(self) -> None:
         response = self.validity(robot_state=robot_state(SELF_COLLIDING), group_name="arm")
-        self.assertCode(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         self.assertFalse(response.valid)
         self.assertTrue(response.contacts)
         robot_links = {"base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2"}
@@ -300,7 +307,7 @@ class MoveGroupTest(unittest.TestCase):
         objects = self.get_scene().scene.world.collision_objects
         self.assertEqual([o.id for o in objects], ["blocker"])
         plan = self.plan(motion_plan_request=self.plan_request(joint_goal(goal_values))).motion_plan_response
-        self.assertCode(plan.error_code, MoveItErrorCodes.GOAL_IN_COLLISION)
+        self.assert_code(plan.error_code, MoveItErrorCodes.GOAL_IN_COLLISION)
         validity = self.validity(robot_state=robot_state(goal_values), group_name="arm")
         self.assertFalse(validity.valid)
         self.assertIn("blocker", {validity.contacts[0].contact_body_1, validity.contacts[0].contact_body_2})
@@ -309,7 +316,7 @@ class MoveGroupTest(unittest.TestCase):
         scene.world.collision_objects.append(removal)
         self.assertTrue(self.apply_scene(scene=scene).success)
         plan = self.plan(motion_plan_request=self.plan_request(joint_goal(goal_values))).motion_plan_response
-        self.assertCode(plan.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(plan.error_code, MoveItErrorCodes.SUCCESS)
 
     # --- execution -----------------------------------------------------------------------------------
     def test_20_execute_trajectory_reaches_the_goal(self) -> None:
@@ -331,7 +338,7 @@ class MoveGroupTest(unittest.TestCase):
         end = [current["joint1"] + 0.1, 0.01]
         for t, values in ((0.0, start), (1.0, end)):
             trajectory.points.append(JointTrajectoryPoint(positions=values, time_from_start=rospy.Duration(t)))
-        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.SUCCESS)
+        self.assert_code(self.execute_trajectory(trajectory), MoveItErrorCodes.SUCCESS)
         current = self.current()
         self.assertAlmostEqual(current["joint1"], end[0], delta=1e-4)
         self.assertAlmostEqual(current["finger1_joint"], 0.01, delta=1e-4)
@@ -344,7 +351,7 @@ class MoveGroupTest(unittest.TestCase):
         first[1] += 0.05
         for t in (0.0, 1.0):
             trajectory.points.append(JointTrajectoryPoint(positions=first, time_from_start=rospy.Duration(t)))
-        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.CONTROL_FAILED, "deviates", "joint2")
+        self.assert_code(self.execute_trajectory(trajectory), MoveItErrorCodes.CONTROL_FAILED, "deviates", "joint2")
 
     def test_23_slow_controller_times_out(self) -> None:
         trajectory = self.plan_to(self.states[("arm", "home pose")]).trajectory.joint_trajectory
@@ -353,7 +360,7 @@ class MoveGroupTest(unittest.TestCase):
             code = self.execute_trajectory(trajectory)
         finally:
             rospy.set_param(FIXTURE + "/slowdown", 1.0)
-        self.assertCode(code, MoveItErrorCodes.TIMED_OUT, "Controller is taking too long")
+        self.assert_code(code, MoveItErrorCodes.TIMED_OUT, "Controller is taking too long")
 
     def test_24_controller_error_is_reported(self) -> None:
         trajectory = self.plan_to(self.states[("arm", "home pose")]).trajectory.joint_trajectory
@@ -362,8 +369,13 @@ class MoveGroupTest(unittest.TestCase):
             code = self.execute_trajectory(trajectory)
         finally:
             rospy.set_param(FIXTURE + "/fail_with", "")
-        self.assertCode(code, MoveItErrorCodes.CONTROL_FAILED, "fixture says joint3 missed its goal",
-                        "GOAL_TOLERANCE_VIOLATED", "arm_controller")
+        self.assert_code(
+            code,
+            MoveItErrorCodes.CONTROL_FAILED,
+            "fixture says joint3 missed its goal",
+            "GOAL_TOLERANCE_VIOLATED",
+            "arm_controller",
+        )
 
     def test_25_move_group_action_plans_and_executes(self) -> None:
         goal = MoveGroupGoal()
@@ -372,14 +384,14 @@ class MoveGroupTest(unittest.TestCase):
         self.move_group.send_goal(goal)
         self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
         result = self.move_group.get_result()
-        self.assertCode(result.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(result.error_code, MoveItErrorCodes.SUCCESS)
         self.assertTrue(result.planned_trajectory.joint_trajectory.points)
         self.assertFalse(result.executed_trajectory.joint_trajectory.points)
         goal.planning_options.plan_only = False
         self.move_group.send_goal(goal)
         self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
         result = self.move_group.get_result()
-        self.assertCode(result.error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_code(result.error_code, MoveItErrorCodes.SUCCESS)
         self.assertTrue(result.executed_trajectory.joint_trajectory.points)
         current = self.current()
         for name in ARM:
@@ -396,48 +408,58 @@ class MoveGroupTest(unittest.TestCase):
         pose = paper_pose(PAPER_HOME)
         pose.position.y = float("nan")
         code = self.ik(ik_request=self.ik_request(pose)).error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_REQUEST, "position.y", "nan")
+        self.assert_code(code, MoveItErrorCodes.INVALID_REQUEST, "position.y", "nan")
         pose = paper_pose(PAPER_HOME)
         pose.position.z = float("inf")
-        self.assertCode(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.INVALID_REQUEST, "inf")
+        self.assert_code(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.INVALID_REQUEST, "inf")
         pose = paper_pose(PAPER_HOME)
         pose.orientation.w *= 1.1
         pose.orientation.x *= 1.1
         pose.orientation.y *= 1.1
         pose.orientation.z *= 1.1
         code = self.ik(ik_request=self.ik_request(pose)).error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_REQUEST, "unit quaternion")
+        self.assert_code(code, MoveItErrorCodes.INVALID_REQUEST, "unit quaternion")
         # Within the 1e-3 tolerance the quaternion is accepted.
         pose = paper_pose(PAPER_HOME)
         pose.orientation.w *= 1.0004
-        self.assertCode(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.SUCCESS)
-        self.assertServing()
+        self.assert_code(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.SUCCESS)
+        self.assert_serving()
 
     def test_31_unknown_group_link_joint_and_state(self) -> None:
         code = self.ik(ik_request=self.ik_request(paper_pose(PAPER_HOME), group="leg")).error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'leg'", "'arm'")
+        self.assert_code(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'leg'", "'arm'")
         code = self.fk(fk_link_names=["link9"], robot_state=RobotState()).error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_LINK_NAME, "'link9'")
+        self.assert_code(code, MoveItErrorCodes.INVALID_LINK_NAME, "'link9'")
         request = self.ik_request(paper_pose(PAPER_HOME))
         request.ik_link_name = "link3"
-        self.assertCode(self.ik(ik_request=request).error_code, MoveItErrorCodes.INVALID_LINK_NAME, "'link3'")
+        self.assert_code(self.ik(ik_request=request).error_code, MoveItErrorCodes.INVALID_LINK_NAME, "'link3'")
         response = self.plan(motion_plan_request=self.plan_request(Constraints(name="dance pose")))
-        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS,
-                        "'dance pose'", "'home pose'")
+        self.assert_code(
+            response.motion_plan_response.error_code,
+            MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS,
+            "'dance pose'",
+            "'home pose'",
+        )
         response = self.plan(motion_plan_request=self.plan_request(joint_goal({"joint7": 0.0})))
-        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS, "'joint7'")
+        self.assert_code(
+            response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS, "'joint7'"
+        )
         response = self.plan(motion_plan_request=self.plan_request(joint_goal({"finger1_joint": 0.0})))
-        self.assertCode(response.motion_plan_response.error_code, MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS,
-                        "'finger1_joint'", "'arm'")
+        self.assert_code(
+            response.motion_plan_response.error_code,
+            MoveItErrorCodes.INVALID_GOAL_CONSTRAINTS,
+            "'finger1_joint'",
+            "'arm'",
+        )
         code = self.fk(fk_link_names=["link6"], robot_state=robot_state({"elbow": 1.0})).error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_ROBOT_STATE, "'elbow'")
+        self.assert_code(code, MoveItErrorCodes.INVALID_ROBOT_STATE, "'elbow'")
         code = self.fk(fk_link_names=["link6"], robot_state=robot_state({"joint2": float("nan")})).error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_ROBOT_STATE, "'joint2'")
+        self.assert_code(code, MoveItErrorCodes.INVALID_ROBOT_STATE, "'joint2'")
         request = MotionPlanRequest(group_name="wing")
         request.goal_constraints.append(Constraints(name="home pose"))
         code = self.plan(motion_plan_request=request).motion_plan_response.error_code
-        self.assertCode(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'wing'")
-        self.assertServing()
+        self.assert_code(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'wing'")
+        self.assert_serving()
 
     def test_32_scaling_factors_outside_zero_one(self) -> None:
         for field in ("max_velocity_scaling_factor", "max_acceleration_scaling_factor"):
@@ -445,27 +467,29 @@ class MoveGroupTest(unittest.TestCase):
                 request = self.plan_request(joint_goal(self.states[("arm", "home pose")]))
                 setattr(request, field, value)
                 code = self.plan(motion_plan_request=request).motion_plan_response.error_code
-                self.assertCode(code, MoveItErrorCodes.INVALID_REQUEST, field, "(0, 1]")
+                self.assert_code(code, MoveItErrorCodes.INVALID_REQUEST, field, "(0, 1]")
         request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
         request.max_velocity_scaling_factor = 2.0
-        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST,
-                        "max_velocity_scaling_factor")
-        self.assertServing()
+        self.assert_code(
+            self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "max_velocity_scaling_factor"
+        )
+        self.assert_serving()
 
     def test_33_cartesian_path_bad_requests(self) -> None:
         request = GetCartesianPathRequest(group_name="arm", waypoints=[], max_step=0.01)
-        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "waypoints is empty")
+        self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "waypoints is empty")
         pose = paper_pose(PAPER_HOME)
         pose.orientation.w = 0.0
         pose.orientation.x = pose.orientation.y = pose.orientation.z = 0.0
         request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME), pose], max_step=0.01)
-        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "waypoints[1]",
-                        "unit quaternion")
+        self.assert_code(
+            self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "waypoints[1]", "unit quaternion"
+        )
         request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.0)
-        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "max_step")
+        self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.INVALID_REQUEST, "max_step")
         request = GetCartesianPathRequest(group_name="gripper", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
-        self.assertCode(self.cartesian(request).error_code, MoveItErrorCodes.NO_IK_SOLUTION, "'gripper'")
-        self.assertServing()
+        self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.NO_IK_SOLUTION, "'gripper'")
+        self.assert_serving()
 
     def test_34_malformed_collision_objects(self) -> None:
         def apply(obj: CollisionObject) -> MoveItErrorCodes:
@@ -477,35 +501,35 @@ class MoveGroupTest(unittest.TestCase):
 
         obj = box("flat", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
         obj.primitives[0].dimensions = [0.1, 0.1]
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'flat'", "3 dimensions")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'flat'", "3 dimensions")
         obj = box("negative", (1.0, 1.0, 0.5), (0.1, -0.1, 0.1))
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'negative'", "non-positive")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'negative'", "non-positive")
         obj = box("", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_OBJECT_NAME, "empty id")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_OBJECT_NAME, "empty id")
         obj = box("posed", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
         obj.primitive_poses = []
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'posed'", "primitive_poses")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'posed'", "primitive_poses")
         obj = box("tilted", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
         obj.pose.orientation.w = 2.0
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'tilted'", "unit quaternion")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'tilted'", "unit quaternion")
         obj = box("shapeless", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1))
         obj.primitives, obj.primitive_poses = [], []
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'shapeless'", "no primitives")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_REQUEST, "'shapeless'", "no primitives")
         obj = box("elsewhere", (1.0, 1.0, 0.5), (0.1, 0.1, 0.1), frame="moon")
-        self.assertCode(apply(obj), MoveItErrorCodes.FRAME_TRANSFORM_FAILURE, "'moon'")
+        self.assert_code(apply(obj), MoveItErrorCodes.FRAME_TRANSFORM_FAILURE, "'moon'")
         obj = CollisionObject(id="ghost", operation=CollisionObject.REMOVE)
-        self.assertCode(apply(obj), MoveItErrorCodes.INVALID_OBJECT_NAME, "'ghost'")
+        self.assert_code(apply(obj), MoveItErrorCodes.INVALID_OBJECT_NAME, "'ghost'")
         # Nothing of the rejected requests reached the scene.
         self.assertEqual(self.get_scene().scene.world.collision_objects, [])
-        self.assertServing()
+        self.assert_serving()
 
     def test_35_execute_rejects_malformed_trajectories(self) -> None:
         trajectory = JointTrajectory(joint_names=["joint1", "knee"])
         trajectory.points.append(JointTrajectoryPoint(positions=[0.0, 0.0], time_from_start=rospy.Duration(0.0)))
-        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN, "'knee'")
+        self.assert_code(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN, "'knee'")
         trajectory = JointTrajectory(joint_names=ARM)
-        self.assertCode(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN)
-        self.assertServing()
+        self.assert_code(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN)
+        self.assert_serving()
 
 
 if __name__ == "__main__":

@@ -154,7 +154,8 @@ TEST_F(ValidationTest, SceneStoreAttachesAndDetachesInPlace) {
   attach.object.id = "cube";
   attach.object.operation = sixdof_msgs::CollisionObject::ADD;
   attach.touch_links = {"palm", "finger1", "finger2"};
-  ASSERT_TRUE(isSuccess(copy.applyAttachedObject(attach, state, kSource)));
+  const auto attached = copy.applyAttachedObject(attach, state, kSource);
+  ASSERT_TRUE(isSuccess(attached)) << attached.message;
   EXPECT_TRUE(copy.worldObjects().empty());
   ASSERT_EQ(copy.attachedObjects().size(), 1u);
   EXPECT_EQ(copy.attachedObjects()[0].object.header.frame_id, "link6");
@@ -162,7 +163,8 @@ TEST_F(ValidationTest, SceneStoreAttachesAndDetachesInPlace) {
   EXPECT_TRUE(store.attachedObjects().empty());
   // Detached at the same state, it is back where it was.
   attach.object.operation = sixdof_msgs::CollisionObject::REMOVE;
-  ASSERT_TRUE(isSuccess(copy.applyAttachedObject(attach, state, kSource)));
+  const auto detached = copy.applyAttachedObject(attach, state, kSource);
+  ASSERT_TRUE(isSuccess(detached)) << detached.message;
   ASSERT_EQ(copy.worldObjects().size(), 1u);
   EXPECT_NEAR(copy.worldObjects()[0].pose.position.x, 0.5, 1e-12);
   EXPECT_NEAR(copy.worldObjects()[0].pose.position.z, 0.2, 1e-12);
@@ -218,3 +220,8 @@ TEST_F(ValidationTest, FramesAreThePlanningFrameItsParentOrALink) {
 
 }  // namespace
 }  // namespace sixdof_planning
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -15,6 +15,7 @@ import threading
 import actionlib
 import rospy
 from sensor_msgs.msg import JointState
+
 from sixdof_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult
 
 JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "finger1_joint", "finger2_joint"]
@@ -41,16 +42,22 @@ class TrajectoryFixture:
             )
             server.start()
             self._servers.append((controller, server))
-        self._timer = rospy.Timer(rospy.Duration(1.0 / RATE_HZ), self._publish)
 
     def _server(self, controller: str) -> actionlib.SimpleActionServer:
         return dict(self._servers)[controller]
 
-    def _publish(self, _event: object) -> None:
-        with self._lock:
-            msg = JointState(name=list(JOINTS), position=[self._positions[n] for n in JOINTS])
-        msg.header.stamp = rospy.Time.now()
-        self._publisher.publish(msg)
+    def run(self) -> None:
+        """Publishes joint_states until shutdown."""
+        rate = rospy.Rate(RATE_HZ)
+        while not rospy.is_shutdown():
+            with self._lock:
+                msg = JointState(name=list(JOINTS), position=[self._positions[n] for n in JOINTS])
+            msg.header.stamp = rospy.Time.now()
+            self._publisher.publish(msg)
+            try:
+                rate.sleep()
+            except rospy.ROSInterruptException:
+                return
 
     def _execute(self, controller: str, joints: list, goal: object) -> None:
         server = self._server(controller)
@@ -93,16 +100,15 @@ class TrajectoryFixture:
             values = points[-1].positions
         else:
             a = (t - times[i - 1]) / (times[i] - times[i - 1])
-            values = [p0 + a * (p1 - p0) for p0, p1 in zip(points[i - 1].positions, points[i].positions)]
+            values = [p0 + a * (p1 - p0) for p0, p1 in zip(points[i - 1].positions, points[i].positions, strict=True)]
         with self._lock:
-            for name, value in zip(trajectory.joint_names, values):
+            for name, value in zip(trajectory.joint_names, values, strict=True):
                 self._positions[name] = value
 
 
 def main() -> None:
     rospy.init_node("trajectory_fixture")
-    TrajectoryFixture()
-    rospy.spin()
+    TrajectoryFixture().run()
 
 
 if __name__ == "__main__":

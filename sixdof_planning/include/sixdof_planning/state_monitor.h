@@ -3,6 +3,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <vector>
 #include <condition_variable>
 
 #include <ros/ros.h>
@@ -19,8 +20,9 @@ class CurrentStateMonitor {
   CurrentStateMonitor(ros::NodeHandle& nh, sixdof_core::RobotModelConstPtr model, const std::string& topic);
 
   // The current state once every active joint has been heard of, waiting up to `timeout` seconds for the
-  // missing ones. False (and *missing lists them) when some joint was never received.
-  bool currentState(double timeout, sixdof_core::RobotState* state, std::string* missing) const;
+  // missing ones. False (and *missing lists them) when some joint was never received; the joints that were
+  // received are set on *state all the same.
+  bool currentState(double timeout, sixdof_core::RobotState* state, std::vector<std::string>* missing) const;
   // Time of the latest joint_states message (zero before the first).
   ros::Time lastUpdate() const;
 
@@ -28,7 +30,7 @@ class CurrentStateMonitor {
   void update(const sensor_msgs::JointState& msg);
 
  private:
-  std::string missingJoints() const;  // with mutex_ held
+  std::vector<std::string> missingJoints() const;  // with mutex_ held
 
   sixdof_core::RobotModelConstPtr model_;
   ros::Subscriber subscriber_;

@@ -315,6 +315,26 @@ TEST_F(TrajectoryControllerTest, HeaderStampSchedulesTheTrajectory) {
   EXPECT_NEAR(now - start, 2.0, 2 * kDt);
 }
 
+TEST_F(TrajectoryControllerTest, PointsAlreadyInThePastAreSkipped) {
+  TrajectoryGoal g;
+  g.joint_names = {"j1", "j2"};
+  g.points = {{{0.9, 0.0}, {}, {}, 1.0}, {{0.5, 0.0}, {}, {}, 3.0}};
+  g.start_time = now - 2.0;  // the first point is 1 s in the past, the last 1 s ahead
+  ASSERT_TRUE(c.setGoal(g, now).ok());
+  const double start = now;
+  double highest = 0.0;
+  TrajectoryUpdate u;
+  while (!u.finished && now < start + 5.0) {
+    u = c.update(now, plant.q, plant.v);
+    plant.apply(u.desired);
+    highest = std::max(highest, plant.q[0]);
+    now += kDt;
+  }
+  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_NEAR(now - start, 1.0, 5 * kDt);  // fixed steps accumulate round-off in `now`
+  EXPECT_NEAR(highest, 0.5, 1e-9);  // straight from the current state to the last point
+}
+
 TEST(TrajectoryControllerConfig, BadConfigThrows) {
   TrajectoryControllerConfig c = twoJointConfig();
   c.joints = {"j1", "j1"};

@@ -161,9 +161,9 @@ void SimNode::stepOnce() {
     msg.palm_link = e.palm_link;
     msg.gripper_links = e.gripper_links;
     grasp_event_pub_.publish(msg);
-    ROS_INFO_STREAM("[sixdof_sim] " << (msg.event == sixdof_msgs::GraspEvent::ATTACHED ? "attached '" : "detached '")
-                                    << e.object << "' " << (msg.event == sixdof_msgs::GraspEvent::ATTACHED ? "to" : "from")
-                                    << " " << e.palm_link);
+    const bool attached = msg.event == sixdof_msgs::GraspEvent::ATTACHED;
+    ROS_INFO_STREAM("[sixdof_sim] " << (attached ? "attached '" : "detached '") << e.object << "' "
+                                    << (attached ? "to " : "from ") << e.palm_link);
   }
   if (now() + 1e-9 >= next_publish_) {
     next_publish_ = now() + 1.0 / options_.publish_rate;

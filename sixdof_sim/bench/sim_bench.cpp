@@ -2,10 +2,11 @@
 // sinusoidal joint trajectory, the gripper opening and closing, the default world's objects plus
 // extra ones up to --objects dynamic objects, and the process's peak memory.
 //
-//   sim_bench [--urdf FILE] [--world FILE] [--seconds SIM_SECONDS] [--objects N] [--no-grasp-fix]
+//   sim_bench [--urdf FILE] [--world FILE] [--package-root DIR] [--seconds SIM_SECONDS] [--objects N]
+//             [--no-grasp-fix]
 //
-// Defaults: the installed sixdof_description URDF and sixdof_sim's worlds/table_top.yaml, 20 s of
-// simulated time, 5 dynamic objects.
+// Defaults: the installed sixdof_description URDF and sixdof_sim's worlds/table_top.yaml, package://
+// URIs resolved in the install space's share directory, 20 s of simulated time, 5 dynamic objects.
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -60,7 +61,8 @@ double cpuSeconds() {
 
 int usage(const char* argv0) {
   std::cerr << "usage: " << argv0
-            << " [--urdf FILE] [--world FILE] [--seconds SIM_SECONDS] [--objects N] [--no-grasp-fix]\n";
+            << " [--urdf FILE] [--world FILE] [--package-root DIR] [--seconds SIM_SECONDS] [--objects N]"
+               " [--no-grasp-fix]\n";
   return 2;
 }
 
@@ -69,6 +71,7 @@ int usage(const char* argv0) {
 int main(int argc, char** argv) {
   std::string urdf_path;
   std::string world_path;
+  std::string package_root;
   double seconds = 20.0;
   int dynamic_objects = 5;
   bool grasp_fix = true;
@@ -79,6 +82,8 @@ int main(int argc, char** argv) {
       urdf_path = argv[++i];
     } else if (arg == "--world" && has_value) {
       world_path = argv[++i];
+    } else if (arg == "--package-root" && has_value) {
+      package_root = argv[++i];
     } else if (arg == "--seconds" && has_value) {
       seconds = std::stod(argv[++i]);
     } else if (arg == "--objects" && has_value) {
@@ -108,7 +113,7 @@ int main(int argc, char** argv) {
   }
 
   WorldOptions options;
-  options.package_search_roots = {shareDir().string()};
+  options.package_search_roots = {package_root.empty() ? shareDir().string() : package_root};
   options.grasp_fix_enabled = grasp_fix;
   std::string grasp_note = grasp_fix ? "on (URDF block)" : "off";
   if (grasp_fix && !sixdof_sim::parseGraspFixConfig(urdf)) {
@@ -136,7 +141,8 @@ int main(int argc, char** argv) {
   world.setPreStepCallback([&](double t) {
     for (size_t j = 0; j < arm.size(); ++j) {
       const double phase = omega * t + 0.7 * static_cast<double>(j);
-      check(world.setPositionTarget(arm[j], centre[j] + amplitude * std::sin(phase), amplitude * omega * std::cos(phase)));
+      check(world.setPositionTarget(arm[j], centre[j] + amplitude * std::sin(phase),
+                                    amplitude * omega * std::cos(phase)));
     }
     check(world.setPositionTarget("finger1_joint", 0.02 + 0.015 * std::sin(2.0 * omega * t)));
   });

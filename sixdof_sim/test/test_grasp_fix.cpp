@@ -94,7 +94,8 @@ class GraspLogic : public ::testing::Test {
   }
 
   // Runs steps of 1 ms from `t` for `seconds`; returns the decisions' events with times.
-  std::vector<std::pair<double, std::string>> run(double* t, double seconds, const std::vector<GraspContact>& contacts) {
+  std::vector<std::pair<double, std::string>> run(double* t, double seconds,
+                                                  const std::vector<GraspContact>& contacts) {
     std::vector<std::pair<double, std::string>> events;
     const int steps = static_cast<int>(std::lround(seconds * 1000));
     for (int i = 0; i < steps; ++i) {
@@ -187,8 +188,17 @@ TEST_F(GraspLogic, ForgetAndResetDropState) {
 
 class GraspWorld : public ::testing::Test {
  protected:
-  explicit GraspWorld(bool grasp_fix = true)
-      : world(test::robotUrdf(), loadWorldFile(test::defaultWorldPath()), test::options(grasp_fix)) {}
+  explicit GraspWorld(bool grasp_fix = true, double cube_mass = 0.0)
+      : world(test::robotUrdf(), worldSpec(cube_mass), test::options(grasp_fix)) {}
+
+  // The default world, with red_cube's mass changed when cube_mass > 0.
+  static WorldSpec worldSpec(double cube_mass) {
+    WorldSpec spec = loadWorldFile(test::defaultWorldPath());
+    for (ObjectSpec& o : spec.objects) {
+      if (o.name == "red_cube" && cube_mass > 0.0) o.mass = cube_mass;
+    }
+    return spec;
+  }
 
   Eigen::Vector3d cubePosition() {
     ObjectState state;
@@ -300,10 +310,18 @@ TEST_F(GraspWorld, DisablingTheFixReleasesTheObject) {
   EXPECT_EQ(events[0].type, GraspEvent::Type::kDetached);
 }
 
-// A weak grip (0.5 N per finger, mu 0.8: 0.8 N of friction for a 0.98 N cube) cannot lift the cube
-// by friction; the grasp fix holds it all the same (the contact forces still show a grip).
-TEST_F(GraspWorld, GraspFixHoldsWhatAWeakGripCannot) {
-  graspCube(0.5);
+// A weak grip on a heavy cube (0.5 kg: 4.9 N; 2 N per finger, mu 0.8: 3.2 N of friction) cannot lift
+// it by friction; the grasp fix holds it all the same (the contact forces still show a grip).
+constexpr double kHeavyCube = 0.5;
+constexpr double kWeakGrip = 2.0;
+
+class HeavyCubeGrasp : public GraspWorld {
+ protected:
+  HeavyCubeGrasp() : GraspWorld(true, kHeavyCube) {}
+};
+
+TEST_F(HeavyCubeGrasp, GraspFixHoldsWhatAWeakGripCannot) {
+  graspCube(kWeakGrip);
   ASSERT_EQ(world.attachedObjects(), std::vector<std::string>{"red_cube"});
   std::vector<double> lift = grasp_q;
   lift[1] -= 0.35;
@@ -317,7 +335,7 @@ class FrictionOnlyGrasp : public GraspWorld {
   FrictionOnlyGrasp() : GraspWorld(false) {}
 };
 
-// Honest finding: without the grasp fix, a full-effort grasp (20 N per finger, mu = min(0.8, 1.0))
+// Honest finding: without the grasp fix, a full-effort grasp (the URDF's finger effort, 20-40 N; mu 0.8)
 // holds the 0.1 kg cube through the lift and the fast swing in Bullet with sub-millimetre slip --
 // unlike the paper's Gazebo/ODE run, where it slipped out. Only a weak grip drops it.
 TEST_F(FrictionOnlyGrasp, FullEffortFrictionGraspHolds) {
@@ -335,8 +353,13 @@ TEST_F(FrictionOnlyGrasp, FullEffortFrictionGraspHolds) {
   EXPECT_LT(slip, 2e-3);
 }
 
-TEST_F(FrictionOnlyGrasp, WeakFrictionGraspDropsTheCube) {
-  graspCube(0.5);
+class HeavyCubeFrictionOnly : public GraspWorld {
+ protected:
+  HeavyCubeFrictionOnly() : GraspWorld(false, kHeavyCube) {}
+};
+
+TEST_F(HeavyCubeFrictionOnly, WeakFrictionGraspDropsTheCube) {
+  graspCube(kWeakGrip);
   std::vector<double> lift = grasp_q;
   lift[1] -= 0.35;
   lift[2] -= 0.25;

@@ -84,7 +84,8 @@ inline bool solveIk(World& world, const std::string& link, const Eigen::Isometry
       qj[j] += 1e-6;
       jacobian.col(j) = -(error(qj) - e) / 1e-6;
     }
-    const Eigen::Matrix<double, 6, 6> jjt = jacobian * jacobian.transpose() + 1e-6 * Eigen::Matrix<double, 6, 6>::Identity();
+    const Eigen::Matrix<double, 6, 6> jjt =
+        jacobian * jacobian.transpose() + 1e-6 * Eigen::Matrix<double, 6, 6>::Identity();
     const Eigen::Matrix<double, 6, 1> dq = jacobian.transpose() * jjt.ldlt().solve(e);
     for (int j = 0; j < 6; ++j) {
       const JointInfo& info = world.joints()[world.jointIndex(names[j])];

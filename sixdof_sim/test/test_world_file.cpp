@@ -129,7 +129,8 @@ TEST(WorldFile, ErrorsNameTheProblem) {
       {"objects:\n  - {name: a, shape: sphere, radius: 0.1, position: [0, 0, 0], mass: 1}\n"
        "  - {name: a, shape: sphere, radius: 0.1, position: [0, 0, 0], mass: 1}\n",
        {"w.yaml:3", "objects[1]", "duplicate name 'a'"}},
-      {"tables:\n  - {name: t, size: [1, 1, 1], position: [0, 0, 0], mass: 3}\n", {"tables[0] (t)", "unknown key 'mass'"}},
+      {"tables:\n  - {name: t, size: [1, 1, 1], position: [0, 0, 0], mass: 3}\n",
+       {"tables[0] (t)", "unknown key 'mass'"}},
       {"objects:\n  - {shape: sphere, radius: 0.1, position: [0, 0, 0], mass: 1}\n", {"'name' is required"}},
       {"objects: {a: 1}\n", {"objects", "must be a list"}},
       {"wrld: {}\n", {"unknown key 'wrld'"}},

@@ -38,14 +38,17 @@ struct JointInfo {
   std::string child_link;
   double lower = 0.0;         // URDF <limit lower>
   double upper = 0.0;         // URDF <limit upper>
-  double max_velocity = 0.0;  // URDF <limit velocity>
+  double max_velocity = 0.0;  // URDF <limit velocity>: information for controllers, not enforced
   double max_effort = 0.0;    // URDF <limit effort> (N m or N)
   double damping = 0.0;       // URDF <dynamics damping>: viscous, always applied
-  // URDF <dynamics friction> (Coulomb, N m or N): applied in kEffort mode; in the servo modes the
-  // drive's velocity loop holds the joint and the friction is part of what it overcomes.
+  // URDF <dynamics friction> (Coulomb, N m or N): applied in kEffort mode only. Not modelled in the
+  // servo modes: a second velocity constraint on a servoed joint fights the servo in Bullet's
+  // iterative solver and makes light links jitter.
   double friction = 0.0;
-  // Mimic joints (URDF <mimic>) get their own servo whose target follows the master's command:
-  // q = multiplier * q_master + offset. They cannot be commanded directly (Status::kMimicJoint).
+  // Mimic joints (URDF <mimic>): q = multiplier * q_master + offset, enforced by a gear constraint
+  // (a parallel gripper stays symmetric when an object pushes one finger); they also get their own
+  // servo following the master's command, bounded by their own effort limit. They cannot be
+  // commanded directly (Status::kMimicJoint).
   std::string mimic_of;  // empty: not a mimic joint
   double mimic_multiplier = 1.0;
   double mimic_offset = 0.0;

@@ -184,7 +184,8 @@ bool GraspFix::isGripped(const LinkContacts& links) const {
       const double l1 = forces[i].norm();
       const double l2 = forces[j].norm();
       if (l1 < kMinForce || l2 < kMinForce) continue;
-      if (angleBetween(forces[i], forces[j]) > min_angle && std::min(l1, l2) / std::max(l1, l2) >= kMinForceLengthRatio) {
+      const double ratio = std::min(l1, l2) / std::max(l1, l2);
+      if (angleBetween(forces[i], forces[j]) > min_angle && ratio >= kMinForceLengthRatio) {
         return true;
       }
     }

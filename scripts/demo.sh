@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# The end-to-end demo, headless: simulator + move_group + scene mirroring (demo.launch headless:=true), then
+# the paper's pick-and-place (pick_place.py), verified independently (object_at.py). Saves into artifacts/:
+#   demo_result.png   rviz screenshot of the final scene (rviz on a virtual X display)
+#   demo_joints.png   the joint trajectories, plotted from the recorded /joint_states
+#   demo.bag          the recording (/joint_states, /grasp_events, sixdof_sim/object_states)
+#   demo_logs/        ROS logs
+# Exits 0 only if the object ends at the place location. `make demo` runs setup first, then this.
+#   scripts/demo.sh [--object red_cube] [--place X Y] [--repetitions N]   (passed to pick_place.py)
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
+set +u
+# shellcheck disable=SC1091
+. scripts/env.sh
+set -u
+
+object=red_cube
+place_x=0.40
+place_y=0.20
+extra=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --object) object=$2; shift 2 ;;
+    --place) place_x=$2; place_y=$3; shift 3 ;;
+    *) extra+=("$1"); shift ;;
+  esac
+done
+
+artifacts=$repo/artifacts
+mkdir -p "$artifacts"
+work=$(mktemp -d)
+export ROS_HOME=$work/ros
+export ROS_LOG_DIR=$artifacts/demo_logs
+rm -rf "$ROS_LOG_DIR"
+mkdir -p "$ROS_HOME" "$ROS_LOG_DIR"
+# A master of our own on a free port: other ROS graphs on this machine are left alone.
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI=http://127.0.0.1:$port
+
+stage() { printf '\n\033[1m[demo] %s\033[0m\n' "$*"; }
+fail() { printf '\033[1;31m[demo] FAILED: %s\033[0m\n' "$*" >&2; exit 1; }
+
+pids=()
+cleanup() {
+  local status=$?
+  trap - EXIT INT TERM
+  # Each background job runs in its own process group (setsid): stop the whole group, gently first.
+  for pid in "${pids[@]}"; do kill -INT -- "-$pid" 2>/dev/null || true; done
+  for _ in $(seq 50); do
+    local alive=0
+    for pid in "${pids[@]}"; do kill -0 -- "-$pid" 2>/dev/null && alive=1; done
+    [ $alive = 0 ] && break
+    sleep 0.2
+  done
+  for pid in "${pids[@]}"; do kill -KILL -- "-$pid" 2>/dev/null || true; done
+  rm -rf "$work"
+  exit $status
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+start() {  # start <log name> <command...>: in the background, in a new process group
+  setsid "${@:2}" >"$ROS_LOG_DIR/$1.out" 2>&1 &
+  pids+=($!)
+}
+
+stage "1/6 launching the simulator (free-running), move_group and the scene mirror (master port $port)"
+start demo_launch roslaunch -p "$port" sixdof_bringup demo.launch headless:=true
+python3 - "$object" <<'EOF' || fail "the stack did not come up (see $ROS_LOG_DIR/demo_launch.out)"
+# Ready = move_group answers and the scene mirror has put the object into the planning scene.
+import sys
+import time
+
+import rospy
+from sixdof_msgs.srv import GetPlanningScene
+
+rospy.init_node("demo_wait", anonymous=True, disable_signals=True)
+deadline = time.monotonic() + 180.0
+rospy.wait_for_service("get_planning_scene", timeout=180.0)
+scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
+while time.monotonic() < deadline:
+    names = [o.id for o in scene().scene.world.collision_objects]
+    if sys.argv[1] in names:
+        print(f"planning scene mirrors the simulator: {', '.join(sorted(names))}")
+        sys.exit(0)
+    time.sleep(0.2)
+sys.exit(f"'{sys.argv[1]}' never appeared in the planning scene")
+EOF
+
+stage "2/6 recording /joint_states, /grasp_events and object states"
+start rosbag rosbag record -O "$work/demo.bag" /joint_states /grasp_events /sixdof_sim/object_states
+bag_pid=${pids[-1]}
+
+stage "3/6 pick and place: '$object' -> ($place_x, $place_y)"
+pick_status=0
+rosrun sixdof_scripts pick_place.py --object "$object" --place "$place_x" "$place_y" ${extra[@]+"${extra[@]}"} \
+  || pick_status=$?
+kill -INT -- "-$bag_pid" 2>/dev/null || true
+for _ in $(seq 50); do kill -0 -- "-$bag_pid" 2>/dev/null || break; sleep 0.2; done
+
+stage "4/6 checking where '$object' rests"
+check_status=0
+rosrun sixdof_bringup object_at.py "$object" "$place_x" "$place_y" --tolerance 0.01 || check_status=$?
+
+stage "5/6 plotting the joint trajectories"
+cp "$work/demo.bag" "$artifacts/demo.bag" 2>/dev/null || mv "$work"/demo.bag.active "$artifacts/demo.bag"
+rosrun sixdof_bringup plot_joint_states.py "$artifacts/demo.bag" "$artifacts/demo_joints.png" \
+  || fail "plotting the joint trajectories"
+
+stage "6/6 rviz screenshot of the result (virtual X display)"
+# rviz and the marker node on their own display; the screenshot waits until the rviz window is mapped and
+# has had a few seconds to draw.
+start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
+  roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 150); do xwininfo -root -tree 2>/dev/null | grep -qi "rviz" && break; sleep 0.2; done
+  sleep 8
+  import -window root "$2"
+  status=$?
+  kill -INT $pid
+  wait $pid
+  exit $status
+' _ "$ROS_LOG_DIR" "$artifacts/demo_result.png"
+wait "${pids[-1]}" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
+
+echo
+echo "[demo] artifacts:"
+echo "  screenshot of the result: $artifacts/demo_result.png"
+echo "  joint trajectories:       $artifacts/demo_joints.png"
+echo "  recording:                $artifacts/demo.bag"
+echo "  ROS logs:                 $ROS_LOG_DIR"
+if [ $pick_status != 0 ] || [ $check_status != 0 ]; then
+  fail "pick_place.py exit code $pick_status, placement check exit code $check_status"
+fi
+printf '\n\033[1;32m[demo] pick and place succeeded: %s rests at (%s, %s)\033[0m\n' "$object" "$place_x" "$place_y"

@@ -1,0 +1,91 @@
+"""Shared helpers of the end-to-end rostests: waiting for the stack, settled joint states, tf poses."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import rospy
+import tf2_ros
+from sensor_msgs.msg import JointState
+
+from sixdof_msgs.srv import GetObjectState, GetPlanningScene
+
+# Hang guard only (the tests assert results, never durations): the stack is up in seconds when healthy.
+STARTUP_TIMEOUT = 240.0
+
+
+def wait_for_stack(object_name: str = "red_cube") -> None:
+    """Until move_group answers and the scene mirror has put object_name into the planning scene."""
+    rospy.wait_for_service("get_planning_scene", timeout=STARTUP_TIMEOUT)
+    rospy.wait_for_service("sixdof_sim/get_object_state", timeout=STARTUP_TIMEOUT)
+    scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
+    deadline = time.monotonic() + STARTUP_TIMEOUT
+    while time.monotonic() < deadline:
+        if object_name in [o.id for o in scene().scene.world.collision_objects]:
+            return
+        time.sleep(0.1)
+    raise AssertionError(f"'{object_name}' never appeared in the planning scene")
+
+
+def planning_scene():
+    return rospy.ServiceProxy("get_planning_scene", GetPlanningScene)().scene
+
+
+def object_state(name: str):
+    response = rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)(name)
+    assert response.success, response.status_message
+    return response
+
+
+def settled_joint_state(velocity_limit: float = 1e-3, sim_timeout: float = 5.0) -> JointState:
+    """The first joint state whose joint speeds are all below velocity_limit (rad/s, m/s), or the last one
+    after sim_timeout simulated seconds: the servos keep converging after a controller reports success."""
+    end = rospy.get_time() + sim_timeout
+    while True:
+        msg = rospy.wait_for_message("joint_states", JointState, timeout=30.0)
+        if all(abs(v) < velocity_limit for v in msg.velocity) or rospy.get_time() >= end:
+            return msg
+
+
+def quaternion_matrix(x: float, y: float, z: float, w: float) -> np.ndarray:
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = x / n, y / n, z / n, w / n
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """Fixed-axis roll, pitch, yaw (tf2 setRPY): Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr, cp, sp, cy, sy = (f(a) for a in (roll, pitch, yaw) for f in (math.cos, math.sin))
+    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+def rotation_angle(a: np.ndarray, b: np.ndarray) -> float:
+    """Angle (rad) of the rotation taking a to b."""
+    c = (np.trace(a.T @ b) - 1.0) / 2.0
+    return math.acos(max(-1.0, min(1.0, c)))
+
+
+class TfPoses:
+    """Poses of robot links in the base frame, from tf (robot_state_publisher of the simulator's joints)."""
+
+    def __init__(self) -> None:
+        self.buffer = tf2_ros.Buffer(cache_time=rospy.Duration(30.0))
+        self.listener = tf2_ros.TransformListener(self.buffer)
+
+    def pose(self, link: str, stamp: rospy.Time, frame: str = "base_link") -> tuple[np.ndarray, np.ndarray]:
+        """(position, rotation matrix) of link in frame at stamp (waits for it)."""
+        t = self.buffer.lookup_transform(frame, link, stamp, rospy.Duration(30.0)).transform
+        position = np.array([t.translation.x, t.translation.y, t.translation.z])
+        r = t.rotation
+        return position, quaternion_matrix(r.x, r.y, r.z, r.w)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <ros/console.h>
+
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/validation.h"
 
@@ -41,6 +43,25 @@ std::string boundsViolation(const sixdof_core::RobotState& state) {
     }
   }
   return "";
+}
+
+std::string fixStartStateBounds(double max_error, sixdof_core::RobotState* state) {
+  const auto& model = state->model();
+  Eigen::VectorXd positions = state->positions();
+  std::string moved;
+  for (size_t i = 0; i < model.variableCount(); ++i) {
+    const auto& joint = model.variableJoint(i);
+    if (!joint.limits.bounded) continue;
+    const double value = positions[i];
+    double bound = value;
+    if (value < joint.limits.lower && joint.limits.lower - value <= max_error) bound = joint.limits.lower;
+    if (value > joint.limits.upper && value - joint.limits.upper <= max_error) bound = joint.limits.upper;
+    if (bound == value) continue;
+    positions[i] = bound;
+    moved += (moved.empty() ? "" : ", ") + joint.name + " " + str(value) + " -> " + str(bound);
+  }
+  if (!moved.empty()) state->setPositions(positions);
+  return moved;
 }
 
 std::string describeContact(const sixdof_core::Contact& contact) {
@@ -221,6 +242,8 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   std::shared_ptr<const SceneStore> scene;
   code = context_->resolveRobotState(request.start_state, "start_state", source, &start, &scene, base_scene);
   if (!isSuccess(code)) return;
+  const std::string moved = fixStartStateBounds(config.start_state_max_bounds_error, &start);
+  if (!moved.empty()) ROS_INFO_STREAM("start state moved onto its joint limits: " << moved);
   response->trajectory_start.joint_state = toJointState(start);
   const std::string out_of_bounds = boundsViolation(start);
   if (!out_of_bounds.empty()) {

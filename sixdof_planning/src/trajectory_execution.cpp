@@ -1,5 +1,6 @@
 #include "sixdof_planning/trajectory_execution.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -177,8 +178,15 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
     goal.trajectory.header.stamp = ros::Time(0);  // start now
     clients_.at(part.first)->sendGoal(goal);
   }
+  // Elapsed time is the smaller of the ROS clock's and the wall clock's: a simulator running faster than real time
+  // (headless, real_time_factor 0) would otherwise spend the whole margin on message latency, and one running
+  // slower than real time is still judged on its own clock.
   const ros::Time start = ros::Time::now();
-  ros::Rate rate(100.0);
+  const ros::WallTime wall_start = ros::WallTime::now();
+  const auto elapsed = [&] {
+    return std::min((ros::Time::now() - start).toSec(), (ros::WallTime::now() - wall_start).toSec());
+  };
+  ros::WallRate rate(100.0);
   while (ros::ok()) {
     if (preempt_requested && preempt_requested()) {
       cancelAll(parts);
@@ -207,7 +215,7 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
       return makeSuccess(source, "executed " + str(expected) + " s trajectory on " + std::to_string(parts.size()) +
                                      " controller(s)");
     }
-    if ((ros::Time::now() - start).toSec() > allowed) {
+    if (elapsed() > allowed) {
       cancelAll(parts);
       return makeError(ErrorCode::TIMED_OUT,
                        "Controller is taking too long to execute trajectory (the expected upper bound for the "

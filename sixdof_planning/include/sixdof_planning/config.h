@@ -54,6 +54,10 @@ struct MoveGroupConfig {
   double execution_duration_scaling = 1.2;  // ~allowed_execution_duration_scaling
   double execution_goal_margin = 0.5;       // ~allowed_goal_duration_margin, s
   double start_state_tolerance = 0.01;      // ~allowed_start_tolerance, rad or m
+  // ~start_state_max_bounds_error (MoveIt's FixStartStateBounds): a planning start state this far (rad or m)
+  // or less outside a joint's limits is moved onto the limit (logged); further out it is START_STATE_INVALID.
+  // Covers the numerical drift of measured joint states, e.g. a closed finger reading -2e-8 m.
+  double start_state_max_bounds_error = 1e-3;
   double joint_state_timeout = 1.0;         // ~joint_state_timeout: how long a request waits for joint_states, s
 };
 

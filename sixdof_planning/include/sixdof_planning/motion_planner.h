@@ -21,6 +21,11 @@ sixdof_core::CollisionReport checkStateCollision(const sixdof_core::RobotState& 
                                                  const sixdof_core::CollisionScene& scene);
 // "joint2 = 2.5 is outside [-1.92, 1.92]" for the first active joint out of its limits, else "".
 std::string boundsViolation(const sixdof_core::RobotState& state);
+
+// Moves every bounded joint that is at most `max_error` outside its limits onto the limit; returns a description
+// of what was moved ("finger1_joint -2e-08 -> 0"), or "" when nothing was. Joints further out are left as they are
+// for boundsViolation to report.
+std::string fixStartStateBounds(double max_error, sixdof_core::RobotState* state);
 // "link3 collides with box" for the first contact of a report.
 std::string describeContact(const sixdof_core::Contact& contact);
 

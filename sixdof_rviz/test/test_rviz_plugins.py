@@ -10,11 +10,13 @@ import os
 import subprocess
 import tempfile
 import unittest
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import rosgraph
 import rospy
 import rostest
+import yaml
 from geometry_msgs.msg import Pose, PoseStamped
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
@@ -200,6 +202,42 @@ class RvizPluginsTest(unittest.TestCase):
             previous = mask
             rospy.sleep(0.3)
         self.fail(f"the ghost robot of {name} never settled ({0 if previous is None else previous.sum()} pixels)")
+
+    def test_0_goal_colours_distinct(self) -> None:
+        """The goal robot's configured colours match their masks, and no URDF material of the arm nor any other
+        display's colour matches them, in full light or half shade: users (and the tests) tell the goal robot from
+        the real one and from the planned path and the scene objects."""
+        urdf = ET.fromstring(rospy.get_param("robot_description"))
+        others = {
+            f"material {m.get('name')}": [float(v) * 255 for v in m.find("color").get("rgba").split()[:3]]
+            for m in urdf.iter("material")
+            if m.find("color") is not None
+        }
+        self.assertGreater(len(others), 1, "the URDF has no coloured materials")
+        with open(rospy.get_param("~rviz_config")) as config:
+            displays = {d["Name"]: d for d in yaml.safe_load(config)["Visualization Manager"]["Displays"]}
+
+        def rgb(text: str) -> list:
+            return [float(v) for v in str(text).split(";")]
+
+        goal = displays["Goal State"]
+        others["planned path"] = rgb(displays["Planned Path"]["Robot Color"])
+        others["world objects"] = rgb(displays["Planning Scene"]["World Object Color"])
+        others["attached objects"] = rgb(displays["Planning Scene"]["Attached Object Color"])
+        others["goal marker sphere"] = [0.9 * 255, 0.9 * 255, 0.2 * 255]
+
+        def pixel(colour: list, shade: float) -> np.ndarray:
+            return np.array([[[round(c * shade) for c in colour]]], dtype=np.uint8)
+
+        reachable, unreachable = rgb(goal["Reachable Color"]), rgb(goal["Unreachable Color"])
+        for shade in (0.5, 0.75, 1.0):
+            self.assertTrue(reachable_mask(pixel(reachable, shade)).all(), shade)
+            self.assertTrue(unreachable_mask(pixel(unreachable, shade)).all(), shade)
+            self.assertFalse(unreachable_mask(pixel(reachable, shade)).any(), shade)
+            self.assertFalse(reachable_mask(pixel(unreachable, shade)).any(), shade)
+            for name, colour in others.items():
+                for mask, what in ((reachable_mask, "reachable"), (unreachable_mask, "unreachable")):
+                    self.assertFalse(mask(pixel(colour, shade)).any(), f"{name} {colour} looks {what} at {shade}")
 
     def test_1_plugins_live(self) -> None:
         # PlannedPath subscribes to the trajectory topic, GoalState publishes the goal, the panel's logic reads it.

@@ -1,10 +1,15 @@
 #include "goal_state_display.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
+#include <OgreAxisAlignedBox.h>
+#include <OgreMesh.h>
 #include <OgreQuaternion.h>
 #include <OgreVector3.h>
 #include <rviz/default_plugin/interactive_markers/interactive_marker.h>
+#include <rviz/mesh_loader.h>
 #include <rviz/properties/color_property.h>
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/ros_topic_property.h>
@@ -31,6 +36,70 @@ visualization_msgs::InteractiveMarkerControl axisControl(const std::string& name
   control.orientation_mode = visualization_msgs::InteractiveMarkerControl::INHERIT;
   control.interaction_mode = mode;
   return control;
+}
+
+// Bounding box of one URDF visual geometry, in its link's frame; empty when a mesh cannot be loaded.
+Eigen::AlignedBox3d visualBounds(const urdf::Visual& visual) {
+  Eigen::AlignedBox3d local;
+  switch (visual.geometry->type) {
+    case urdf::Geometry::SPHERE: {
+      const double r = static_cast<const urdf::Sphere&>(*visual.geometry).radius;
+      local.extend(Eigen::Vector3d(-r, -r, -r)).extend(Eigen::Vector3d(r, r, r));
+      break;
+    }
+    case urdf::Geometry::BOX: {
+      const urdf::Vector3& d = static_cast<const urdf::Box&>(*visual.geometry).dim;
+      const Eigen::Vector3d half(d.x / 2, d.y / 2, d.z / 2);
+      local.extend(-half).extend(half);
+      break;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(*visual.geometry);
+      const Eigen::Vector3d half(cylinder.radius, cylinder.radius, cylinder.length / 2);
+      local.extend(-half).extend(half);
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*visual.geometry);
+      const Ogre::MeshPtr ogre_mesh = rviz::loadMeshFromResource(mesh.filename);
+      if (ogre_mesh.isNull()) return local;
+      const Ogre::AxisAlignedBox& box = ogre_mesh->getBounds();
+      const Eigen::Vector3d scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+      local.extend(Eigen::Vector3d(box.getMinimum().x, box.getMinimum().y, box.getMinimum().z).cwiseProduct(scale))
+          .extend(Eigen::Vector3d(box.getMaximum().x, box.getMaximum().y, box.getMaximum().z).cwiseProduct(scale));
+      break;
+    }
+  }
+  const urdf::Pose& origin = visual.origin;
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.translate(Eigen::Vector3d(origin.position.x, origin.position.y, origin.position.z));
+  transform.rotate(Eigen::Quaterniond(origin.rotation.w, origin.rotation.x, origin.rotation.y, origin.rotation.z));
+  Eigen::AlignedBox3d out;
+  for (int corner = 0; corner < 8; ++corner) {
+    out.extend(transform * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  }
+  return out;
+}
+
+// Extends `box` (in the tip link's frame) by the visuals of `link` and every link below it: the end effector.
+bool extendByVisuals(const urdf::Link& link, const Eigen::Isometry3d& tip_from_root, const LinkPoseMap& poses,
+                     Eigen::AlignedBox3d* box, std::string* bad_mesh) {
+  const Eigen::Isometry3d tip_from_link = tip_from_root * poses.at(link.name);
+  for (const auto& visual : link.visual_array) {
+    if (!visual || !visual->geometry) continue;
+    const Eigen::AlignedBox3d bounds = visualBounds(*visual);
+    if (bounds.isEmpty()) {
+      *bad_mesh = static_cast<const urdf::Mesh&>(*visual->geometry).filename;
+      return false;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      box->extend(tip_from_link * bounds.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+    }
+  }
+  for (const auto& child : link.child_links) {
+    if (!extendByVisuals(*child, tip_from_root, poses, box, bad_mesh)) return false;
+  }
+  return true;
 }
 
 sensor_msgs::JointState toJointState(const JointValues& values) {
@@ -64,14 +133,19 @@ GoalStateDisplay::GoalStateDisplay() {
       new rviz::FloatProperty("IK Rate", 10.0f, "Maximum compute_ik calls per second while dragging.", this);
   ik_rate_property_->setMin(0.5f);
   ik_rate_property_->setMax(100.0f);
-  marker_scale_property_ =
-      new rviz::FloatProperty("Marker Scale", 0.2f, "Size of the interactive marker [m].", this, SLOT(loadModel()));
-  marker_scale_property_->setMin(0.01f);
+  marker_scale_property_ = new rviz::FloatProperty(
+      "Marker Scale", 1.0f,
+      "Size of the interactive marker relative to the end effector (the tip link and the links below it): at 1 its "
+      "rings just enclose the end effector's visual geometry.",
+      this, SLOT(loadModel()));
+  marker_scale_property_->setMin(0.1f);
+  // Opaque enough that where the goal robot overlaps the arm (at the current state) its own colour shows, not a blend
+  // with the arm's orange and grey materials.
   alpha_property_ =
-      new rviz::FloatProperty("Robot Alpha", 0.6f, "Opacity of the goal robot.", this, SLOT(updateAppearance()));
+      new rviz::FloatProperty("Robot Alpha", 0.8f, "Opacity of the goal robot.", this, SLOT(updateAppearance()));
   alpha_property_->setMin(0.0f);
   alpha_property_->setMax(1.0f);
-  reachable_color_property_ = new rviz::ColorProperty("Reachable Color", QColor(250, 128, 0),
+  reachable_color_property_ = new rviz::ColorProperty("Reachable Color", QColor(0, 190, 255),
                                                       "Goal robot colour for a valid goal.", this,
                                                       SLOT(updateAppearance()));
   unreachable_color_property_ = new rviz::ColorProperty(
@@ -126,6 +200,23 @@ void GoalStateDisplay::loadModel() {
   }
   tip_link_ = group->tip_link;
   fk_ = std::make_shared<LinkPoses>(model_->urdf());
+  // Like MoveIt, the marker is sized from the end effector so that it is not hidden inside the gripper.
+  {
+    const LinkPoseMap poses = fk_->compute(JointValues{});
+    end_effector_bounds_.setEmpty();
+    std::string bad_mesh;
+    if (!extendByVisuals(*model_->urdf()->getLink(tip_link_), poses.at(tip_link_).inverse(), poses,
+                         &end_effector_bounds_, &bad_mesh)) {
+      reportConfigError(this, "Robot", "cannot load the mesh '" + bad_mesh + "' of the end effector");
+      model_.reset();
+      return;
+    }
+    if (end_effector_bounds_.isEmpty()) {
+      reportConfigError(this, "Robot", "tip link '" + tip_link_ + "' and the links below it have no visual geometry");
+      model_.reset();
+      return;
+    }
+  }
   robot_ = std::make_unique<GhostRobot>(scene_node_, context_, "Goal State", this, *model_->urdf(), fk_);
   setStatusStd(rviz::StatusProperty::Ok, "Robot", "group '" + group_ + "', tip link '" + tip_link_ + "'");
   // Until the current state is known the marker sits at the all-zero state and no goal is published.
@@ -173,7 +264,13 @@ void GoalStateDisplay::placeMarker() {
 }
 
 void GoalStateDisplay::placeMarkerAt(const geometry_msgs::Pose& pose) {
-  const double scale = marker_scale_property_->getFloat();
+  // The rings (diameter = scale) centred on the tip link enclose its farthest end-effector point.
+  double reach = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    reach = std::max(reach,
+                     end_effector_bounds_.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)).norm());
+  }
+  const double scale = 2.0 * reach * marker_scale_property_->getFloat();
   visualization_msgs::InteractiveMarker msg;
   msg.header.frame_id = fk_->rootLink();
   msg.name = "goal_state";
@@ -188,11 +285,26 @@ void GoalStateDisplay::placeMarkerAt(const geometry_msgs::Pose& pose) {
   msg.controls.push_back(axisControl("move_z", s, 0, s, 0, Control::MOVE_AXIS));
   msg.controls.push_back(axisControl("rotate_y", s, 0, 0, s, Control::ROTATE_AXIS));
   msg.controls.push_back(axisControl("move_y", s, 0, 0, s, Control::MOVE_AXIS));
-  // A sphere at the tip to drag the position freely in the view plane.
+  // A sphere to drag the position freely in the view plane. At the tip link's origin it would be buried in the
+  // wrist and the gripper: it sits just beyond the end effector, on the line from the tip link through the end
+  // effector's centre (the approach direction).
   Control free = axisControl("move_3d", 1, 0, 0, 0, Control::MOVE_3D);
   visualization_msgs::Marker sphere;
   sphere.type = visualization_msgs::Marker::SPHERE;
-  sphere.scale.x = sphere.scale.y = sphere.scale.z = 0.3 * scale;
+  const double diameter = 0.2 * scale;
+  sphere.scale.x = sphere.scale.y = sphere.scale.z = diameter;
+  Eigen::Vector3d direction = end_effector_bounds_.center();
+  direction = direction.norm() > 1e-9 ? direction.normalized() : Eigen::Vector3d::UnitZ();
+  double extent = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    extent = std::max(
+        extent, direction.dot(end_effector_bounds_.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner))));
+  }
+  const Eigen::Vector3d centre = direction * (extent + diameter / 2);
+  sphere.pose.position.x = centre.x();
+  sphere.pose.position.y = centre.y();
+  sphere.pose.position.z = centre.z();
+  sphere.pose.orientation.w = 1.0;
   sphere.color.r = 0.9f;
   sphere.color.g = 0.9f;
   sphere.color.b = 0.2f;

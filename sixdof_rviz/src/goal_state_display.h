@@ -7,6 +7,7 @@
 #include <string>
 #include <thread>
 
+#include <Eigen/Geometry>
 #include <geometry_msgs/PoseStamped.h>
 #include <rviz/display.h>
 #include <sensor_msgs/JointState.h>
@@ -91,6 +92,8 @@ class GoalStateDisplay : public rviz::Display {
   std::shared_ptr<const LinkPoses> fk_;
   std::string group_;
   std::string tip_link_;
+  // Visual geometry of the tip link and the links below it, in the tip link's frame (all joints at 0).
+  Eigen::AlignedBox3d end_effector_bounds_;
   std::unique_ptr<GhostRobot> robot_;
   std::unique_ptr<rviz::InteractiveMarker> marker_;
   ros::Subscriber joint_state_sub_;

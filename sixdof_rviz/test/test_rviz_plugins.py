@@ -10,11 +10,13 @@ import os
 import subprocess
 import tempfile
 import unittest
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import rosgraph
 import rospy
 import rostest
+import yaml
 from geometry_msgs.msg import Pose, PoseStamped
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
@@ -56,7 +58,8 @@ def read_screenshot(path: str) -> np.ndarray:
 
 def ghost_mask(image: np.ndarray) -> np.ndarray:
     """Pixels in the PlannedPath robot's colour (220, 0, 220 in the config): red and blue alike and high,
-    green low, whatever the shading. The goal robot (orange), the robot model (grey) and the background are not."""
+    green low, whatever the shading. The goal robot (sky blue), the robot model (orange and grey) and the background are
+    not."""
     r, g, b = (image[:, :, i].astype(int) for i in range(3))
     return (r > 70) & (b > 70) & (g * 2 < np.minimum(r, b)) & (np.abs(r - b) * 3 < np.maximum(r, b))
 
@@ -74,19 +77,21 @@ def attached_mask(image: np.ndarray) -> np.ndarray:
 
 
 def marker_sphere_mask(image: np.ndarray) -> np.ndarray:
-    """The goal marker's yellow sphere (0.9, 0.9, 0.2), centred on the tip link (link6) origin."""
+    """The goal marker's yellow sphere (0.9, 0.9, 0.2), just beyond the gripper on link6's z axis."""
     r, g, b = (image[:, :, i].astype(int) for i in range(3))
     return (r > 150) & (g * 4 > r * 3) & (b * 2 < g)
 
 
 def reachable_mask(image: np.ndarray) -> np.ndarray:
-    """The goal robot's "reachable" colour (250, 128, 0 in the config): orange, green about half of red."""
+    """The goal robot's "reachable" colour (0, 190, 255 in the config): sky blue, red low and green between 0.4 and 1
+    times blue. None of the arm's URDF materials (orange, greys) nor the other displays' colours match."""
     r, g, b = (image[:, :, i].astype(int) for i in range(3))
-    return (r > 90) & (g * 10 > r * 3) & (g * 10 < r * 7) & (b * 10 < r * 3)
+    return (b > 90) & (r * 3 < b) & (g * 10 > b * 4) & (g <= b)
 
 
 def unreachable_mask(image: np.ndarray) -> np.ndarray:
-    """The goal robot's "unreachable" colour (230, 0, 0 in the config); its reachable orange has half as much green."""
+    """The goal robot's "unreachable" colour (230, 0, 0 in the config); the arm's orange material (0.93, 0.45, 0.1) has
+    half as much green as red."""
     r, g, b = (image[:, :, i].astype(int) for i in range(3))
     return (r > 90) & (g * 5 < r) & (b * 5 < r)
 
@@ -197,6 +202,42 @@ class RvizPluginsTest(unittest.TestCase):
             previous = mask
             rospy.sleep(0.3)
         self.fail(f"the ghost robot of {name} never settled ({0 if previous is None else previous.sum()} pixels)")
+
+    def test_0_goal_colours_distinct(self) -> None:
+        """The goal robot's configured colours match their masks, and no URDF material of the arm nor any other
+        display's colour matches them, in full light or half shade: users (and the tests) tell the goal robot from
+        the real one and from the planned path and the scene objects."""
+        urdf = ET.fromstring(rospy.get_param("robot_description"))
+        others = {
+            f"material {m.get('name')}": [float(v) * 255 for v in m.find("color").get("rgba").split()[:3]]
+            for m in urdf.iter("material")
+            if m.find("color") is not None
+        }
+        self.assertGreater(len(others), 1, "the URDF has no coloured materials")
+        with open(rospy.get_param("~rviz_config")) as config:
+            displays = {d["Name"]: d for d in yaml.safe_load(config)["Visualization Manager"]["Displays"]}
+
+        def rgb(text: str) -> list:
+            return [float(v) for v in str(text).split(";")]
+
+        goal = displays["Goal State"]
+        others["planned path"] = rgb(displays["Planned Path"]["Robot Color"])
+        others["world objects"] = rgb(displays["Planning Scene"]["World Object Color"])
+        others["attached objects"] = rgb(displays["Planning Scene"]["Attached Object Color"])
+        others["goal marker sphere"] = [0.9 * 255, 0.9 * 255, 0.2 * 255]
+
+        def pixel(colour: list, shade: float) -> np.ndarray:
+            return np.array([[[round(c * shade) for c in colour]]], dtype=np.uint8)
+
+        reachable, unreachable = rgb(goal["Reachable Color"]), rgb(goal["Unreachable Color"])
+        for shade in (0.5, 0.75, 1.0):
+            self.assertTrue(reachable_mask(pixel(reachable, shade)).all(), shade)
+            self.assertTrue(unreachable_mask(pixel(unreachable, shade)).all(), shade)
+            self.assertFalse(unreachable_mask(pixel(reachable, shade)).any(), shade)
+            self.assertFalse(reachable_mask(pixel(unreachable, shade)).any(), shade)
+            for name, colour in others.items():
+                for mask, what in ((reachable_mask, "reachable"), (unreachable_mask, "unreachable")):
+                    self.assertFalse(mask(pixel(colour, shade)).any(), f"{name} {colour} looks {what} at {shade}")
 
     def test_1_plugins_live(self) -> None:
         # PlannedPath subscribes to the trajectory topic, GoalState publishes the goal, the panel's logic reads it.
@@ -313,18 +354,18 @@ class RvizPluginsTest(unittest.TestCase):
             # The seed is the current state (all zero here).
             self.assertTrue(all(p == 0.0 for p in request.robot_state.joint_state.position))
 
-            # Reachable and collision-free: orange at the solution, which is published as the goal.
+            # Reachable and collision-free: sky blue at the solution, which is published as the goal.
             # (Red pixels are no measure here: rviz draws links without a URDF material red, and the goal robot
             # no longer hides the RobotModel.)
             answers["ik"] = MoveItErrorCodes.SUCCESS
-            orange_no_ik = reachable_mask(read_screenshot(os.path.join(self.shot_dir, "6_goal_no_ik.png")))
+            blue_no_ik = reachable_mask(read_screenshot(os.path.join(self.shot_dir, "6_goal_no_ik.png")))
             pose_pub.publish(target)
             self.wait_for(lambda: any(self.values(g)["joint1"] == solution["joint1"] for g in goals), "IK goal")
             goal_values = self.values(goals[-1])
             for joint, value in solution.items():
                 self.assertAlmostEqual(goal_values[joint], value)
             self.assertEqual(goal_values["finger1_joint"], 0.0)  # joints outside the group keep the current state
-            self.wait_for_pixels("7_goal_ok", reachable_mask, orange_no_ik, 2000)
+            self.wait_for_pixels("7_goal_ok", reachable_mask, blue_no_ik, 2000)
 
             # Reachable but in collision: red again, and not published as a goal.
             answers["valid"] = False

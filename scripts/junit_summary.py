@@ -20,6 +20,16 @@ def main(build_dir: str) -> int:
         except ET.ParseError as exc:
             bad_files.append(f"{path}: {exc}")
             continue
+        suites = [root] if root.tag == "testsuite" else list(root.iter("testsuite"))
+        for suite in suites:
+            # rosunit counts failed unittest subTests in the suite's attributes without writing them into any
+            # testcase: whatever the attributes count beyond the failed testcases is a failure too.
+            declared = int(suite.get("failures") or 0) + int(suite.get("errors") or 0)
+            recorded = sum(1 for case in suite.iter("testcase") if any(c.tag in ("failure", "error") for c in case))
+            if declared > recorded:
+                failed += declared - recorded
+                print(f"FAILURE: {path.parent.name}/{path.name} :: {declared - recorded} failure(s) counted by the "
+                      f"suite '{suite.get('name')}' without a failing testcase (failed subTests?): see its output")
         for case in root.iter("testcase"):
             problems = [c for c in case if c.tag in ("failure", "error", "skipped")]
             if problems:

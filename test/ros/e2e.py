@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 
@@ -15,6 +16,17 @@ from sixdof_msgs.srv import GetObjectState, GetPlanningScene
 # Hang guard only (the tests assert results, never durations): the stack is up in seconds when healthy.
 STARTUP_TIMEOUT = 240.0
 
+
+
+@contextlib.contextmanager
+def case(**labels):
+    """Names a case inside a test: an assertion failing inside it is re-raised with the labels in its message.
+    (unittest's subTest is not used: rosunit's XML output counts failed subTests but drops which and why.)"""
+    try:
+        yield
+    except AssertionError as exc:
+        label = ", ".join(f"{k}={v}" for k, v in labels.items())
+        raise AssertionError(f"[{label}] {exc}") from None
 
 def wait_for_stack(object_name: str = "red_cube") -> None:
     """Until move_group answers and the scene mirror has put object_name into the planning scene."""
@@ -84,8 +96,15 @@ class TfPoses:
         self.listener = tf2_ros.TransformListener(self.buffer)
 
     def pose(self, link: str, stamp: rospy.Time, frame: str = "base_link") -> tuple[np.ndarray, np.ndarray]:
-        """(position, rotation matrix) of link in frame at stamp (waits for it)."""
-        t = self.buffer.lookup_transform(frame, link, stamp, rospy.Duration(30.0)).transform
+        """(position, rotation matrix) of link in frame for a robot at rest since stamp (e.g. a settled joint
+        state's): the newest published tf sample at or after stamp (waits for one). Not tf's value *at* stamp:
+        robot_state_publisher reads joint_states with a queue of one, so on a loaded machine its samples can lie
+        far apart and tf would interpolate between a sample taken during the motion and one after it."""
+        # The lookup at stamp succeeds only once a sample at or after stamp has arrived.
+        self.buffer.lookup_transform(frame, link, stamp, rospy.Duration(30.0))
+        latest = self.buffer.lookup_transform(frame, link, rospy.Time(0))
+        assert latest.header.stamp >= stamp, f"newest tf sample of '{link}' predates {stamp.to_sec()}"
+        t = latest.transform
         position = np.array([t.translation.x, t.translation.y, t.translation.z])
         r = t.rotation
         return position, quaternion_matrix(r.x, r.y, r.z, r.w)

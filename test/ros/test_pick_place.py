@@ -11,7 +11,7 @@ import unittest
 
 import rospy
 import rostest
-from e2e import object_state, planning_scene, settled_joint_state, wait_for_stack
+from e2e import case, object_state, planning_scene, settled_joint_state, wait_for_stack
 from geometry_msgs.msg import Pose, Twist
 from sixdof_commander import ArmDriver
 
@@ -58,7 +58,7 @@ class EndToEndPickPlace(unittest.TestCase):
 
     def test_pick_and_place_at_several_positions(self):
         for (sx, sy), (px, py) in CASES:
-            with self.subTest(start=(sx, sy), place=(px, py)):
+            with case(start=(sx, sy), place=(px, py)):
                 self.assertTrue(self.driver.moveto_named("home pose"), self.driver.last_failure)
                 self.put_cube(sx, sy)
                 with self.lock:

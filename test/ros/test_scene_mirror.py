@@ -10,7 +10,7 @@ import unittest
 
 import rospy
 import rostest
-from e2e import object_state, planning_scene, wait_for_stack
+from e2e import case, object_state, planning_scene, wait_for_stack
 from geometry_msgs.msg import Pose, Twist
 
 from sixdof_msgs.srv import SetObjectState
@@ -31,7 +31,7 @@ class SceneMirrorInTheStack(unittest.TestCase):
     def test_objects_are_mirrored_at_the_simulator_poses(self):
         world = {o.id: o for o in planning_scene().world.collision_objects}
         for name in ("table", "red_cube", "blue_cylinder", "yellow_sphere", "green_block"):
-            with self.subTest(object=name):
+            with case(object=name):
                 self.assertIn(name, world)
                 sim = object_state(name).object
                 expected = list(position(sim.pose))

@@ -16,7 +16,9 @@ namespace sixdof_planning {
 namespace {
 
 // Mimic joints given in a request must agree with their source joint to this tolerance.
-constexpr double kMimicTolerance = 1e-4;
+// A mimic joint is derived from its source joint; a measured state may differ by the coupling's compliance
+// (a squeezing simulated gripper reads ~1e-4 m apart), but not contradict the relation.
+constexpr double kMimicTolerance = 2e-3;
 
 }  // namespace
 

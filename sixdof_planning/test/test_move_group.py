@@ -5,12 +5,14 @@
 import itertools
 import math
 import sys
+import time
 import unittest
 import xml.etree.ElementTree as ElementTree
 
 import actionlib
 import rospy
 import rostest
+from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import Pose, Quaternion
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
@@ -417,10 +419,13 @@ class MoveGroupTest(unittest.TestCase):
         try:
             goal = ExecuteTrajectoryGoal()
             goal.trajectory.joint_trajectory = trajectory
-            started = []
-            self.execute.send_goal(goal, feedback_cb=lambda feedback: started.append(feedback.state))
-            while "MONITOR" not in started and not rospy.is_shutdown():
-                rospy.sleep(0.01)
+            self.execute.send_goal(goal)
+            # Wait (bounded, wall clock) until the server executes the goal. Not for its MONITOR feedback:
+            # rospy's SimpleActionClient drops feedback that arrives before send_goal has returned.
+            deadline = time.monotonic() + 60.0
+            while self.execute.get_state() != GoalStatus.ACTIVE and time.monotonic() < deadline:
+                time.sleep(0.01)
+            self.assertEqual(self.execute.get_state(), GoalStatus.ACTIVE, "execute_trajectory goal never became active")
             self.execute.cancel_goal()
             self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
         finally:

@@ -14,6 +14,21 @@ void publishState(Server* server, const std::string& state) {
   server->publishFeedback(feedback);
 }
 
+// Ends the server's current goal by its error code (PREEMPTED -> preempted, success -> succeeded, else aborted),
+// logs it under `source` and reports the server idle.
+template <typename Feedback, typename Server, typename Result>
+void finishGoal(Server* server, const Result& result, const char* source) {
+  ROS_INFO_STREAM(source << ": " << errorCodeName(result.error_code.val) << " " << result.error_code.message);
+  if (result.error_code.val == ErrorCode::PREEMPTED) {
+    server->setPreempted(result, result.error_code.message);
+  } else if (isSuccess(result.error_code)) {
+    server->setSucceeded(result, result.error_code.message);
+  } else {
+    server->setAborted(result, result.error_code.message);
+  }
+  publishState<Feedback>(server, "IDLE");
+}
+
 bool isEmptyDiff(const sixdof_msgs::PlanningScene& diff) {
   return diff.is_diff && diff.world.collision_objects.empty() && diff.robot_state.attached_collision_objects.empty() &&
          diff.robot_state.joint_state.name.empty();
@@ -30,17 +45,7 @@ MoveGroupActionCapability::MoveGroupActionCapability(MoveGroupContext* context, 
 
 void MoveGroupActionCapability::execute(const sixdof_msgs::MoveGroupGoalConstPtr& goal) {
   sixdof_msgs::MoveGroupResult result;
-  auto finish = [&] {
-    ROS_INFO_STREAM("move_group: " << errorCodeName(result.error_code.val) << " " << result.error_code.message);
-    if (result.error_code.val == ErrorCode::PREEMPTED) {
-      server_.setPreempted(result, result.error_code.message);
-    } else if (isSuccess(result.error_code)) {
-      server_.setSucceeded(result, result.error_code.message);
-    } else {
-      server_.setAborted(result, result.error_code.message);
-    }
-    publishState<sixdof_msgs::MoveGroupFeedback>(&server_, "IDLE");
-  };
+  auto finish = [&] { finishGoal<sixdof_msgs::MoveGroupFeedback>(&server_, result, kMoveGroupSource); };
   publishState<sixdof_msgs::MoveGroupFeedback>(&server_, "PLANNING");
   // The goal's scene diff holds for this goal only: it is applied to a copy of the scene.
   std::shared_ptr<const SceneStore> scene;
@@ -88,15 +93,7 @@ void ExecuteTrajectoryActionCapability::execute(const sixdof_msgs::ExecuteTrajec
   sixdof_msgs::ExecuteTrajectoryResult result;
   result.error_code = executor_->execute(goal->trajectory.joint_trajectory, kExecuteSource,
                                          [this] { return server_.isPreemptRequested() || !ros::ok(); });
-  ROS_INFO_STREAM("execute_trajectory: " << errorCodeName(result.error_code.val) << " " << result.error_code.message);
-  if (result.error_code.val == ErrorCode::PREEMPTED) {
-    server_.setPreempted(result, result.error_code.message);
-  } else if (isSuccess(result.error_code)) {
-    server_.setSucceeded(result, result.error_code.message);
-  } else {
-    server_.setAborted(result, result.error_code.message);
-  }
-  publishState<sixdof_msgs::ExecuteTrajectoryFeedback>(&server_, "IDLE");
+  finishGoal<sixdof_msgs::ExecuteTrajectoryFeedback>(&server_, result, kExecuteSource);
 }
 
 MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {

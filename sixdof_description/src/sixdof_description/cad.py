@@ -45,6 +45,20 @@ def _translation(xyz: Sequence[float]) -> np.ndarray:
     return trimesh.transformations.translation_matrix(np.asarray(xyz, dtype=float))
 
 
+
+def _ring_profile(radius: float, lo: float, hi: float, f: float, res: Resolution) -> list[tuple[float, float]]:
+    """Outer (radius, z) profile of a ring from lo to hi, its two edges rounded with fillet radius f (0: sharp)."""
+    if f <= 0.0:
+        return [(radius, lo), (radius, hi)]
+    profile = []
+    for k in range(res.fillet_segments + 1):
+        a = -math.pi / 2.0 + (math.pi / 2.0) * k / res.fillet_segments
+        profile.append((radius - f + f * math.cos(a), lo + f + f * math.sin(a)))
+    for k in range(res.fillet_segments + 1):
+        a = (math.pi / 2.0) * k / res.fillet_segments
+        profile.append((radius - f + f * math.cos(a), hi - f + f * math.sin(a)))
+    return profile
+
 def rounded_cylinder(
     radius: float, span: Sequence[float], axis: str, centre: Sequence[float], fillet: float, res: Resolution
 ) -> trimesh.Trimesh:
@@ -54,17 +68,7 @@ def rounded_cylinder(
     if radius <= 0.0 or length <= 0.0:
         raise DesignError(f"cylinder needs a positive radius and span, got r={radius}, span={span}")
     f = min(fillet, 0.45 * radius, 0.45 * length) if res.rounded else 0.0
-    profile = [(0.0, lo)]
-    if f > 0.0:
-        for k in range(res.fillet_segments + 1):
-            a = -math.pi / 2.0 + (math.pi / 2.0) * k / res.fillet_segments
-            profile.append((radius - f + f * math.cos(a), lo + f + f * math.sin(a)))
-        for k in range(res.fillet_segments + 1):
-            a = (math.pi / 2.0) * k / res.fillet_segments
-            profile.append((radius - f + f * math.cos(a), hi - f + f * math.sin(a)))
-    else:
-        profile += [(radius, lo), (radius, hi)]
-    profile.append((0.0, hi))
+    profile = [(0.0, lo), *_ring_profile(radius, lo, hi, f, res), (0.0, hi)]
     mesh = trimesh.creation.revolve(np.asarray(profile), sections=res.segments)
     mesh.apply_transform(_translation(centre) @ _rotation_to(axis))
     return mesh
@@ -156,15 +160,7 @@ def revolved_stack(rings: Sequence[tuple[float, float, float, float]], res: Reso
     profile = [(0.0, rings[0][1])]
     for radius, lo, hi, fillet in rings:
         f = min(fillet, 0.45 * (hi - lo)) if res.rounded else 0.0
-        if f > 0.0:
-            for k in range(res.fillet_segments + 1):
-                a = -math.pi / 2.0 + (math.pi / 2.0) * k / res.fillet_segments
-                profile.append((radius - f + f * math.cos(a), lo + f + f * math.sin(a)))
-            for k in range(res.fillet_segments + 1):
-                a = (math.pi / 2.0) * k / res.fillet_segments
-                profile.append((radius - f + f * math.cos(a), hi - f + f * math.sin(a)))
-        else:
-            profile += [(radius, lo), (radius, hi)]
+        profile += _ring_profile(radius, lo, hi, f, res)
     profile.append((0.0, rings[-1][2]))
     return trimesh.creation.revolve(np.asarray(profile), sections=res.segments)
 

@@ -1,5 +1,6 @@
 #include "sixdof_core/planning_context.h"
 
+#include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -19,6 +20,7 @@ PlanningContext::PlanningContext(RobotModelConstPtr model, std::shared_ptr<const
     if (bounds.continuous) bounds.lower = bounds.upper = 0.0;
     joints_.push_back(bounds);
     prismatic_.push_back(joint.type == JointType::kPrismatic);
+    variable_indices_.push_back(joint.variable_index);
   }
   if (joints_.empty()) throw std::invalid_argument("planning group '" + group + "' has no active joints");
   if (ik_ && ik_->chain().jointNames() != g->active_joints) {
@@ -34,21 +36,36 @@ PlanningContext::PlanningContext(RobotModelConstPtr model, std::shared_ptr<const
 
 RobotState PlanningContext::withGroup(const RobotState& reference, const Eigen::VectorXd& values) const {
   RobotState state = reference;
-  state.setGroupPositions(group_, values);
+  state.setVariablePositions(variable_indices_, values);
   return state;
 }
 
 std::vector<Eigen::Isometry3d> PlanningContext::sceneLinkPoses(const RobotState& state) const {
   std::vector<Eigen::Isometry3d> poses;
-  poses.reserve(scene_link_to_model_.size());
-  for (int index : scene_link_to_model_) poses.push_back(state.linkTransform(index));
+  sceneLinkPoses(state, &poses);
   return poses;
 }
 
+void PlanningContext::sceneLinkPoses(const RobotState& state, std::vector<Eigen::Isometry3d>* out) const {
+  out->resize(scene_link_to_model_.size());
+  for (std::size_t i = 0; i < scene_link_to_model_.size(); ++i) (*out)[i] = state.linkTransform(scene_link_to_model_[i]);
+}
+
 JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
-  // Copies keep the callback valid after this context or the reference state are gone.
+  // Copies keep the callback valid after this context or the reference state are gone. The callback runs
+  // concurrently in parallel planning attempts, so its scratch state and poses are per thread; assigning
+  // the reference into them reuses their storage (no allocation per check).
   return [scene = scene_, self = *this, reference](const Eigen::VectorXd& q) {
-    return !scene->isColliding(self.sceneLinkPoses(self.withGroup(reference, q)));
+    thread_local std::optional<RobotState> state;
+    thread_local std::vector<Eigen::Isometry3d> poses;
+    if (state) {
+      *state = reference;
+    } else {
+      state.emplace(reference);
+    }
+    state->setVariablePositions(self.variable_indices_, q);
+    self.sceneLinkPoses(*state, &poses);
+    return !scene->isColliding(poses);
   };
 }
 

@@ -330,9 +330,10 @@ void RobotModel::parseUrdf(const std::string& urdf_xml, const PackageResolver& r
     variable_names_.push_back(joint.name);
     variable_joints_.push_back(static_cast<int>(j));
   }
-  for (const auto& joint : joints_) {
+  for (auto& joint : joints_) {
     if (!joint.mimic) continue;
     const int source = jointIndex(joint.mimic->joint);
+    joint.mimic->joint_index = source;
     if (source < 0) {
       throw RobotModelError("URDF: joint '" + joint.name + "' mimics unknown joint '" + joint.mimic->joint + "'");
     }
@@ -661,6 +662,22 @@ void RobotState::setGroupPositions(const std::string& group, const Eigen::Vector
   update();
 }
 
+void RobotState::setVariablePositions(const std::vector<int>& indices, const Eigen::VectorXd& values) {
+  if (static_cast<size_t>(values.size()) != indices.size()) {
+    throw std::invalid_argument("RobotState::setVariablePositions: " + std::to_string(values.size()) +
+                                " values for " + std::to_string(indices.size()) + " indices");
+  }
+  if (!values.allFinite()) throw std::invalid_argument("RobotState::setVariablePositions: non-finite value");
+  for (size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] < 0 || indices[i] >= positions_.size()) {
+      throw std::invalid_argument("RobotState::setVariablePositions: variable index " + std::to_string(indices[i]) +
+                                  " out of range");
+    }
+    positions_[indices[i]] = values[i];
+  }
+  update();
+}
+
 bool RobotState::setToNamedState(const std::string& group, const std::string& state) {
   const GroupState* s = model_->findGroupState(group, state);
   if (!s) return false;
@@ -696,7 +713,7 @@ void RobotState::update() {
   for (size_t j = 0; j < joints.size(); ++j) {
     if (joints[j].mimic) {
       const auto& mimic = *joints[j].mimic;
-      joint_values_[j] = mimic.multiplier * joint_values_[model_->jointIndex(mimic.joint)] + mimic.offset;
+      joint_values_[j] = mimic.multiplier * joint_values_[mimic.joint_index] + mimic.offset;
     }
   }
   const auto& links = model_->links();

@@ -68,6 +68,8 @@ class PlanningContext {
 
   // World poses of the scene's links for a full robot state (in the scene's link order).
   std::vector<Eigen::Isometry3d> sceneLinkPoses(const RobotState& state) const;
+  // The same into *out, reusing its storage.
+  void sceneLinkPoses(const RobotState& state, std::vector<Eigen::Isometry3d>* out) const;
 
  private:
   RobotState withGroup(const RobotState& reference, const Eigen::VectorXd& values) const;
@@ -80,6 +82,7 @@ class PlanningContext {
   std::string group_;
   std::vector<JointBounds> joints_;
   std::vector<bool> prismatic_;
+  std::vector<int> variable_indices_;     // RobotState variable index of each group joint
   std::vector<int> scene_link_to_model_;  // model link index of each scene link
 };
 

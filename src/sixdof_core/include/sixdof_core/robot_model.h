@@ -34,6 +34,7 @@ struct MimicInfo {
   std::string joint;  // the joint this one follows: value = multiplier * joint + offset
   double multiplier = 1.0;
   double offset = 0.0;
+  int joint_index = -1;  // index of `joint` in RobotModel::joints(), set by the model
 };
 
 struct JointModel {
@@ -208,6 +209,10 @@ class RobotState {
   // an unknown group or a size mismatch.
   Eigen::VectorXd groupPositions(const std::string& group) const;
   void setGroupPositions(const std::string& group, const Eigen::VectorXd& values);
+  // Sets positions()[indices[i]] = values[i] and updates the link transforms, without name lookups: the
+  // fast path of a planner's validity checks. Throws std::invalid_argument on a size mismatch, an index out
+  // of range or a non-finite value.
+  void setVariablePositions(const std::vector<int>& indices, const Eigen::VectorXd& values);
   // Applies an SRDF group_state; false when the group has no such state.
   bool setToNamedState(const std::string& group, const std::string& state);
 

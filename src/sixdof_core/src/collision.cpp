@@ -1,10 +1,12 @@
 #include "sixdof_core/collision.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fcl/fcl.h>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -19,9 +21,111 @@ namespace {
 
 using GeometryPtr = std::shared_ptr<fcl::CollisionGeometryd>;
 
+// Oriented bounding box of a shape in the shape's own frame: a cheap, conservative separation test that
+// runs before FCL's narrow phase. Link hulls are long and sit diagonally in the world, so their world AABBs
+// overlap far more often than the shapes themselves (measured: 99.5 % of the pairs that reached FCL in the
+// planning benchmark did not collide).
+struct Obb {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns: unit axes
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+};
+
+// The smaller (by volume) of the box along the shape's frame and the box along the points' principal axes.
+Obb pointsObb(const std::vector<Eigen::Vector3d>& points) {
+  Obb best;
+  if (points.empty()) return best;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& v : points) mean += v;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& v : points) covariance += (v - mean) * (v - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(covariance);
+  double best_volume = std::numeric_limits<double>::infinity();
+  for (const Eigen::Matrix3d& axes : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), pca.eigenvectors()}) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (const auto& v : points) {
+      const Eigen::Vector3d p = axes.transpose() * v;
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const Eigen::Vector3d half = 0.5 * (hi - lo);
+    const double volume = half.prod();
+    if (volume < best_volume) {
+      best_volume = volume;
+      best.axes = axes;
+      best.center = axes * (0.5 * (hi + lo));
+      best.half = half;
+    }
+  }
+  return best;
+}
+
+// Bounding box of an FCL geometry built by makeGeometry() (primitives exactly, meshes from their vertices).
+Obb geometryObb(const fcl::CollisionGeometryd& geometry) {
+  Obb obb;
+  switch (geometry.getNodeType()) {
+    case fcl::GEOM_BOX:
+      obb.half = 0.5 * static_cast<const fcl::Boxd&>(geometry).side;
+      return obb;
+    case fcl::GEOM_SPHERE:
+      obb.half.setConstant(static_cast<const fcl::Sphered&>(geometry).radius);
+      return obb;
+    case fcl::GEOM_CYLINDER: {
+      const auto& c = static_cast<const fcl::Cylinderd&>(geometry);
+      obb.half = Eigen::Vector3d(c.radius, c.radius, 0.5 * c.lz);
+      return obb;
+    }
+    case fcl::GEOM_CONVEX:
+      return pointsObb(static_cast<const fcl::Convexd&>(geometry).getVertices());
+    case fcl::BV_OBBRSS: {
+      const auto& bvh = static_cast<const fcl::BVHModel<fcl::OBBRSSd>&>(geometry);
+      return pointsObb(std::vector<Eigen::Vector3d>(bvh.vertices, bvh.vertices + bvh.num_vertices));
+    }
+    default:
+      break;
+  }
+  // Any other geometry: its local AABB.
+  obb.center = geometry.aabb_local.center();
+  obb.half = 0.5 * (geometry.aabb_local.max_ - geometry.aabb_local.min_);
+  return obb;
+}
+
+// Separating-axis test of two oriented boxes placed by tf1 and tf2 (the 15 axes of Gottschalk et al.); a
+// small tolerance keeps it conservative under rounding. False means the boxes are certainly disjoint.
+bool obbOverlap(const Obb& a, const Eigen::Isometry3d& tf1, const Obb& b, const Eigen::Isometry3d& tf2) {
+  constexpr double kEps = 1e-9;
+  const Eigen::Matrix3d ra = tf1.linear() * a.axes;
+  const Eigen::Matrix3d rb = tf2.linear() * b.axes;
+  const Eigen::Matrix3d r = ra.transpose() * rb;  // b's axes in a's frame
+  const Eigen::Vector3d t = ra.transpose() * ((tf2 * b.center) - (tf1 * a.center));
+  const Eigen::Matrix3d abs_r = r.cwiseAbs().array() + kEps;
+  const Eigen::Vector3d& ea = a.half;
+  const Eigen::Vector3d& eb = b.half;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(t[i]) > ea[i] + abs_r.row(i).dot(eb)) return false;
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (std::abs(t.dot(r.col(j))) > ea.dot(abs_r.col(j)) + eb[j]) return false;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra_ij = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
+      const double rb_ij = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
+      if (std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) > ra_ij + rb_ij) return false;
+    }
+  }
+  return true;
+}
+
 struct ShapeInstance {
   GeometryPtr geometry;
   Eigen::Isometry3d origin;  // in the body's frame
+  Obb obb;                   // in the shape's frame (geometry coordinates)
+  bool origin_is_identity = false;
 };
 
 struct Body {
@@ -192,7 +296,8 @@ SceneStatus buildShapes(Body* body) {
       status.message = "'" + body->name + "': " + describe(placed.shape) + ": " + status.message;
       return status;
     }
-    body->shapes.push_back(ShapeInstance{geometry, placed.origin});
+    body->shapes.push_back(ShapeInstance{geometry, placed.origin, geometryObb(*geometry),
+                                         placed.origin.matrix().isIdentity(0.0)});
   }
   return SceneStatus();
 }
@@ -200,6 +305,7 @@ SceneStatus buildShapes(Body* body) {
 // Collides two shapes; fills contacts (body1 -> body2 normals) when asked.
 bool narrowPhase(const ShapeInstance& s1, const Eigen::Isometry3d& tf1, const ShapeInstance& s2,
                  const Eigen::Isometry3d& tf2, std::size_t max_contacts, std::vector<fcl::Contactd>* contacts) {
+  if (!obbOverlap(s1.obb, tf1, s2.obb, tf2)) return false;
   fcl::CollisionRequestd request(contacts ? max_contacts : 1, contacts != nullptr);
   fcl::CollisionResultd result;
   fcl::collide(s1.geometry.get(), tf1, s2.geometry.get(), tf2, request, result);
@@ -387,19 +493,25 @@ struct CollisionScene::Impl {
   }
 
   std::vector<ShapePose> shapePoses(const std::vector<Eigen::Isometry3d>& poses) const {
-    std::vector<ShapePose> out(robot_shape_count);
+    std::vector<ShapePose> out;
+    shapePoses(poses, &out);
+    return out;
+  }
+
+  void shapePoses(const std::vector<Eigen::Isometry3d>& poses, std::vector<ShapePose>* out) const {
+    out->resize(robot_shape_count);
     for (int r = 0, n = robotCount(); r < n; ++r) {
       const Body& body = robot(r);
       if (body.shapes.empty()) continue;
       const Eigen::Isometry3d base = body.type == BodyType::kAttachedObject ? poses[body.link] * body.pose
                                                                             : poses[body.link];
       for (std::size_t s = 0; s < body.shapes.size(); ++s) {
-        ShapePose& sp = out[shape_offset[r] + s];
-        sp.tf = base * body.shapes[s].origin;
-        sp.aabb = worldAabb(*body.shapes[s].geometry, sp.tf);
+        const ShapeInstance& shape = body.shapes[s];
+        ShapePose& sp = (*out)[shape_offset[r] + s];
+        sp.tf = shape.origin_is_identity ? base : base * shape.origin;
+        sp.aabb = worldAabb(*shape.geometry, sp.tf);
       }
     }
-    return out;
   }
 
   // Shared by the boolean and the reporting query. With a report, contacts are gathered per body pair.
@@ -836,7 +948,9 @@ bool CollisionScene::hasAttachedObject(const std::string& id) const {
 
 bool CollisionScene::isColliding(const std::vector<Eigen::Isometry3d>& link_poses, CollisionScope scope) const {
   impl_->checkPoses(link_poses);
-  const std::vector<ShapePose> poses = impl_->shapePoses(link_poses);
+  // The hot path of planning: shape poses go to a per-thread buffer instead of a new vector per query.
+  thread_local std::vector<ShapePose> poses;
+  impl_->shapePoses(link_poses, &poses);
   const CollisionRequest request;
   Impl::Query q;
   q.scene = impl_.get();

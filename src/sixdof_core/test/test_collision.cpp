@@ -204,14 +204,10 @@ TEST(CollisionScene, HomeIsFreeFoldedArmCollides) {
   EXPECT_LT(scene.distance(folded, CollisionScope::kSelf).distance, 0.0);
 }
 
-TEST(CollisionScene, QueriesAgreeOnRandomStates) {
-  const auto arm = loadArm();
-  CollisionScene scene(arm.links, disabledPairs(arm));
-  ASSERT_TRUE(scene.addWorldObject(object("table", box(1.2, 1.2, 0.05), at(0.3, 0, -0.025))).ok());
-  ASSERT_TRUE(scene.setAllowed("base_link", "table", true).ok());
+void expectQueriesAgree(const sixdof_test::UrdfArm& arm, const CollisionScene& scene) {
   std::mt19937 rng(7);
   int colliding = 0;
-  const int n = 400;
+  const int n = 1000;
   for (int k = 0; k < n; ++k) {
     std::map<std::string, double> values;
     for (const auto& [name, joint] : arm.model->joints_) {
@@ -234,6 +230,28 @@ TEST(CollisionScene, QueriesAgreeOnRandomStates) {
   // Random states of this arm collide often but not always (sanity of the sampler and the model).
   EXPECT_GT(colliding, n / 10);
   EXPECT_LT(colliding, n * 9 / 10);
+}
+
+// The boolean query, the contact report and the distance (whose sign is computed without the boolean
+// query's bounding-box prefilters) agree on random states, with tilted obstacles of every primitive and padded
+// links too.
+TEST(CollisionScene, QueriesAgreeOnRandomStates) {
+  const auto arm = loadArm();
+  for (const double padding : {0.0, 0.002}) {
+    SCOPED_TRACE("padding " + std::to_string(padding));
+    CollisionSceneOptions options;
+    options.link_padding = padding;
+    CollisionScene scene(arm.links, disabledPairs(arm), options);
+    ASSERT_TRUE(scene.addWorldObject(object("table", box(1.2, 1.2, 0.05), at(0.3, 0, -0.025))).ok());
+    ASSERT_TRUE(scene.setAllowed("base_link", "table", true).ok());
+    Eigen::Isometry3d tilted = at(0.35, -0.1, 0.25);
+    tilted.rotate(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+    ASSERT_TRUE(scene.addWorldObject(object("tilted_box", box(0.2, 0.03, 0.12), tilted)).ok());
+    tilted.translation() << 0.1, 0.35, 0.3;
+    ASSERT_TRUE(scene.addWorldObject(object("tilted_cylinder", cylinder(0.03, 0.3), tilted)).ok());
+    ASSERT_TRUE(scene.addWorldObject(object("ball", sphere(0.06), at(-0.2, -0.3, 0.4))).ok());
+    expectQueriesAgree(arm, scene);
+  }
 }
 
 TEST(CollisionScene, AllowedCollisionMatrixIsHonoured) {

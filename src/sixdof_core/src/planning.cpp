@@ -265,6 +265,9 @@ std::string validateOptions(const PlanningOptions& o) {
   if (!finiteNonNegative(o.max_joint_step)) {
     return "max_joint_step must be >= 0 (got " + std::to_string(o.max_joint_step) + ")";
   }
+  if (!std::isfinite(o.simplify_coarse_factor) || o.simplify_coarse_factor < 1.0) {
+    return "simplify_coarse_factor must be >= 1 (got " + std::to_string(o.simplify_coarse_factor) + ")";
+  }
   return "";
 }
 
@@ -287,6 +290,8 @@ std::string validateJoints(const std::vector<JointBounds>& joints) {
 struct Session {
   std::shared_ptr<const JointSpace> joint_space;
   ob::SpaceInformationPtr si;
+  std::shared_ptr<const JointSpace> coarse_space;
+  ob::SpaceInformationPtr coarse_si;  // same space, coarser motion checks: see simplifyPath()
   std::atomic<std::size_t> checks{0};
   JointValidityFn is_valid;
   JointValidityExplainFn explain;
@@ -425,6 +430,8 @@ struct Attempt {
   std::vector<Eigen::VectorXd> raw_path;  // OMPL's values (continuous joints wrapped)
   double length = std::numeric_limits<double>::infinity();
   std::string error;  // planner configuration error
+  double simplify_time = 0.0;
+  bool simplify_fallback = false;
 };
 
 std::vector<Eigen::VectorXd> unwind(const std::vector<JointBounds>& joints, const Eigen::VectorXd& start,
@@ -449,6 +456,40 @@ std::vector<Eigen::VectorXd> densify(const std::vector<Eigen::VectorXd>& path, d
     for (int s = 1; s < steps; ++s) out.push_back(path[k - 1] + delta * (static_cast<double>(s) / steps));
     out.push_back(path[k]);
   }
+  return out;
+}
+
+// True if every segment of the path is valid at the session's (fine) resolution.
+bool pathValid(const ob::SpaceInformationPtr& si, const og::PathGeometric& path) {
+  for (std::size_t k = 1; k < path.getStateCount(); ++k) {
+    if (!si->checkMotion(path.getState(k - 1), path.getState(k))) return false;
+  }
+  return true;
+}
+
+// OMPL's simplifier (vertex reduction, shortcutting, better goals, B-spline smoothing) spends most of its
+// checks validating shortcuts that later shortcuts replace. It therefore runs first on a copy of the path
+// whose motions are checked simplify_coarse_factor times coarser, and the result is then checked at the
+// planning resolution; if any segment fails there, the simplifier runs again at the planning resolution.
+// The returned path is thus always valid at the planning resolution.
+og::PathGeometric simplifyPath(Session* session, const ob::GoalPtr& goal, const og::PathGeometric& raw,
+                               double time_limit, bool* fell_back) {
+  const ob::SpaceInformationPtr& fine = session->si;
+  *fell_back = false;
+  if (session->coarse_si) {
+    og::PathGeometric coarse(session->coarse_si);
+    for (std::size_t k = 0; k < raw.getStateCount(); ++k) coarse.append(raw.getState(k));
+    og::PathSimplifier simplifier(session->coarse_si, goal);
+    simplifier.simplify(coarse, ob::timedPlannerTerminationCondition(time_limit));
+    og::PathGeometric out(fine);
+    for (std::size_t k = 0; k < coarse.getStateCount(); ++k) out.append(coarse.getState(k));
+    if (pathValid(fine, out)) return out;
+    *fell_back = true;
+  }
+  og::PathGeometric out = raw;
+  // The simplifier's loops are bounded; the time limit only guards against pathological validity checkers.
+  og::PathSimplifier simplifier(fine, goal);
+  simplifier.simplify(out, ob::timedPlannerTerminationCondition(time_limit));
   return out;
 }
 
@@ -482,9 +523,9 @@ Attempt runAttempt(const PlanningProblem& p, Session* session, const PlannerFact
 
   og::PathGeometric path = *pdef->getSolutionPath()->as<og::PathGeometric>();
   if (p.options.simplify) {
-    // The simplifier's loops are bounded; the time limit only guards against pathological validity checkers.
-    og::PathSimplifier simplifier(si, goal);
-    simplifier.simplify(path, ob::timedPlannerTerminationCondition(p.options.allowed_planning_time));
+    const Clock::time_point t0 = Clock::now();
+    path = simplifyPath(session, goal, path, p.options.allowed_planning_time, &attempt.simplify_fallback);
+    attempt.simplify_time = secondsSince(t0);
   }
   for (std::size_t k = 0; k < path.getStateCount(); ++k) {
     attempt.raw_path.push_back(session->joint_space->fromOmpl(path.getState(k)));
@@ -502,6 +543,7 @@ PlanningResult finish(PlanningResult r, PlanningStatus status, std::string messa
   r.message = std::move(message);
   r.planning_time = secondsSince(t0);
   if (session) r.validity_checks = session->checks.load();
+
   return r;
 }
 
@@ -599,6 +641,15 @@ PlanningResult plan(const PlanningProblem& p) {
                               : options.longest_valid_segment_fraction;
   session.si->setStateValidityCheckingResolution(fraction);
   session.si->setup();
+  if (options.simplify && options.simplify_coarse_factor > 1.0 && fraction < 1.0) {
+    // A state space owns its check resolution, so the coarse checks need a space of their own.
+    session.coarse_space = std::make_shared<JointSpace>(p.joints);
+    session.coarse_si = std::make_shared<ob::SpaceInformation>(session.coarse_space->space());
+    session.coarse_si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
+        session.coarse_si, session.coarse_space, [s](const Eigen::VectorXd& q) { return s->valid(q); }));
+    session.coarse_si->setStateValidityCheckingResolution(std::min(1.0, fraction * options.simplify_coarse_factor));
+    session.coarse_si->setup();
+  }
 
   err = boundsViolation(p.joints, p.start);
   if (!err.empty()) return finish(result, PlanningStatus::kInvalidStart, "start state: " + err, t0, &session);
@@ -654,6 +705,8 @@ PlanningResult plan(const PlanningProblem& p) {
   }
   result.path = densify(unwind(p.joints, p.start, best->raw_path), options.max_joint_step);
   result.path_length = best->length;
+  result.simplification_time = best->simplify_time;
+  result.simplification_fallback = best->simplify_fallback;
   return finish(result, PlanningStatus::kSuccess, "", t0, &session);
 }
 

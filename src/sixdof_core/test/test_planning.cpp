@@ -373,6 +373,14 @@ TEST_F(PlanningTest, MalformedRequestsAreRejected) {
   p.options.allowed_planning_time = 0.0;
   EXPECT_EQ(plan(p).status, PlanningStatus::kInvalidRequest);
 
+  for (double factor : {0.5, static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
+    p = good;
+    p.options.simplify_coarse_factor = factor;
+    r = plan(p);
+    EXPECT_EQ(r.status, PlanningStatus::kInvalidRequest) << factor;
+    EXPECT_NE(r.message.find("simplify_coarse_factor"), std::string::npos) << r.message;
+  }
+
   p = good;
   p.options.planner_params = {{"no_such_param", "1"}};
   r = plan(p);
@@ -400,6 +408,40 @@ TEST_F(PlanningTest, ValidityResolutionIsHonoured) {
   p.options.longest_valid_segment_length = 0.005;
   r = plan(p);
   expectValidPath(w, r);
+}
+
+TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
+  World w = planar();
+  // A thin wall between start and goal with a gap at the top: the only way round is through the gap.
+  w.addBox2("thin_wall", 0.2, -1.0, 0.22, 0.6);
+  PlanningProblem p = w.problem(vec({-0.5, 0.0}), vec({0.5, 0.0}));
+  p.options.longest_valid_segment_length = 0.005;
+
+  // Checked 100 times coarser (every 0.5), the straight shortcut start -> goal looks free: the re-check at
+  // the planning resolution must catch it and simplify again.
+  p.options.simplify_coarse_factor = 100.0;
+  PlanningResult r = plan(p);
+  expectValidPath(w, r);
+  EXPECT_TRUE(r.simplification_fallback);
+  EXPECT_GT(r.simplification_time, 0.0);
+  EXPECT_LE(r.simplification_time, r.planning_time);
+
+  // The default factor (whether or not its coarse result passes the re-check here).
+  p.options.simplify_coarse_factor = PlanningOptions().simplify_coarse_factor;
+  r = plan(p);
+  expectValidPath(w, r);
+
+  p.options.simplify_coarse_factor = 1.0;
+  const PlanningResult fine = plan(p);
+  expectValidPath(w, fine);
+  EXPECT_FALSE(fine.simplification_fallback);
+  // Both detour through the gap (y > 0.6) and are about as short (simplification quality is kept).
+  EXPECT_NEAR(r.path_length, fine.path_length, 0.1 * fine.path_length);
+
+  p.options.simplify = false;
+  r = plan(p);
+  EXPECT_EQ(r.simplification_time, 0.0);
+  EXPECT_FALSE(r.simplification_fallback);
 }
 
 }  // namespace

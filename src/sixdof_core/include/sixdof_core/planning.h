@@ -79,6 +79,11 @@ struct PlanningOptions {
   // ... or, when > 0, at this joint-space distance (rad / m) instead.
   double longest_valid_segment_length = 0.0;
   bool simplify = true;  // OMPL PathSimplifier: vertex reduction, shortcutting, B-spline smoothing
+  // The simplifier first checks its shortcuts this many times coarser than the planning resolution, then
+  // re-checks the simplified path at the planning resolution and, if any segment fails there, simplifies
+  // again at the planning resolution. The path is valid at the planning resolution either way; the coarse
+  // pass only saves checks (most shortcuts it validates are replaced by later ones). 1 = off.
+  double simplify_coarse_factor = 4.0;
   // After simplification, points are inserted so no joint moves more than this between points (0 = off).
   double max_joint_step = 0.0;
   // Reseeds OMPL's process-wide random generator: planning is then repeatable for sequential attempts
@@ -104,6 +109,8 @@ struct PlanningResult {
   std::vector<Eigen::VectorXd> path;  // start first, goal last; empty unless kSuccess
   double planning_time = 0.0;         // s, wall clock of the whole call
   double path_length = 0.0;           // sum of jointDistance() over the path's segments
+  double simplification_time = 0.0;   // s, part of planning_time spent simplifying the returned path
+  bool simplification_fallback = false;  // the coarse simplification failed its re-check (see options)
   std::size_t validity_checks = 0;    // calls of is_valid made by this call
   int solved_attempts = 0;
   std::string planner_id;             // canonical id used

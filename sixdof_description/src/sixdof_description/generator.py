@@ -381,8 +381,9 @@ def _srdf_xml(element: ET.Element) -> str:
 # --- YAML -------------------------------------------------------------------------------------------
 
 
-def _yaml(data: dict) -> str:
-    return f"# {HEADER}\n" + yaml.safe_dump(data, sort_keys=False, default_flow_style=False, width=120)
+def _yaml(data: dict, note: str = "") -> str:
+    comment = "".join(f"# {line}\n" for line in note.splitlines())
+    return f"# {HEADER}\n{comment}" + yaml.safe_dump(data, sort_keys=False, default_flow_style=False, width=120)
 
 
 def render_kinematics(robot: Robot) -> str:
@@ -463,7 +464,13 @@ def render_controllers(robot: Robot) -> str:
              "default": True, "joints": list(GRIPPER_JOINTS)},
         ],
     }
-    return _yaml(data)
+    return _yaml(data, CONTROLLERS_NOTE)
+
+
+CONTROLLERS_NOTE = """\
+ros_control layout. sixdof_sim reads type, joints, constraints, state_publish_rate and gripper_cmd; its joints
+are ideal position servos, so it does not read gains (PID gains for effort-controlled joints: real hardware
+or gazebo_ros_control), action_monitor_rate or stop_trajectory_duration. move_group reads controller_list."""
 
 
 # --- driver -----------------------------------------------------------------------------------------

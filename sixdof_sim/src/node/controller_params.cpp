@@ -1,5 +1,7 @@
 #include "controller_params.h"
 
+#include <cmath>
+
 #include <stdexcept>
 
 namespace sixdof_sim {
@@ -55,6 +57,15 @@ TrajectoryControllerConfig readTrajectoryControllerConfig(const ros::NodeHandle&
     c.goal_tolerance.push_back(readDouble(nh, cons + j + "/goal", 0.0));
   }
   return c;
+}
+
+double readStatePublishRate(const ros::NodeHandle& nh, const std::string& name) {
+  const double rate = readDouble(nh, name + "/state_publish_rate", 50.0);
+  if (!std::isfinite(rate) || rate < 0.0) {
+    throw std::runtime_error("parameter '" + nh.resolveName(name + "/state_publish_rate") +
+                             "' must be >= 0 (Hz; 0 = no state topic), got " + std::to_string(rate));
+  }
+  return rate;
 }
 
 GripperControllerConfig readGripperControllerConfig(const ros::NodeHandle& nh, const std::string& name,

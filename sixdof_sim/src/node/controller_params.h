@@ -1,6 +1,6 @@
 #pragma once
 // Controller configuration from the parameter server, in ros_control's controllers.yaml layout:
-//   <name>: {type: .../JointTrajectoryController, joints: [...],
+//   <name>: {type: .../JointTrajectoryController, joints: [...], state_publish_rate,
 //            constraints: {goal_time, stopped_velocity_tolerance, <joint>: {trajectory, goal}},
 //            gripper_cmd: {goal_tolerance, stall_velocity_threshold, stall_timeout, allow_stalling}}
 // `gains` are not read: the World's joint servos are configured by the World itself.
@@ -19,6 +19,10 @@ namespace sixdof_sim {
 // Throws std::runtime_error naming the parameter when it is missing, mistyped or inconsistent.
 TrajectoryControllerConfig readTrajectoryControllerConfig(const ros::NodeHandle& nh, const std::string& name,
                                                           const std::vector<JointInfo>& robot_joints);
+
+// <name>/state_publish_rate (Hz, default 50 as joint_trajectory_controller; 0 = no state topic). Throws
+// std::runtime_error unless it is a finite number >= 0.
+double readStatePublishRate(const ros::NodeHandle& nh, const std::string& name);
 
 // The gripper_cmd action of controller `name` drives its first non-mimic joint.
 GripperControllerConfig readGripperControllerConfig(const ros::NodeHandle& nh, const std::string& name,

@@ -95,7 +95,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), options_(re
   for (const std::string& name : options_.controllers) {
     drivers_.push_back(std::make_unique<TrajectoryActionHandler>(
         ros::NodeHandle(nh_, name), readTrajectoryControllerConfig(nh_, name, world_->joints()), *world_, arbiter_,
-        clock));
+        clock, readStatePublishRate(nh_, name)));
   }
   if (!options_.gripper_command_controller.empty()) {
     const std::string& name = options_.gripper_command_controller;

@@ -7,17 +7,24 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <sixdof_msgs/JointTrajectoryControllerState.h>
+
 #include "conversions.h"
 
 namespace sixdof_sim {
 
 TrajectoryActionHandler::TrajectoryActionHandler(ros::NodeHandle nh, TrajectoryControllerConfig config,
-                                                 World& world, JointArbiter& arbiter, std::function<double()> clock)
+                                                 World& world, JointArbiter& arbiter, std::function<double()> clock,
+                                                 double state_publish_rate)
     : controller_(std::move(config)),
       world_(world),
       arbiter_(arbiter),
       clock_(std::move(clock)),
       server_(nh, "follow_joint_trajectory", false) {
+  if (state_publish_rate > 0.0) {
+    state_period_ = 1.0 / state_publish_rate;
+    state_pub_ = nh.advertise<sixdof_msgs::JointTrajectoryControllerState>("state", 1);
+  }
   const std::vector<std::string>& joints = controller_.joints();
   for (const std::string& j : joints) {
     const int w = world_.jointIndex(j);
@@ -192,9 +199,10 @@ void TrajectoryActionHandler::update(double now) {
 }
 
 void TrajectoryActionHandler::publishFeedback(const ros::Time& stamp) {
-  if (!active_ || last_update_.desired.position.empty()) {
+  if (last_update_.desired.position.empty()) {
     return;
   }
+  // The action feedback and the state topic carry the same fields.
   sixdof_msgs::FollowJointTrajectoryFeedback fb;
   fb.header.stamp = stamp;
   fb.joint_names = controller_.joints();
@@ -207,7 +215,21 @@ void TrajectoryActionHandler::publishFeedback(const ros::Time& stamp) {
     fb.actual.positions.push_back(fb.desired.positions[i] - fb.error.positions[i]);
     fb.actual.velocities.push_back(fb.desired.velocities[i] - fb.error.velocities[i]);
   }
-  active_->publishFeedback(fb);
+  if (active_) {
+    active_->publishFeedback(fb);
+  }
+  // The state while this controller commands its joints (not while another driver, e.g. gripper_cmd, has them).
+  const double now = stamp.toSec();
+  if (state_period_ > 0.0 && ownsAny() && (now >= next_state_ || now < next_state_ - state_period_)) {
+    sixdof_msgs::JointTrajectoryControllerState state;
+    state.header = fb.header;
+    state.joint_names = fb.joint_names;
+    state.desired = fb.desired;
+    state.actual = fb.actual;
+    state.error = fb.error;
+    state_pub_.publish(state);
+    next_state_ = now + state_period_;
+  }
 }
 
 }  // namespace sixdof_sim

@@ -1,9 +1,11 @@
 #pragma once
 // arm_controller/follow_joint_trajectory and gripper_controller/follow_joint_trajectory: a
-// sixdof_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints.
+// sixdof_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints, and
+// the controller's state topic (<controller>/state, sixdof_msgs/JointTrajectoryControllerState).
 
 #include <actionlib/server/action_server.h>
 #include <ros/node_handle.h>
+#include <ros/publisher.h>
 #include <sixdof_msgs/FollowJointTrajectoryAction.h>
 
 #include <functional>
@@ -24,8 +26,10 @@ class TrajectoryActionHandler : public JointDriver {
   // nh: the controller's namespace (the action is nh/follow_joint_trajectory). Mimic joints of the config
   // are checked against their master in every goal and left to the World to drive. Throws
   // std::invalid_argument when a mimic joint's master is not part of the controller.
+  // state_publish_rate: Hz of nh/state (0 = not advertised); published from publishFeedback(), so at most at
+  // the rate the node calls it (its publish_rate).
   TrajectoryActionHandler(ros::NodeHandle nh, TrajectoryControllerConfig config, World& world,
-                          JointArbiter& arbiter, std::function<double()> clock);
+                          JointArbiter& arbiter, std::function<double()> clock, double state_publish_rate = 50.0);
 
   void update(double now) override;
   void release() override;
@@ -56,6 +60,9 @@ class TrajectoryActionHandler : public JointDriver {
   std::vector<Mimic> mimics_;
   std::optional<Server::GoalHandle> active_;
   TrajectoryUpdate last_update_;
+  double state_period_ = 0.0;  // s; 0 = no state topic
+  double next_state_ = 0.0;    // node clock
+  ros::Publisher state_pub_;
   Server server_;
 };
 

@@ -13,7 +13,13 @@ from shape_msgs.msg import SolidPrimitive
 from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, trajectory_goal
 from std_srvs.srv import Empty
 
-from sixdof_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult, JointTolerance, SimObject
+from sixdof_msgs.msg import (
+    FollowJointTrajectoryAction,
+    FollowJointTrajectoryResult,
+    JointTolerance,
+    JointTrajectoryControllerState,
+    SimObject,
+)
 from sixdof_msgs.srv import GetObjectState, SpawnObject
 
 TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
@@ -67,6 +73,36 @@ class SimActionsTest(unittest.TestCase):
         self.assert_reaches(ARM_JOINTS, TARGET, 0.011)
         self.assertGreater(len(feedback), 10)
         self.assertEqual(feedback[-1].joint_names, ARM_JOINTS)
+
+    def test_state_topic_reports_desired_actual_and_error(self) -> None:
+        states = []
+        sub = rospy.Subscriber("arm_controller/state", JointTrajectoryControllerState, states.append, queue_size=1000)
+        try:
+            state, result = self.run_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 1.5)]))
+            self.assertEqual(state, GoalStatus.SUCCEEDED, result.error_string)
+            self.assert_reaches(ARM_JOINTS, TARGET, 0.011)
+            # Settled: the newest state commands the target and measures the arm there.
+            settled = rospy.Time.now()
+            deadline = settled + rospy.Duration(10.0)
+            while not (states and states[-1].header.stamp > settled) and rospy.Time.now() < deadline:
+                rospy.rostime.wallsleep(0.01)
+        finally:
+            sub.unregister()
+        self.assertGreater(len(states), 10)
+        moving = [m for m in states if max(abs(v) for v in m.desired.velocities) > 0.01]
+        self.assertTrue(moving, "no state while the trajectory moved")
+        for m in states:
+            self.assertEqual(list(m.joint_names), ARM_JOINTS)
+            for d, a, e in zip(m.desired.positions, m.actual.positions, m.error.positions, strict=True):
+                self.assertAlmostEqual(e, d - a, places=9)
+        stamps = [m.header.stamp.to_sec() for m in states]
+        # Never faster than the configured 50 Hz (state_publish_rate default), stamps in order.
+        self.assertGreaterEqual(min(b - a for a, b in zip(stamps, stamps[1:], strict=False)), 0.02 - 1.5e-3)
+        last = states[-1]
+        self.assertGreater(last.header.stamp, settled)
+        for d, a, t in zip(last.desired.positions, last.actual.positions, TARGET, strict=True):
+            self.assertAlmostEqual(d, t, places=6)
+            self.assertAlmostEqual(a, t, delta=0.011)
 
     def test_multi_point_linear_trajectory_in_another_joint_order(self) -> None:
         order = list(reversed(ARM_JOINTS))

@@ -48,6 +48,35 @@ def load_robot_model(ns: str) -> tuple[RobotDescription, SemanticDescription]:
     return parse_urdf(texts[0]), parse_srdf(texts[1])
 
 
+class ActionClient(actionlib.SimpleActionClient):
+    """actionlib's SimpleActionClient without its send_goal race (ros/actionlib#206).
+
+    The server's first status or feedback for a new goal can arrive before SimpleActionClient.send_goal has
+    stored the new goal handle; it then logs "Got a transition callback on a goal handle that we're not
+    tracking" and drops the update (an early feedback message is lost). Here those callbacks wait until
+    send_goal has stored the handle. They run on rospy's subscriber threads, and send_goal only publishes,
+    so the wait is short and cannot deadlock.
+    """
+
+    def __init__(self, ns: str, action_spec: type) -> None:
+        super().__init__(ns, action_spec)
+        self._sending = threading.Lock()
+
+    def send_goal(self, goal, done_cb=None, active_cb=None, feedback_cb=None) -> None:
+        with self._sending:
+            super().send_goal(goal, done_cb=done_cb, active_cb=active_cb, feedback_cb=feedback_cb)
+
+    def _handle_transition(self, gh) -> None:
+        with self._sending:
+            pass
+        super()._handle_transition(gh)
+
+    def _handle_feedback(self, gh, feedback) -> None:
+        with self._sending:
+            pass
+        super()._handle_feedback(gh, feedback)
+
+
 class ServerWaiter:
     """Waits for several services and actions under one wall-clock deadline; names every missing one.
 
@@ -71,7 +100,7 @@ class ServerWaiter:
         except rospy.ROSException:
             self.missing.append(f"service '{rospy.resolve_name(name)}'")
 
-    def action(self, client: actionlib.SimpleActionClient, name: str) -> None:
+    def action(self, client: ActionClient, name: str) -> None:
         ready = threading.Event()
 
         def wait() -> None:

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import actionlib
-
 from sixdof_msgs.msg import GripperCommandAction, GripperCommandGoal, GripperCommandResult
 
-from ._ros import ServerWaiter, load_robot_model, require_node, resolve
+from ._ros import ActionClient, ServerWaiter, load_robot_model, require_node, resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number
 from .robot_model import resolve_group
@@ -39,7 +37,7 @@ class Gripper:
                     f"the SRDF has no state '{state}' of group '{group_name}' with joint '{self._joint.name}'"
                 )
             self._positions[state] = group.named_states[state][self._joint.name]
-        self._client = actionlib.SimpleActionClient(resolve(ns, action_name), GripperCommandAction)
+        self._client = ActionClient(resolve(ns, action_name), GripperCommandAction)
         waiter = ServerWaiter(wait_for_servers)
         waiter.action(self._client, resolve(ns, action_name))
         waiter.check("Gripper")

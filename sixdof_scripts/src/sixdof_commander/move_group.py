@@ -5,7 +5,6 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping, Sequence
 
-import actionlib
 import rospy
 from geometry_msgs.msg import Pose, PoseStamped
 
@@ -19,7 +18,7 @@ from sixdof_msgs.msg import (
 )
 from sixdof_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK
 
-from ._ros import JointStateMonitor, ServerWaiter, load_robot_model, require_node, resolve
+from ._ros import ActionClient, JointStateMonitor, ServerWaiter, load_robot_model, require_node, resolve
 from .exceptions import SixdofCommanderError
 from .goals import GoalBuilder
 from .planning_scene import PlanningScene
@@ -67,8 +66,8 @@ class MoveGroup:
                 raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
         self._last_error = error_code(MoveItErrorCodes.SUCCESS, "")
 
-        self._move_action = actionlib.SimpleActionClient(resolve(ns, "move_group"), MoveGroupAction)
-        self._execute_action = actionlib.SimpleActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
+        self._move_action = ActionClient(resolve(ns, "move_group"), MoveGroupAction)
+        self._execute_action = ActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
         waiter = ServerWaiter(wait_for_servers)
         waiter.action(self._move_action, resolve(ns, "move_group"))
         waiter.action(self._execute_action, resolve(ns, "execute_trajectory"))
@@ -264,7 +263,7 @@ class MoveGroup:
         goal.trajectory = trajectory
         return self._run_action(self._execute_action, goal, "execute_trajectory", wait)
 
-    def _run_action(self, client: actionlib.SimpleActionClient, goal: object, name: str, wait: bool) -> bool:
+    def _run_action(self, client: ActionClient, goal: object, name: str, wait: bool) -> bool:
         client.send_goal(goal)
         if not wait:
             self._last_error = error_code(MoveItErrorCodes.SUCCESS, f"{name} goal sent")

@@ -1,13 +1,58 @@
 #!/usr/bin/env python3
 """rostest: the commander's errors when its servers or parameters are missing, and joint_states reading."""
 
+import threading
 import unittest
 
+import actionlib
 import rospy
 import rostest
+from actionlib_msgs.msg import GoalStatus
 from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, PlanningScene, SixdofCommanderError
-from sixdof_commander._ros import JointStateMonitor
+from sixdof_commander._ros import ActionClient, JointStateMonitor
+
+from sixdof_msgs.msg import GripperCommandAction, GripperCommandFeedback, GripperCommandGoal
+
+
+class _FastServerHandle:
+    """Stands in for actionlib's ClientGoalHandle of a goal the server has already accepted."""
+
+    def get_comm_state(self) -> int:
+        return actionlib.CommState.ACTIVE
+
+    def get_goal_status(self) -> int:
+        return GoalStatus.ACTIVE
+
+
+def send_with_fast_reply(client: actionlib.SimpleActionClient) -> tuple[list, list, list]:
+    """Sends a goal whose first status and feedback arrive (on another thread) before the underlying
+    ActionClient.send_goal returns, as a fast server's can (ros/actionlib#206). Returns what the client's
+    callbacks received and the errors actionlib logged."""
+    errors, active, feedback = [], [], []
+    real_send = client.action_client.send_goal
+    logerr = actionlib.simple_action_client.rospy.logerr
+
+    def fast_send(goal, transition_cb, feedback_cb):
+        handle = _FastServerHandle()
+        reply = threading.Thread(
+            target=lambda: (transition_cb(handle), feedback_cb(handle, GripperCommandFeedback(position=0.01)))
+        )
+        reply.start()
+        reply.join(0.5)  # the reply is in before send_goal returns (unless the client makes it wait)
+        return handle
+
+    client.action_client.send_goal = fast_send
+    actionlib.simple_action_client.rospy.logerr = lambda *args, **kwargs: errors.append(args)
+    try:
+        client.send_goal(GripperCommandGoal(), active_cb=lambda: active.append(True), feedback_cb=feedback.append)
+        deadline = rospy.get_time() + 5.0
+        while not feedback and rospy.get_time() < deadline:
+            rospy.rostime.wallsleep(0.01)
+    finally:
+        client.action_client.send_goal = real_send
+        actionlib.simple_action_client.rospy.logerr = logerr
+    return errors, active, feedback
 
 
 class CommanderWithoutServers(unittest.TestCase):
@@ -50,6 +95,19 @@ class CommanderWithoutServers(unittest.TestCase):
             MoveGroup("arm", wait_for_servers=-1.0)
         with self.assertRaisesRegex(SixdofCommanderError, "parameter '/elsewhere/robot_description' is not set"):
             MoveGroup("arm", ns="/elsewhere", wait_for_servers=0.2)
+
+    def test_action_client_keeps_the_first_status_and_feedback_of_a_goal(self):
+        # actionlib's own client drops them and logs an error: the race this client fixes.
+        errors, active, feedback = send_with_fast_reply(
+            actionlib.SimpleActionClient("race_stock", GripperCommandAction)
+        )
+        self.assertTrue(errors)
+        self.assertEqual((active, feedback), ([], []))
+
+        errors, active, feedback = send_with_fast_reply(ActionClient("race_fixed", GripperCommandAction))
+        self.assertEqual(errors, [])
+        self.assertEqual(active, [True])
+        self.assertEqual([f.position for f in feedback], [0.01])
 
     def test_joint_state_monitor_reads_positions_and_names_missing_joints(self):
         monitor = JointStateMonitor("joint_states")

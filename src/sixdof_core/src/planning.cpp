@@ -53,6 +53,8 @@ constexpr double kDuplicateGoalDistance = 1e-9;
 // Random states tried inside a joint goal's tolerance box when the target itself is invalid.
 constexpr int kToleranceSamples = 100;
 constexpr int kMaxToleranceGoals = 8;
+// The coarsest check resolution (fraction of the space's maximum extent) of the simplifier's coarse pass.
+constexpr double kCoarsestSimplifyFraction = 0.005;
 // KPIECE-style planners grid the projection (the first two joints, as MoveIt's default) in this many cells.
 constexpr double kProjectionCellsPerJoint = 20.0;
 
@@ -641,13 +643,17 @@ PlanningResult plan(const PlanningProblem& p) {
                               : options.longest_valid_segment_fraction;
   session.si->setStateValidityCheckingResolution(fraction);
   session.si->setup();
-  if (options.simplify && options.simplify_coarse_factor > 1.0 && fraction < 1.0) {
+  // The coarse pass never checks coarser than kCoarsestSimplifyFraction: where the planning resolution is
+  // already that coarse (MoveIt's default), shortcuts accepted coarser fail their re-check too often to pay.
+  const double coarse_fraction =
+      std::min(fraction * options.simplify_coarse_factor, std::max(fraction, kCoarsestSimplifyFraction));
+  if (options.simplify && coarse_fraction > fraction) {
     // A state space owns its check resolution, so the coarse checks need a space of their own.
     session.coarse_space = std::make_shared<JointSpace>(p.joints);
     session.coarse_si = std::make_shared<ob::SpaceInformation>(session.coarse_space->space());
     session.coarse_si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
         session.coarse_si, session.coarse_space, [s](const Eigen::VectorXd& q) { return s->valid(q); }));
-    session.coarse_si->setStateValidityCheckingResolution(std::min(1.0, fraction * options.simplify_coarse_factor));
+    session.coarse_si->setStateValidityCheckingResolution(coarse_fraction);
     session.coarse_si->setup();
   }
 

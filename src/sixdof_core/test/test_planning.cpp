@@ -412,13 +412,14 @@ TEST_F(PlanningTest, ValidityResolutionIsHonoured) {
 
 TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
   World w = planar();
-  // A thin wall between start and goal with a gap at the top: the only way round is through the gap.
-  w.addBox2("thin_wall", 0.2, -1.0, 0.22, 0.6);
+  // A 2 mm wall (6 mm padded) between start and goal with a gap at the top: the only way round is through the
+  // gap. Planning checks every 1 mm; the coarse pass checks every 14 mm (its cap, 0.005 of the extent 2.83),
+  // so shortcuts across the wall can look free to it: the re-check at the planning resolution must catch
+  // them and simplify again.
+  w.padding = 0.002;
+  w.addBox2("thin_wall", 0.2, -1.0, 0.202, 0.6);
   PlanningProblem p = w.problem(vec({-0.5, 0.0}), vec({0.5, 0.0}));
-  p.options.longest_valid_segment_length = 0.005;
-
-  // Checked 100 times coarser (every 0.5), the straight shortcut start -> goal looks free: the re-check at
-  // the planning resolution must catch it and simplify again.
+  p.options.longest_valid_segment_length = 0.001;
   p.options.simplify_coarse_factor = 100.0;
   PlanningResult r = plan(p);
   expectValidPath(w, r);
@@ -437,6 +438,19 @@ TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
   EXPECT_FALSE(fine.simplification_fallback);
   // Both detour through the gap (y > 0.6) and are about as short (simplification quality is kept).
   EXPECT_NEAR(r.path_length, fine.path_length, 0.1 * fine.path_length);
+
+  // At MoveIt's default resolution (0.005 of the extent) there is no coarser pass: the default factor then
+  // plans exactly as factor 1 (same seed, same checks, same path).
+  p.options.longest_valid_segment_length = 0.0;
+  p.options.longest_valid_segment_fraction = 0.005;
+  const PlanningResult capped = plan(p);
+  p.options.simplify_coarse_factor = PlanningOptions().simplify_coarse_factor;
+  const PlanningResult defaulted = plan(p);
+  ASSERT_TRUE(capped.success()) << capped.message;
+  ASSERT_TRUE(defaulted.success()) << defaulted.message;
+  EXPECT_EQ(defaulted.validity_checks, capped.validity_checks);
+  ASSERT_EQ(defaulted.path.size(), capped.path.size());
+  for (std::size_t k = 0; k < capped.path.size(); ++k) EXPECT_TRUE(defaulted.path[k].isApprox(capped.path[k]));
 
   p.options.simplify = false;
   r = plan(p);

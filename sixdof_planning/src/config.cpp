@@ -168,6 +168,16 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   config.start_state_max_bounds_error =
       positiveParam(private_nh, "start_state_max_bounds_error", config.start_state_max_bounds_error, true);
   config.joint_state_timeout = positiveParam(private_nh, "joint_state_timeout", config.joint_state_timeout, true);
+  config.longest_valid_segment_fraction = positiveParam(private_nh, "longest_valid_segment_fraction",
+                                                        config.longest_valid_segment_fraction, false);
+  if (config.longest_valid_segment_fraction > 1.0) {
+    throw ConfigError("parameter " + fullName(private_nh, "longest_valid_segment_fraction") + " must be <= 1, got " +
+                      std::to_string(config.longest_valid_segment_fraction));
+  }
+  if (private_nh.hasParam("simplify_solutions") &&
+      !private_nh.getParam("simplify_solutions", config.simplify_solutions)) {
+    throw ConfigError("parameter " + fullName(private_nh, "simplify_solutions") + " is not a bool");
+  }
   return config;
 }
 

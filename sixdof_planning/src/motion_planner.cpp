@@ -261,6 +261,8 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   options.allowed_planning_time =
       request.allowed_planning_time > 0.0 ? request.allowed_planning_time : config.default_planning_time;
   options.num_planning_attempts = std::max(1, request.num_planning_attempts);
+  options.longest_valid_segment_fraction = config.longest_valid_segment_fraction;
+  options.simplify = config.simplify_solutions;
   std::unique_ptr<sixdof_core::PlanningContext> planning;
   try {
     planning = std::make_unique<sixdof_core::PlanningContext>(

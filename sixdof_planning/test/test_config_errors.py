@@ -92,6 +92,18 @@ class ConfigErrorsTest(unittest.TestCase):
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
         self.assertIn("default_planning_time", result.stdout + result.stderr)
 
+    def test_planning_resolution_and_simplification_flags(self) -> None:
+        # A plain loop, not subTest: rosunit drops failed subTests from its report.
+        for value, fragment in ((0.0, "must be > 0"), (1.5, "must be <= 1"), ("fine", "is not a number")):
+            self.assert_refused(
+                dict(self.good, **{"move_group/longest_valid_segment_fraction": value}),
+                "longest_valid_segment_fraction",
+                fragment,
+            )
+        self.assert_refused(
+            dict(self.good, **{"move_group/simplify_solutions": "yes"}), "simplify_solutions", "is not a bool"
+        )
+
 
 if __name__ == "__main__":
     rostest.rosrun(PKG, "test_config_errors", ConfigErrorsTest, sys.argv)

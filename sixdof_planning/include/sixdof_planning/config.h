@@ -59,6 +59,10 @@ struct MoveGroupConfig {
   // Covers the numerical drift of measured joint states, e.g. a closed finger reading -2e-8 m.
   double start_state_max_bounds_error = 1e-3;
   double joint_state_timeout = 1.0;         // ~joint_state_timeout: how long a request waits for joint_states, s
+  // ~longest_valid_segment_fraction (MoveIt's name): motions are collision-checked at this fraction of the
+  // joint space's maximum extent, in (0, 1].
+  double longest_valid_segment_fraction = 0.005;
+  bool simplify_solutions = true;  // ~simplify_solutions: OMPL path simplification of every plan
 };
 
 // Reads every parameter the node needs from `nh` (its namespace) and `private_nh`. Throws ConfigError.

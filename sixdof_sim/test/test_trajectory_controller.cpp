@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "sixdof_sim/trajectory_controller.h"
@@ -353,8 +354,38 @@ TEST(TrajectoryControllerConfig, BadConfigThrows) {
   EXPECT_THROW(TrajectoryController{c}, std::invalid_argument);
 }
 
+TEST_F(TrajectoryControllerTest, SampleIsWhatUpdateCommandsAtThatTime) {
+  // Holding: any time gives the held position at rest.
+  std::optional<TrajectorySample> held = c.sample(now + 100.0);
+  ASSERT_TRUE(held);
+  EXPECT_EQ(held->position, plant.q);
+  EXPECT_EQ(held->velocity, std::vector<double>({0.0, 0.0}));
+  ASSERT_TRUE(c.setGoal(goalTo(0.5, -1.0, 1.0), now).ok());
+  // Ahead of time: the end of the trajectory, midway, and after its end.
+  const std::optional<TrajectorySample> end = c.sample(now + 1.0);
+  const std::optional<TrajectorySample> mid = c.sample(now + 0.5);
+  const std::optional<TrajectorySample> after = c.sample(now + 3.0);
+  ASSERT_TRUE(end && mid && after);
+  EXPECT_NEAR(end->position[0], 0.5, 1e-12);
+  EXPECT_NEAR(end->position[1], -1.0, 1e-12);
+  EXPECT_EQ(after->position, end->position);
+  EXPECT_GT(mid->velocity[0], 0.0);
+  const double mid_time = now + 0.5;
+  while (now < mid_time - kDt / 2) {
+    plant.apply(c.update(now, plant.q, plant.v).desired);
+    now += kDt;
+  }
+  const TrajectoryUpdate u = c.update(mid_time, plant.q, plant.v);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(u.desired.position[i], mid->position[i], 1e-12);
+    EXPECT_NEAR(u.desired.velocity[i], mid->velocity[i], 1e-12);
+    EXPECT_NEAR(u.desired.acceleration[i], mid->acceleration[i], 1e-12);
+  }
+}
+
 TEST(TrajectoryControllerNoState, GoalBeforeAnyUpdateIsRejected) {
   TrajectoryController c{twoJointConfig()};
+  EXPECT_FALSE(c.sample(0.0));
   TrajectoryResult r = c.setGoal(goalTo(0.1, 0.1, 1.0), 0.0);
   EXPECT_EQ(r.code, TrajectoryErrorCode::INVALID_GOAL);
   EXPECT_NE(r.message.find("no current state"), std::string::npos);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,9 @@ class TrajectoryController {
 
   bool active() const { return state_ == GoalState::ACTIVE; }
   GoalState state() const { return state_; }
+  // The commanded trajectory (the active goal's, or the hold) sampled at `time`, as the next update() at that
+  // time would command it; nullopt before the first hold or goal (joint_trajectory_controller's query_state).
+  std::optional<TrajectorySample> sample(double time) const;
   // The time the active trajectory reaches its last point (0 without one).
   double endTime() const { return trajectory_ ? trajectory_->endTime() : 0.0; }
 

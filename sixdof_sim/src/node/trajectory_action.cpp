@@ -50,6 +50,7 @@ TrajectoryActionHandler::TrajectoryActionHandler(ros::NodeHandle nh, TrajectoryC
   readState(&q, &v);
   controller_.hold(q);
   arbiter_.claim(this, commanded_);
+  query_state_ = nh.advertiseService("query_state", &TrajectoryActionHandler::queryState, this);
   server_.registerGoalCallback([this](Server::GoalHandle gh) { goalCallback(gh); });
   server_.registerCancelCallback([this](Server::GoalHandle gh) { cancelCallback(gh); });
   server_.start();
@@ -146,6 +147,26 @@ void TrajectoryActionHandler::goalCallback(Server::GoalHandle gh) {
   finishActive(static_cast<int>(TrajectoryErrorCode::SUCCESSFUL), "preempted by a new goal", false, true);
   gh.setAccepted();
   active_ = gh;
+}
+
+bool TrajectoryActionHandler::queryState(sixdof_msgs::QueryTrajectoryState::Request& request,
+                                         sixdof_msgs::QueryTrajectoryState::Response& response) {
+  const std::string& name = controller_.config().name;
+  if (!ownsAny()) {
+    response.message = name + " does not command its joints now (another driver, e.g. gripper_cmd, has them)";
+    return true;
+  }
+  const std::optional<TrajectorySample> sample = controller_.sample(request.time.toSec());
+  if (!sample) {
+    response.message = name + " has no trajectory yet";
+    return true;
+  }
+  response.success = true;
+  response.name = controller_.joints();
+  response.position = sample->position;
+  response.velocity = sample->velocity;
+  response.acceleration = sample->acceleration;
+  return true;
 }
 
 void TrajectoryActionHandler::cancelCallback(Server::GoalHandle gh) {

@@ -1,12 +1,15 @@
 #pragma once
 // arm_controller/follow_joint_trajectory and gripper_controller/follow_joint_trajectory: a
-// sixdof_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints, and
-// the controller's state topic (<controller>/state, sixdof_msgs/JointTrajectoryControllerState).
+// sixdof_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints, the
+// controller's state topic (<controller>/state, sixdof_msgs/JointTrajectoryControllerState) and its
+// query_state service (sixdof_msgs/QueryTrajectoryState), as joint_trajectory_controller has them.
 
 #include <actionlib/server/action_server.h>
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
+#include <ros/service_server.h>
 #include <sixdof_msgs/FollowJointTrajectoryAction.h>
+#include <sixdof_msgs/QueryTrajectoryState.h>
 
 #include <functional>
 #include <optional>
@@ -45,6 +48,8 @@ class TrajectoryActionHandler : public JointDriver {
   };
 
   void goalCallback(Server::GoalHandle gh);
+  bool queryState(sixdof_msgs::QueryTrajectoryState::Request& request,
+                  sixdof_msgs::QueryTrajectoryState::Response& response);
   void cancelCallback(Server::GoalHandle gh);
   std::string checkMimics(const TrajectoryGoal& goal) const;
   void readState(std::vector<double>* q, std::vector<double>* v) const;
@@ -63,6 +68,7 @@ class TrajectoryActionHandler : public JointDriver {
   double state_period_ = 0.0;  // s; 0 = no state topic
   double next_state_ = 0.0;    // node clock
   ros::Publisher state_pub_;
+  ros::ServiceServer query_state_;
   Server server_;
 };
 

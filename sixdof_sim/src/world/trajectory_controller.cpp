@@ -256,6 +256,13 @@ void TrajectoryController::holdAt(const std::vector<double>& position) {
   last_desired_ = trajectory_->sample(0.0);
 }
 
+std::optional<TrajectorySample> TrajectoryController::sample(double time) const {
+  if (!trajectory_) {
+    return std::nullopt;
+  }
+  return trajectory_->sample(time);
+}
+
 void TrajectoryController::hold(const std::vector<double>& position) {
   if (position.size() != config_.joints.size()) {
     throw std::invalid_argument("TrajectoryController::hold: wrong number of positions");

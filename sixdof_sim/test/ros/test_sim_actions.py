@@ -20,7 +20,7 @@ from sixdof_msgs.msg import (
     JointTrajectoryControllerState,
     SimObject,
 )
-from sixdof_msgs.srv import GetObjectState, SpawnObject
+from sixdof_msgs.srv import GetObjectState, QueryTrajectoryState, SpawnObject
 
 TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
 TARGET_B = [-0.3, 0.2, 0.6, -0.1, 0.5, 0.2]
@@ -103,6 +103,28 @@ class SimActionsTest(unittest.TestCase):
         for d, a, t in zip(last.desired.positions, last.actual.positions, TARGET, strict=True):
             self.assertAlmostEqual(d, t, places=6)
             self.assertAlmostEqual(a, t, delta=0.011)
+
+    def test_query_state_samples_the_commanded_trajectory(self) -> None:
+        query = rospy.ServiceProxy("arm_controller/query_state", QueryTrajectoryState)
+        answer = query(rospy.Time.now())
+        self.assertTrue(answer.success, answer.message)
+        self.assertEqual(list(answer.name), ARM_JOINTS)
+        # Holding where the reset left the arm.
+        for p, v, q in zip(answer.position, answer.velocity, self.joints.positions(ARM_JOINTS), strict=True):
+            self.assertAlmostEqual(p, q, delta=0.011)
+            self.assertEqual(v, 0.0)
+        self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 1.5)]))
+        deadline = rospy.Time.now() + rospy.Duration(RESULT_TIMEOUT)
+        while self.arm.get_state() == GoalStatus.PENDING and rospy.Time.now() < deadline:
+            rospy.rostime.wallsleep(0.01)
+        # Once accepted, the controller answers for any time: long after the end, the last point at rest.
+        answer = query(rospy.Time.now() + rospy.Duration(100.0))
+        self.assertTrue(answer.success, answer.message)
+        for p, v, t in zip(answer.position, answer.velocity, TARGET, strict=True):
+            self.assertAlmostEqual(p, t, places=9)
+            self.assertAlmostEqual(v, 0.0, places=9)
+        self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
+        self.assertEqual(self.arm.get_state(), GoalStatus.SUCCEEDED)
 
     def test_multi_point_linear_trajectory_in_another_joint_order(self) -> None:
         order = list(reversed(ARM_JOINTS))

@@ -21,7 +21,14 @@ from sixdof_msgs.msg import (
     ObjectStates,
     SimObject,
 )
-from sixdof_msgs.srv import DeleteObject, GetObjectState, SetObjectState, SpawnObject, StepSimulation
+from sixdof_msgs.srv import (
+    DeleteObject,
+    GetObjectState,
+    QueryTrajectoryState,
+    SetObjectState,
+    SpawnObject,
+    StepSimulation,
+)
 
 TIMEOUT = 60.0
 
@@ -130,6 +137,11 @@ class SimServicesTest(unittest.TestCase):
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025))
         rospy.sleep(1.0)  # the preempted trajectory towards 0.01 no longer drives the finger
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025, timeout=0.0))
+        # The trajectory controller cannot say what it commands: it commands nothing now.
+        answer = rospy.ServiceProxy("gripper_controller/query_state", QueryTrajectoryState)(rospy.Time.now())
+        self.assertFalse(answer.success)
+        self.assertIn("does not command its joints now", answer.message)
+        self.assertEqual(list(answer.position), [])
 
 
 if __name__ == "__main__":

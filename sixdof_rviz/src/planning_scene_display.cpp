@@ -1,17 +1,21 @@
 #include "planning_scene_display.h"
 
 #include <chrono>
+#include <cmath>
 
+#include <OgreMaterial.h>
 #include <OgreQuaternion.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 #include <OgreVector3.h>
 #include <rviz/display_context.h>
 #include <rviz/frame_manager.h>
+#include <rviz/ogre_helpers/mesh_shape.h>
 #include <rviz/ogre_helpers/shape.h>
 #include <rviz/properties/color_property.h>
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/string_property.h>
+#include <shape_msgs/Mesh.h>
 #include <shape_msgs/SolidPrimitive.h>
 #include <sixdof_msgs/GetPlanningScene.h>
 
@@ -20,6 +24,47 @@ namespace {
 
 Ogre::Vector3 toOgre(const geometry_msgs::Point& p) { return Ogre::Vector3(p.x, p.y, p.z); }
 Ogre::Quaternion toOgre(const geometry_msgs::Quaternion& q) { return Ogre::Quaternion(q.w, q.x, q.y, q.z); }
+
+// Why a mesh cannot be drawn, or empty when it can.
+std::string meshProblem(const shape_msgs::Mesh& mesh) {
+  if (mesh.triangles.empty()) return "has no triangles";
+  for (const auto& v : mesh.vertices) {
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return "has a non-finite vertex";
+  }
+  for (const auto& triangle : mesh.triangles) {
+    for (const auto index : triangle.vertex_indices) {
+      if (index >= mesh.vertices.size()) {
+        return "has a vertex index " + std::to_string(index) + " out of range (" +
+               std::to_string(mesh.vertices.size()) + " vertices)";
+      }
+    }
+  }
+  return "";
+}
+
+// A well-formed mesh (see meshProblem) as a shape. Each triangle gets its own three vertices with the face's
+// normal, so that the faces are shaded flat. A triangle is seen from the side it winds counter-clockwise on (the
+// outside of a closed mesh, as in STL files), like the primitives' faces: rviz::MeshShape draws both sides, which
+// in a transparent colour (no depth writes) lets the far, unlit, faces cover the near ones.
+std::unique_ptr<rviz::Shape> makeMeshShape(const shape_msgs::Mesh& mesh, Ogre::SceneManager* scene_manager,
+                                           Ogre::SceneNode* parent) {
+  auto shape = std::make_unique<rviz::MeshShape>(scene_manager, parent);
+  shape->getMaterial()->setCullingMode(Ogre::CULL_CLOCKWISE);
+  shape->estimateVertexCount(3 * mesh.triangles.size());
+  shape->beginTriangles();
+  for (const auto& triangle : mesh.triangles) {
+    const Ogre::Vector3 a = toOgre(mesh.vertices[triangle.vertex_indices[0]]);
+    const Ogre::Vector3 b = toOgre(mesh.vertices[triangle.vertex_indices[1]]);
+    const Ogre::Vector3 c = toOgre(mesh.vertices[triangle.vertex_indices[2]]);
+    Ogre::Vector3 normal = (b - a).crossProduct(c - a);
+    normal.normalise();  // leaves a degenerate triangle's zero normal as it is
+    shape->addVertex(a, normal);
+    shape->addVertex(b, normal);
+    shape->addVertex(c, normal);
+  }
+  shape->endTriangles();
+  return shape;
+}
 
 }  // namespace
 
@@ -120,13 +165,28 @@ void PlanningSceneDisplay::clearObjects() {
 }
 
 void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object, const std::string& frame,
-                                     bool attached, int* skipped_meshes) {
+                                     bool attached) {
   DrawnObject drawn;
   drawn.frame = frame;
   drawn.node = scene_node_->createChildSceneNode();
   const QColor color = attached ? attached_color_property_->getColor() : world_color_property_->getColor();
   const Ogre::Vector3 object_position = toOgre(object.pose.position);
   const Ogre::Quaternion object_orientation = toOgre(object.pose.orientation);
+  // Shape i at object.pose * poses[i] (a missing pose is the identity), in the object's colour.
+  const auto add = [&](std::unique_ptr<rviz::Shape> shape, const std::vector<geometry_msgs::Pose>& poses, size_t i,
+                       const Ogre::Quaternion& axis_fix) {
+    Ogre::Vector3 local_position = Ogre::Vector3::ZERO;
+    Ogre::Quaternion local_orientation = Ogre::Quaternion::IDENTITY;
+    if (i < poses.size()) {
+      local_position = toOgre(poses[i].position);
+      local_orientation = toOgre(poses[i].orientation);
+    }
+    shape->setPosition(object_position + object_orientation * local_position);
+    shape->setOrientation(object_orientation * local_orientation * axis_fix);
+    shape->setColor(color.redF(), color.greenF(), color.blueF(), alpha_property_->getFloat());
+    drawn.shapes.push_back(std::move(shape));
+  };
+  std::vector<std::string> problems;
   for (size_t i = 0; i < object.primitives.size(); ++i) {
     const auto& primitive = object.primitives[i];
     const auto& d = primitive.dimensions;
@@ -146,45 +206,43 @@ void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object,
       scale = Ogre::Vector3(2.0 * d[P::CYLINDER_RADIUS], d[P::CYLINDER_HEIGHT], 2.0 * d[P::CYLINDER_RADIUS]);
       axis_fix = Ogre::Quaternion(Ogre::Degree(90), Ogre::Vector3::UNIT_X);
     } else {
-      setStatusStd(rviz::StatusProperty::Warn, "Object " + object.id,
-                   "primitive " + std::to_string(i) + " has an unsupported type or too few dimensions");
+      problems.push_back("primitive " + std::to_string(i) + " has an unsupported type or too few dimensions");
       continue;
     }
-    Ogre::Vector3 local_position = Ogre::Vector3::ZERO;
-    Ogre::Quaternion local_orientation = Ogre::Quaternion::IDENTITY;
-    if (i < object.primitive_poses.size()) {
-      local_position = toOgre(object.primitive_poses[i].position);
-      local_orientation = toOgre(object.primitive_poses[i].orientation);
-    }
     auto shape = std::make_unique<rviz::Shape>(type, scene_manager_, drawn.node);
-    shape->setPosition(object_position + object_orientation * local_position);
-    shape->setOrientation(object_orientation * local_orientation * axis_fix);
     shape->setScale(scale);
-    shape->setColor(color.redF(), color.greenF(), color.blueF(), alpha_property_->getFloat());
-    drawn.shapes.push_back(std::move(shape));
+    add(std::move(shape), object.primitive_poses, i, axis_fix);
   }
-  *skipped_meshes += static_cast<int>(object.meshes.size());
+  for (size_t i = 0; i < object.meshes.size(); ++i) {
+    const std::string problem = meshProblem(object.meshes[i]);
+    if (!problem.empty()) {
+      problems.push_back("mesh " + std::to_string(i) + " " + problem + " and is not drawn");
+      continue;
+    }
+    add(makeMeshShape(object.meshes[i], scene_manager_, drawn.node), object.mesh_poses, i, Ogre::Quaternion::IDENTITY);
+  }
+  if (!problems.empty()) {
+    std::string text = problems.front();
+    for (size_t i = 1; i < problems.size(); ++i) text += "; " + problems[i];
+    object_statuses_.push_back("Object " + object.id);
+    setStatusStd(rviz::StatusProperty::Warn, object_statuses_.back(), text);
+  }
   objects_.push_back(std::move(drawn));
 }
 
 void PlanningSceneDisplay::rebuild(const sixdof_msgs::PlanningScene& scene) {
   clearObjects();
-  int skipped_meshes = 0;
+  // The objects' warnings are those of the scene drawn now.
+  for (const auto& name : object_statuses_) deleteStatusStd(name);
+  object_statuses_.clear();
   for (const auto& object : scene.world.collision_objects) {
-    addObject(object, object.header.frame_id.empty() ? fixed_frame_.toStdString() : object.header.frame_id, false,
-              &skipped_meshes);
+    addObject(object, object.header.frame_id.empty() ? fixed_frame_.toStdString() : object.header.frame_id, false);
   }
   for (const auto& attached : scene.robot_state.attached_collision_objects) {
     // An attached object's pose is relative to its link unless its header names another frame.
     const std::string frame =
         attached.object.header.frame_id.empty() ? attached.link_name : attached.object.header.frame_id;
-    addObject(attached.object, frame, true, &skipped_meshes);
-  }
-  if (skipped_meshes > 0) {
-    setStatusStd(rviz::StatusProperty::Warn, "Meshes",
-                 std::to_string(skipped_meshes) + " mesh shape(s) are not drawn (primitives only)");
-  } else {
-    deleteStatusStd("Meshes");
+    addObject(attached.object, frame, true);
   }
   setStatusStd(rviz::StatusProperty::Ok, "Scene",
                std::to_string(scene.world.collision_objects.size()) + " world object(s), " +

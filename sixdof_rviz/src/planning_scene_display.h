@@ -24,7 +24,8 @@ class StringProperty;
 namespace sixdof_rviz {
 
 // "sixdof_rviz/PlanningScene": polls move_group's get_planning_scene and draws the world's collision objects
-// and the objects attached to robot links (e.g. a grasped cube in the gripper), following tf.
+// and the objects attached to robot links (e.g. a grasped cube in the gripper), following tf: their primitives
+// (boxes, spheres, cylinders) and their triangle meshes.
 class PlanningSceneDisplay : public rviz::Display {
   Q_OBJECT
  public:
@@ -50,8 +51,7 @@ class PlanningSceneDisplay : public rviz::Display {
 
   void pollLoop();
   void rebuild(const sixdof_msgs::PlanningScene& scene);
-  void addObject(const sixdof_msgs::CollisionObject& object, const std::string& frame, bool attached,
-                 int* skipped_meshes);
+  void addObject(const sixdof_msgs::CollisionObject& object, const std::string& frame, bool attached);
   void clearObjects();
 
   rviz::StringProperty* service_property_;
@@ -61,6 +61,7 @@ class PlanningSceneDisplay : public rviz::Display {
   rviz::FloatProperty* alpha_property_;
 
   std::vector<DrawnObject> objects_;
+  std::vector<std::string> object_statuses_;  // "Object <id>" warnings of the scene drawn now
   std::optional<sixdof_msgs::PlanningScene> shown_scene_;
 
   std::mutex mutex_;

@@ -17,10 +17,10 @@ import rosgraph
 import rospy
 import rostest
 import yaml
-from geometry_msgs.msg import Pose, PoseStamped
+from geometry_msgs.msg import Point, Pose, PoseStamped
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
-from shape_msgs.msg import SolidPrimitive
+from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import (
@@ -100,6 +100,22 @@ def box(size: float) -> SolidPrimitive:
     return SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[size, size, size])
 
 
+def cube_mesh(size: float) -> Mesh:
+    """A closed cube centred on its origin made of 12 triangles, each wound counter-clockwise seen from outside."""
+    h = size / 2
+    corners = [(x, y, z) for x in (-h, h) for y in (-h, h) for z in (-h, h)]
+    triangles = []
+    for axis in range(3):
+        for side in (-h, h):
+            # The face's corners, in the order (u0, v0), (u0, v1), (u1, v0), (u1, v1) of the other two axes.
+            a, b, c, d = (i for i, corner in enumerate(corners) if corner[axis] == side)
+            for triangle in ((a, b, d), (a, d, c)):
+                p, q, r = (np.array(corners[i]) for i in triangle)
+                outward = np.cross(q - p, r - p)[axis] * side > 0
+                triangles.append(MeshTriangle(vertex_indices=list(triangle if outward else triangle[::-1])))
+    return Mesh(triangles=triangles, vertices=[Point(*corner) for corner in corners])
+
+
 def pose(x: float, y: float, z: float) -> Pose:
     p = Pose()
     p.position.x, p.position.y, p.position.z = x, y, z
@@ -107,13 +123,24 @@ def pose(x: float, y: float, z: float) -> Pose:
     return p
 
 
-def scene_response() -> GetPlanningSceneResponse:
-    """A table-top box beside the robot and a cube held between the fingers (0.08 m along link6's z axis)."""
+def scene_response(meshes: bool = False) -> GetPlanningSceneResponse:
+    """A table-top box beside the robot and a cube held between the fingers (0.08 m along link6's z axis).
+    With `meshes`, also a mesh cube on the robot's other side (screen-right of it) and, above the box, a malformed
+    mesh (a triangle's vertex index out of range), which the display skips."""
     response = GetPlanningSceneResponse()
     obstacle = CollisionObject(id="obstacle", primitives=[box(0.15)], primitive_poses=[pose(0, 0, 0)])
     obstacle.header.frame_id = "base_link"
     obstacle.pose = pose(0.25, -0.45, 0.075)
     response.scene.world.collision_objects.append(obstacle)
+    if meshes:
+        block = CollisionObject(id="mesh_block", meshes=[cube_mesh(0.12)], mesh_poses=[pose(0, 0, 0)])
+        block.header.frame_id = "base_link"
+        block.pose = pose(0.25, 0.45, 0.06)
+        response.scene.world.collision_objects.append(block)
+        malformed = cube_mesh(0.12)
+        malformed.triangles.append(MeshTriangle(vertex_indices=[0, 1, len(malformed.vertices)]))
+        obstacle.meshes.append(malformed)
+        obstacle.mesh_poses.append(pose(0, 0, 0.25))
     held = CollisionObject(id="held_cube", primitives=[box(0.04)], primitive_poses=[pose(0, 0, 0)])
     held.pose = pose(0, 0, 0.08)
     response.scene.robot_state.attached_collision_objects.append(
@@ -282,7 +309,8 @@ class RvizPluginsTest(unittest.TestCase):
         # The marker's green arrow and the panel's icons share the world colour: only new pixels count.
         world_before, attached_before = world_mask(baseline), attached_mask(baseline)
         # Stands in for move_group's get_planning_scene: the display polls it.
-        service = rospy.Service("get_planning_scene", GetPlanningScene, lambda _request: scene_response())
+        scene = {"response": scene_response()}
+        service = rospy.Service("get_planning_scene", GetPlanningScene, lambda _request: scene["response"])
         try:
             for _ in range(100):
                 image = read_screenshot(os.path.join(self.shot_dir, "4_scene.png"))
@@ -290,10 +318,25 @@ class RvizPluginsTest(unittest.TestCase):
                 if world.sum() > 1000 and attached.sum() > 100:
                     break
                 rospy.sleep(0.3)
+            self.assertGreater(world.sum(), 1000, "world box not drawn")
+            self.assertGreater(attached.sum(), 100, "attached cube not drawn")
+            # Then the mesh cube and the malformed mesh: the cube is drawn in the world colour right of the box, the
+            # malformed mesh (above the box) is not, and the rest is still drawn.
+            scene["response"] = scene_response(meshes=True)
+            self.wait_for_pixels("4_scene_meshes_appear", world_mask, world_before | world, 500)
+            rospy.sleep(1.0)  # a few more frames
+            meshes_image = read_screenshot(os.path.join(self.shot_dir, "4_scene_meshes.png"))
         finally:
             service.shutdown()
-        self.assertGreater(world.sum(), 1000, "world box not drawn")
-        self.assertGreater(attached.sum(), 100, "attached cube not drawn")
+        meshes_world = world_mask(meshes_image) & ~world_before
+        mesh_cube = meshes_world & ~world
+        box_columns = np.argwhere(world)[:, 1]
+        mesh_columns = np.argwhere(mesh_cube)[:, 1]
+        # About as many pixels as the box: fewer when the cube's far (unlit) faces cover its near ones.
+        self.assertGreater(len(mesh_columns), 0.5 * world.sum(), "mesh cube not drawn, or not lit")
+        self.assertGreater(mesh_columns.min(), box_columns.max(), "the malformed mesh (above the box) is drawn")
+        self.assertGreater((meshes_world & world).sum(), 0.9 * world.sum(), "world box no longer drawn")
+        self.assertGreater((attached_mask(meshes_image) & ~attached_before).sum(), 100, "attached cube not drawn")
         # The held cube is drawn at the gripper: next to the goal marker's sphere on link6 (at the current state).
         sphere = np.argwhere(marker_sphere_mask(image))
         self.assertGreater(len(sphere), 20, "goal marker sphere not found")

@@ -303,6 +303,17 @@ struct Session {
     return is_valid(q);
   }
 
+  // Space information over `space` whose validity checker counts its checks here, with motions checked at
+  // `fraction` of the space's maximum extent.
+  ob::SpaceInformationPtr spaceInformation(const std::shared_ptr<const JointSpace>& space, double fraction) {
+    auto si = std::make_shared<ob::SpaceInformation>(space->space());
+    si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
+        si, space, [this](const Eigen::VectorXd& q) { return valid(q); }));
+    si->setStateValidityCheckingResolution(fraction);
+    si->setup();
+    return si;
+  }
+
   std::string reason(const Eigen::VectorXd& q) const {
     if (!explain) return "";
     const std::string why = explain(q);
@@ -545,7 +556,6 @@ PlanningResult finish(PlanningResult r, PlanningStatus status, std::string messa
   r.message = std::move(message);
   r.planning_time = secondsSince(t0);
   if (session) r.validity_checks = session->checks.load();
-
   return r;
 }
 
@@ -628,21 +638,16 @@ PlanningResult plan(const PlanningProblem& p) {
   }
 
   Session session;
-  session.joint_space = std::make_shared<JointSpace>(p.joints);
   session.is_valid = p.is_valid;
   session.explain = p.explain_invalid;
-  session.si = std::make_shared<ob::SpaceInformation>(session.joint_space->space());
-  Session* s = &session;
-  session.si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
-      session.si, session.joint_space, [s](const Eigen::VectorXd& q) { return s->valid(q); }));
+  session.joint_space = std::make_shared<JointSpace>(p.joints);
   session.joint_space->space()->registerDefaultProjection(
       std::make_shared<FirstJointsProjection>(session.joint_space.get()));
   const double extent = session.joint_space->space()->getMaximumExtent();
   const double fraction = options.longest_valid_segment_length > 0.0
                               ? std::min(1.0, options.longest_valid_segment_length / extent)
                               : options.longest_valid_segment_fraction;
-  session.si->setStateValidityCheckingResolution(fraction);
-  session.si->setup();
+  session.si = session.spaceInformation(session.joint_space, fraction);
   // The coarse pass never checks coarser than kCoarsestSimplifyFraction: where the planning resolution is
   // already that coarse (MoveIt's default), shortcuts accepted coarser fail their re-check too often to pay.
   const double coarse_fraction =
@@ -650,11 +655,7 @@ PlanningResult plan(const PlanningProblem& p) {
   if (options.simplify && coarse_fraction > fraction) {
     // A state space owns its check resolution, so the coarse checks need a space of their own.
     session.coarse_space = std::make_shared<JointSpace>(p.joints);
-    session.coarse_si = std::make_shared<ob::SpaceInformation>(session.coarse_space->space());
-    session.coarse_si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
-        session.coarse_si, session.coarse_space, [s](const Eigen::VectorXd& q) { return s->valid(q); }));
-    session.coarse_si->setStateValidityCheckingResolution(coarse_fraction);
-    session.coarse_si->setup();
+    session.coarse_si = session.spaceInformation(session.coarse_space, coarse_fraction);
   }
 
   err = boundsViolation(p.joints, p.start);

@@ -220,7 +220,12 @@ void TrajectoryActionHandler::update(double now) {
 }
 
 void TrajectoryActionHandler::publishFeedback(const ros::Time& stamp) {
-  if (last_update_.desired.position.empty()) {
+  // The state topic runs while this controller commands its joints (not while another driver, e.g.
+  // gripper_cmd, has them).
+  const double now = stamp.toSec();
+  const bool state_due =
+      state_period_ > 0.0 && ownsAny() && (now >= next_state_ || now < next_state_ - state_period_);
+  if (last_update_.desired.position.empty() || (!active_ && !state_due)) {
     return;
   }
   // The action feedback and the state topic carry the same fields.
@@ -239,9 +244,7 @@ void TrajectoryActionHandler::publishFeedback(const ros::Time& stamp) {
   if (active_) {
     active_->publishFeedback(fb);
   }
-  // The state while this controller commands its joints (not while another driver, e.g. gripper_cmd, has them).
-  const double now = stamp.toSec();
-  if (state_period_ > 0.0 && ownsAny() && (now >= next_state_ || now < next_state_ - state_period_)) {
+  if (state_due) {
     sixdof_msgs::JointTrajectoryControllerState state;
     state.header = fb.header;
     state.joint_names = fb.joint_names;

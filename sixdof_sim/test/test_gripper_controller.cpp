@@ -26,16 +26,17 @@ GripperControllerConfig fingerConfig(bool allow_stalling) {
 }
 
 // A finger servoing towards the command at a bounded speed, blocked below `obstacle` (an object between
-// the fingers).
+// the fingers). Pressed against the obstacle it jitters by `jitter` each step (a contact in physics).
 struct Finger {
   double q = 0.04;
-  double v = 0.0;
   double obstacle = -1.0;
+  double speed = 0.05;
+  double jitter = 0.0;
+  int steps = 0;
   void apply(const GripperUpdate& u) {
-    const double step = std::clamp(u.command_position - q, -0.05 * kDt, 0.05 * kDt);
-    const double next = std::max(q + step, obstacle);
-    v = (next - q) / kDt;
-    q = next;
+    const double step = std::clamp(u.command_position - q, -speed * kDt, speed * kDt);
+    q = std::max(q + step, obstacle);
+    if (q == obstacle && jitter > 0.0) q = obstacle + (++steps % 2 ? jitter : 0.0);
   }
 };
 
@@ -43,7 +44,7 @@ GripperUpdate run(GripperController& c, Finger& f, double& now, double max_time)
   GripperUpdate u;
   const double end = now + max_time;
   while (now < end) {
-    u = c.update(now, f.q, f.v);
+    u = c.update(now, f.q);
     f.apply(u);
     now += kDt;
     if (u.finished) {
@@ -81,8 +82,36 @@ TEST(GripperController, ClosingOnAnObjectStallsAndSucceedsWhenStallingIsAllowed)
   EXPECT_NEAR(now, 0.4 + 0.2, 0.01);
   // max_effort 0 means the URDF effort limit, and the grip keeps squeezing after the goal ended.
   EXPECT_DOUBLE_EQ(u.command_max_effort, 20.0);
-  u = c.update(now + 1.0, f.q, f.v);
+  u = c.update(now + 1.0, f.q);
   EXPECT_DOUBLE_EQ(u.command_position, 0.0);
+}
+
+TEST(GripperController, AFingerJitteringOnAnObjectStalls) {
+  // As measured in the simulator: a 20 um jitter each 1 ms step is a velocity of +-0.02 m/s, 20 times the
+  // stall threshold, while the finger goes nowhere.
+  GripperController c(fingerConfig(true));
+  Finger f;
+  f.obstacle = 0.02;
+  f.jitter = 2e-5;
+  double now = 0.0;
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  const GripperUpdate u = run(c, f, now, 5.0);
+  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_TRUE(u.stalled);
+  EXPECT_NEAR(now, 0.4 + 0.2, 0.01);
+}
+
+TEST(GripperController, AFingerMovingSlowlyButSteadilyIsNotStalled) {
+  // Twice the threshold speed: 2 mm/s towards a target 4 mm away takes 2 s, ten stall timeouts.
+  GripperController c(fingerConfig(false));
+  Finger f;
+  f.speed = 0.002;
+  double now = 0.0;
+  ASSERT_TRUE(c.setGoal({0.036, 0.0}, now).ok);
+  const GripperUpdate u = run(c, f, now, 5.0);
+  EXPECT_TRUE(u.reached_goal);
+  EXPECT_FALSE(u.stalled);
+  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
 }
 
 TEST(GripperController, StallAbortsWhenStallingIsNotAllowed) {
@@ -116,7 +145,7 @@ TEST(GripperController, CancelHoldsTheActualPositionAndPreemptionRestartsTheStal
   c.cancel(f.q);
   EXPECT_EQ(c.state(), GoalState::CANCELED);
   const double held = f.q;
-  GripperUpdate u = c.update(now, f.q, f.v);
+  GripperUpdate u = c.update(now, f.q);
   EXPECT_DOUBLE_EQ(u.command_position, held);
   EXPECT_FALSE(u.finished);
 

@@ -15,7 +15,10 @@ struct GripperControllerConfig {
   double upper = 0.0;
   double effort_limit = 0.0;             // URDF effort limit (N); max_effort 0 means this
   double goal_tolerance = 0.01;          // |target - position| below which the goal is reached
-  double stall_velocity_threshold = 0.001;  // |velocity| below which the finger counts as not moving
+  // Average speed below which the finger counts as not moving. gripper_action_controller compares the
+  // instantaneous velocity, which a finger squeezing an object in physics never settles below: it jitters
+  // (measured: +-0.01 m/s at a standstill within 20 um), so here the net movement over stall_timeout counts.
+  double stall_velocity_threshold = 0.001;
   double stall_timeout = 1.0;               // s without movement until "stalled"
   // Whether a stall ends the goal as succeeded (a grasp: the fingers closed on an object) rather than
   // aborted. gripper_action_controller aborts on stall (newer versions: allow_stalling, default false).
@@ -45,7 +48,8 @@ struct GripperUpdate {
 
 // GripperCommand semantics (gripper_action_controller): the finger servos to the target with bounded
 // force. The goal succeeds as soon as |target - position| < goal_tolerance (reached_goal). Otherwise, once
-// |velocity| stayed below stall_velocity_threshold for longer than stall_timeout, it ends stalled: succeeded
+// the finger's average speed stayed below stall_velocity_threshold for longer than stall_timeout (it moved
+// less than threshold x stall_timeout since then), it ends stalled: succeeded
 // when allow_stalling (closing on an object is a grasp), aborted otherwise. The command stays in force
 // after either, so a stalled grip keeps squeezing with max_effort. Cancel holds the actual position with
 // the default effort.
@@ -64,7 +68,7 @@ class GripperController {
   // Holds a position with the default effort, no goal (start-up, world reset, another controller took over).
   void hold(double position);
 
-  GripperUpdate update(double now, double position, double velocity);
+  GripperUpdate update(double now, double position);
 
   bool active() const { return state_ == GoalState::ACTIVE; }
   GoalState state() const { return state_; }
@@ -74,7 +78,10 @@ class GripperController {
   bool has_command_ = false;
   double command_position_ = 0.0;
   double command_effort_ = 0.0;
-  double last_movement_time_ = 0.0;
+  // Where and when the finger last moved on by more than stall_velocity_threshold x stall_timeout.
+  bool movement_anchored_ = false;
+  double movement_position_ = 0.0;
+  double movement_time_ = 0.0;
   GoalState state_ = GoalState::IDLE;
 };
 

@@ -92,7 +92,7 @@ void GripperActionHandler::update(double now) {
   if (!arbiter_.owns(this, controller_.config().joint)) {
     return;
   }
-  const GripperUpdate u = controller_.update(now, world_.jointPositions()[index_], world_.jointVelocities()[index_]);
+  const GripperUpdate u = controller_.update(now, world_.jointPositions()[index_]);
   const Result r = world_.setPositionTarget(controller_.config().joint, u.command_position, 0.0, u.command_max_effort);
   if (!r.ok()) {
     ROS_ERROR_STREAM_THROTTLE(1.0, "[" << controller_.config().name << "/gripper_cmd] " << r.message);

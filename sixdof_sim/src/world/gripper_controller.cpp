@@ -50,7 +50,8 @@ GripperResult GripperController::setGoal(const GripperGoal& goal, double now) {
   has_command_ = true;
   command_position_ = goal.position;
   command_effort_ = goal.max_effort > 0.0 ? goal.max_effort : config_.effort_limit;
-  last_movement_time_ = now;
+  movement_time_ = now;
+  movement_anchored_ = false;
   state_ = GoalState::ACTIVE;
   return r;
 }
@@ -70,20 +71,26 @@ void GripperController::cancel(double actual_position) {
   }
 }
 
-GripperUpdate GripperController::update(double now, double position, double velocity) {
+GripperUpdate GripperController::update(double now, double position) {
   if (!has_command_) {
     hold(position);
   }
   GripperUpdate out;
   out.position = position;
   if (state_ == GoalState::ACTIVE) {
+    if (!movement_anchored_) {
+      movement_anchored_ = true;
+      movement_position_ = position;
+    }
     if (std::abs(command_position_ - position) < config_.goal_tolerance) {
       out.reached_goal = true;
       out.finished = true;
       state_ = GoalState::SUCCEEDED;
-    } else if (std::abs(velocity) > config_.stall_velocity_threshold) {
-      last_movement_time_ = now;
-    } else if (now - last_movement_time_ > config_.stall_timeout) {
+    } else if (std::abs(position - movement_position_) > config_.stall_velocity_threshold * config_.stall_timeout) {
+      // Moved on by more than the threshold speed allows in stall_timeout: not stalled.
+      movement_position_ = position;
+      movement_time_ = now;
+    } else if (now - movement_time_ > config_.stall_timeout) {
       out.stalled = true;
       out.finished = true;
       state_ = config_.allow_stalling ? GoalState::SUCCEEDED : GoalState::ABORTED;

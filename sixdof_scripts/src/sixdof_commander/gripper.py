@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import threading
+
 from sixdof_msgs.msg import GripperCommandAction, GripperCommandGoal, GripperCommandResult
 
-from ._ros import ActionClient, ServerWaiter, load_robot_model, require_node, resolve
+from ._ros import ActionClient, ServerWaiter, check_timeout, load_robot_model, require_node, resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number
 from .robot_model import resolve_group
@@ -20,8 +22,12 @@ class Gripper:
         group_name: str = "gripper",
         action_name: str = "gripper_controller/gripper_cmd",
         wait_for_servers: float = 5.0,
+        result_timeout: float = 60.0,
     ) -> None:
+        """result_timeout: wall-clock seconds a command waits for its result (0: forever); then the goal is
+        canceled and SixdofCommanderError raised."""
         require_node()
+        self._result_timeout = check_timeout(result_timeout, "result_timeout")
         urdf, srdf = load_robot_model(ns)
         group = resolve_group(urdf, srdf, group_name)
         if len(group.joints) != 1:
@@ -81,8 +87,15 @@ class Gripper:
         goal = GripperCommandGoal()
         goal.command.position = value
         goal.command.max_effort = effort
-        self._client.send_goal(goal)
-        self._client.wait_for_result()
+        # Wall clock: with use_sim_time a paused or stopped simulator never advances ROS time.
+        done = threading.Event()
+        self._client.send_goal(goal, done_cb=lambda _state, _result: done.set())
+        if not done.wait(self._result_timeout or None):
+            self._client.cancel_goal()
+            raise SixdofCommanderError(
+                f"gripper command to {value:.6g}: no result within {self._result_timeout:g} s "
+                f"(goal state {self._client.get_state()}); the goal was canceled"
+            )
         result = self._client.get_result()
         if result is None:
             raise SixdofCommanderError(f"gripper command got no result (goal status {self._client.get_state()})")

@@ -109,6 +109,28 @@ class CommanderWithoutServers(unittest.TestCase):
         self.assertEqual(active, [True])
         self.assertEqual([f.position for f in feedback], [0.01])
 
+    def test_gripper_command_without_a_result_is_canceled_after_result_timeout(self):
+        for name in ("robot_description", "robot_description_semantic"):
+            rospy.set_param(f"/stuck/{name}", rospy.get_param(f"/{name}"))
+        canceled = threading.Event()
+
+        def never_finish(_goal):
+            while not server.is_preempt_requested() and not rospy.is_shutdown():
+                rospy.rostime.wallsleep(0.01)
+            canceled.set()
+            server.set_preempted()
+
+        server = actionlib.SimpleActionServer(
+            "/stuck/gripper_controller/gripper_cmd", GripperCommandAction, never_finish, auto_start=False
+        )
+        server.start()
+        gripper = Gripper(ns="/stuck", wait_for_servers=10.0, result_timeout=0.5)
+        with self.assertRaisesRegex(SixdofCommanderError, r"gripper command to 0: no result within 0.5 s .* canceled"):
+            gripper.close()
+        self.assertTrue(canceled.wait(10.0), "the server never saw the cancel")
+        with self.assertRaisesRegex(SixdofCommanderError, "result_timeout must be a finite number of seconds >= 0"):
+            Gripper(ns="/stuck", result_timeout=-1.0)
+
     def test_joint_state_monitor_reads_positions_and_names_missing_joints(self):
         monitor = JointStateMonitor("joint_states")
         publisher = rospy.Publisher("joint_states", JointState, queue_size=1, latch=True)

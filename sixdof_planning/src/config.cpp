@@ -152,6 +152,8 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   config.srdf = requireString(nh, "robot_description_semantic");
   loadKinematics(nh, &config);
   loadJointLimits(nh, &config);
+  config.default_robot_padding =
+      positiveParam(nh, "robot_description_planning/default_robot_padding", config.default_robot_padding, true);
   loadControllers(nh, private_nh, &config);
   config.default_planning_time =
       positiveParam(private_nh, "default_planning_time", config.default_planning_time, false);

@@ -40,7 +40,7 @@ MoveGroupContext::MoveGroupContext(ros::NodeHandle nh, MoveGroupConfig config)
     }
   }
   try {
-    scene_ = std::make_shared<const SceneStore>(model_);
+    scene_ = std::make_shared<const SceneStore>(model_, config_.default_robot_padding);
   } catch (const std::exception& e) {
     throw ConfigError(std::string("collision geometry of robot_description: ") + e.what());
   }

@@ -93,7 +93,7 @@ void addObjectMarkers(const CollisionObject& object, const std::string& frame, b
 
 }  // namespace
 
-SceneStore::SceneStore(sixdof_core::RobotModelConstPtr model) : model_(std::move(model)) {
+SceneStore::SceneStore(sixdof_core::RobotModelConstPtr model, double link_padding) : model_(std::move(model)) {
   const auto geometry = model_->collisionGeometry();
   std::set<std::string> with_geometry;
   for (const auto& link : geometry) with_geometry.insert(link.link_name);
@@ -103,7 +103,9 @@ SceneStore::SceneStore(sixdof_core::RobotModelConstPtr model) : model_(std::move
   for (const auto& pair : model_->disabledCollisionPairs()) {
     if (with_geometry.count(pair.link1) && with_geometry.count(pair.link2)) pairs.emplace_back(pair.link1, pair.link2);
   }
-  collision_ = std::make_shared<sixdof_core::CollisionScene>(geometry, pairs);
+  sixdof_core::CollisionSceneOptions options;
+  options.link_padding = link_padding;
+  collision_ = std::make_shared<sixdof_core::CollisionScene>(geometry, pairs, options);
 }
 
 SceneStore::SceneStore(const SceneStore& other)

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest: move_group refuses to start on bad configuration, with a message naming the parameter."""
 
+import signal
 import subprocess
 import sys
 import unittest
@@ -8,6 +9,17 @@ import unittest
 import rospy
 import rostest
 import yaml
+from geometry_msgs.msg import Pose, Quaternion
+from sensor_msgs.msg import JointState
+from shape_msgs.msg import SolidPrimitive
+
+from sixdof_msgs.msg import CollisionObject, MoveItErrorCodes, PlanningScene, RobotState
+from sixdof_msgs.srv import (
+    ApplyPlanningScene,
+    GetPositionFK,
+    GetStateValidity,
+    GetStateValidityResponse,
+)
 
 PKG = "sixdof_planning"
 
@@ -103,6 +115,61 @@ class ConfigErrorsTest(unittest.TestCase):
         self.assert_refused(
             dict(self.good, **{"move_group/simplify_solutions": "yes"}), "simplify_solutions", "is not a bool"
         )
+
+    def test_default_robot_padding_grows_the_links(self) -> None:
+        """A 2 cm box 3 cm beyond the tool is clear of the arm, unless every link is padded by 5 cm."""
+        answers = {}
+        for padding in (0.0, 0.05):
+            ConfigErrorsTest.count += 1
+            ns = f"/padded{self.count}"
+            planning = yaml.safe_load(yaml.safe_dump(self.good["robot_description_planning"]))
+            planning["default_robot_padding"] = padding
+            for key, value in dict(self.good, robot_description_planning=planning).items():
+                rospy.set_param(f"{ns}/{key}", value)
+            node = subprocess.Popen(
+                ["rosrun", PKG, "move_group", f"__ns:={ns}"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+            )
+            try:
+                answers[padding] = self.validity_near_the_tool(ns)
+            finally:
+                node.send_signal(signal.SIGINT)
+                node.wait(timeout=30)
+        clear, padded = answers[0.0], answers[0.05]
+        self.assertTrue(clear.valid, [(c.contact_body_1, c.contact_body_2) for c in clear.contacts])
+        self.assertFalse(padded.valid)
+        self.assertIn("probe", {name for c in padded.contacts for name in (c.contact_body_1, c.contact_body_2)})
+        # Invalid start-up values are refused like the others.
+        planning = yaml.safe_load(yaml.safe_dump(self.good["robot_description_planning"]))
+        planning["default_robot_padding"] = -0.01
+        self.assert_refused(dict(self.good, robot_description_planning=planning), "default_robot_padding", ">= 0")
+
+    def validity_near_the_tool(self, ns: str) -> GetStateValidityResponse:
+        """check_state_validity of the all-zero arm with a 2 cm box 3 cm beyond the tcp along its z axis."""
+        rospy.wait_for_service(f"{ns}/check_state_validity", timeout=60)
+        joints = JointState(name=[f"joint{i}" for i in range(1, 7)] + ["finger1_joint", "finger2_joint"])
+        joints.position = [0.0] * 6 + [0.02, 0.02]
+        state = RobotState(joint_state=joints)
+        publisher = rospy.Publisher(f"{ns}/joint_states", JointState, queue_size=1, latch=True)
+        publisher.publish(joints)
+        fk = rospy.ServiceProxy(f"{ns}/compute_fk", GetPositionFK)(fk_link_names=["tcp"], robot_state=state)
+        self.assertEqual(fk.error_code.val, MoveItErrorCodes.SUCCESS, fk.error_code.message)
+        tcp = fk.pose_stamped[0].pose
+        q = tcp.orientation
+        # The tcp's z axis (third column of its rotation).
+        axis = (2 * (q.x * q.z + q.w * q.y), 2 * (q.y * q.z - q.w * q.x), 1 - 2 * (q.x * q.x + q.y * q.y))
+        probe = CollisionObject(id="probe", operation=CollisionObject.ADD)
+        probe.header.frame_id = fk.pose_stamped[0].header.frame_id
+        probe.pose.position.x, probe.pose.position.y, probe.pose.position.z = (
+            p + 0.03 * a for p, a in zip((tcp.position.x, tcp.position.y, tcp.position.z), axis, strict=True)
+        )
+        probe.pose.orientation.w = 1.0
+        probe.primitives = [SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.02, 0.02, 0.02])]
+        probe.primitive_poses = [Pose(orientation=Quaternion(w=1.0))]
+        scene = PlanningScene(is_diff=True)
+        scene.world.collision_objects = [probe]
+        applied = rospy.ServiceProxy(f"{ns}/apply_planning_scene", ApplyPlanningScene)(scene=scene)
+        self.assertTrue(applied.success, applied.error_code.message)
+        return rospy.ServiceProxy(f"{ns}/check_state_validity", GetStateValidity)(robot_state=state, group_name="arm")
 
 
 if __name__ == "__main__":

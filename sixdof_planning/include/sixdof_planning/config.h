@@ -48,6 +48,9 @@ struct MoveGroupConfig {
   std::map<std::string, GroupKinematicsConfig> kinematics;  // by group
   std::map<std::string, JointLimitConfig> joint_limits;     // by active joint, every one filled
   std::vector<ControllerConfig> controllers;
+  // robot_description_planning/default_robot_padding (MoveIt's name): m every robot link grows by in the
+  // planning scene (collision checks of planning, IK, Cartesian paths and check_state_validity), >= 0.
+  double default_robot_padding = 0.0;
   // Private parameters of the node.
   double default_planning_time = 5.0;     // ~default_planning_time, s
   std::string default_planner_id = "RRTConnect";  // ~default_planner_id

@@ -26,7 +26,8 @@ namespace sixdof_planning {
 // the original, and the node swaps in a modified copy (copy-on-write).
 class SceneStore {
  public:
-  explicit SceneStore(sixdof_core::RobotModelConstPtr model);
+  // link_padding (m, >= 0): every robot link's collision geometry grows by it (MoveIt's default_robot_padding).
+  explicit SceneStore(sixdof_core::RobotModelConstPtr model, double link_padding = 0.0);
   SceneStore(const SceneStore& other);
   SceneStore& operator=(const SceneStore&) = delete;
 

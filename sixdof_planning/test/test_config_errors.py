@@ -38,14 +38,18 @@ class ConfigErrorsTest(unittest.TestCase):
         }
         cls.count = 0
 
-    def start(self, params: dict) -> subprocess.CompletedProcess:
-        """Runs move_group in a fresh namespace holding `params`; it must exit by itself."""
+    def namespace(self, params: dict) -> str:
+        """A fresh namespace holding `params`, for one move_group."""
         ConfigErrorsTest.count += 1
-        ns = f"/bad{self.count}"
+        ns = f"/ns{self.count}"
         for key, value in params.items():
             rospy.set_param(f"{ns}/{key}", value)
+        return ns
+
+    def start(self, params: dict) -> subprocess.CompletedProcess:
+        """Runs move_group in a fresh namespace holding `params`; it must exit by itself."""
         return subprocess.run(
-            ["rosrun", PKG, "move_group", f"__ns:={ns}"],
+            ["rosrun", PKG, "move_group", f"__ns:={self.namespace(params)}"],
             capture_output=True,
             text=True,
             timeout=60,
@@ -120,12 +124,9 @@ class ConfigErrorsTest(unittest.TestCase):
         """A 2 cm box 3 cm beyond the tool is clear of the arm, unless every link is padded by 5 cm."""
         answers = {}
         for padding in (0.0, 0.05):
-            ConfigErrorsTest.count += 1
-            ns = f"/padded{self.count}"
             planning = yaml.safe_load(yaml.safe_dump(self.good["robot_description_planning"]))
             planning["default_robot_padding"] = padding
-            for key, value in dict(self.good, robot_description_planning=planning).items():
-                rospy.set_param(f"{ns}/{key}", value)
+            ns = self.namespace(dict(self.good, robot_description_planning=planning))
             node = subprocess.Popen(
                 ["rosrun", PKG, "move_group", f"__ns:={ns}"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
             )

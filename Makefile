@@ -10,10 +10,13 @@ build: setup
 demo: setup
 	scripts/demo.sh
 
-test: setup
+# Tests and benchmarks are built only for these targets (SIXDOF_BUILD_TESTS / SIXDOF_BUILD_BENCHMARKS).
+test:
+	SIXDOF_BUILD_TESTS=ON scripts/setup.sh
 	scripts/test.sh
 
-bench: setup
+bench:
+	SIXDOF_BUILD_BENCHMARKS=ON scripts/setup.sh
 	scripts/bench.sh
 
 clean:

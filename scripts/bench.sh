@@ -10,6 +10,7 @@ set +u
 # shellcheck disable=SC1091
 . scripts/env.sh
 set -u
+SIXDOF_BUILD_BENCHMARKS=ON scripts/build.sh
 out=bench/results.md
 mapfile -t benches < <(find install/lib -maxdepth 2 -type f -name '*_bench' -perm -u+x | sort)
 if [ $# -gt 0 ]; then

@@ -1,5 +1,10 @@
 #!/usr/bin/env bash
-# colcon build of every package under the repository root (merge install, Release with debug info).
+# colcon build of every package under the repository root (merge install).
+# Defaults keep a fresh build cheap: Release without debug info, no tests, no benchmarks.
+#   SIXDOF_BUILD_TYPE=RelWithDebInfo scripts/build.sh   debug info (profilers, gdb)
+#   SIXDOF_BUILD_TESTS=ON                                 gtests and rostest targets (scripts/test.sh sets it)
+#   SIXDOF_BUILD_BENCHMARKS=ON                            benchmark executables (scripts/bench.sh sets it)
+# ccache is used when it is installed (scripts/apt-packages.txt installs it).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
@@ -7,7 +12,18 @@ set +u
 # shellcheck disable=SC1091
 . "${SIXDOF_VENV:-$repo/.venv}/bin/activate"
 set -u
+cmake_args=(
+  -DCMAKE_BUILD_TYPE="${SIXDOF_BUILD_TYPE:-Release}"
+  -DCATKIN_ENABLE_TESTING="${SIXDOF_BUILD_TESTS:-OFF}"
+  -DSIXDOF_BUILD_BENCHMARKS="${SIXDOF_BUILD_BENCHMARKS:-OFF}"
+  -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
+)
+if command -v ccache >/dev/null; then
+  cmake_args+=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  # Precompiled headers: ccache may serve a TU that uses one only with these sloppiness settings.
+  export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
+fi
 # The first build has no install space yet; an empty one keeps catkin's test env cache happy.
 mkdir -p install/lib/python3/dist-packages
 colcon build --merge-install --event-handlers console_direct- console_cohesion+ summary+ \
-  --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "$@"
+  --cmake-args "${cmake_args[@]}" "$@"

@@ -4,10 +4,12 @@ MoveGroup      plan and move a planning group (MoveGroupCommander)
 PlanningScene  collision objects of the planner's scene (PlanningSceneInterface)
 Gripper        open/close/set_position of the two-finger gripper
 ArmDriver      the paper's script helper: moveto_xyzrpy, moveto_named, gripper, pick, place
+
+The package moveit_commander (same distribution) offers these classes under MoveIt 1's names and signatures.
 """
 
 from .arm_driver import ArmDriver, rad
-from .exceptions import SixdofCommanderError
+from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .gripper import Gripper
 from .move_group import MoveGroup
 from .planning_scene import PlanningScene
@@ -17,6 +19,7 @@ __all__ = [
     "ArmDriver",
     "Gripper",
     "MoveGroup",
+    "MoveItCommanderException",
     "PlanningScene",
     "SixdofCommanderError",
     "quaternion_from_rpy",

@@ -32,10 +32,18 @@ def require_node() -> None:
         raise SixdofCommanderError("rospy.init_node() must be called before using sixdof_commander")
 
 
-def load_robot_model(ns: str) -> tuple[RobotDescription, SemanticDescription]:
-    """URDF and SRDF from the parameter server (robot_description, robot_description_semantic)."""
+def load_robot_model(
+    ns: str, robot_description: str = "robot_description"
+) -> tuple[RobotDescription, SemanticDescription]:
+    """URDF and SRDF from the parameter server (`robot_description` and `robot_description`_semantic).
+
+    The one place the commander reads the robot model: every class gets its groups, joints, limits and named
+    states from here, so the source (today the parameters, parsed in Python) can be swapped in one place.
+    """
+    if not isinstance(robot_description, str) or not robot_description:
+        raise SixdofCommanderError(f"robot_description must be a parameter name, got {robot_description!r}")
     texts = []
-    for name in ("robot_description", "robot_description_semantic"):
+    for name in (robot_description, f"{robot_description}_semantic"):
         param = resolve(ns, name)
         try:
             texts.append(rospy.get_param(param))
@@ -46,6 +54,67 @@ def load_robot_model(ns: str) -> tuple[RobotDescription, SemanticDescription]:
         except OSError as err:
             raise SixdofCommanderError(f"cannot reach the ROS master to read '{param}': {err}") from err
     return parse_urdf(texts[0]), parse_srdf(texts[1])
+
+
+def call_service(proxy: rospy.ServiceProxy, request: object, timeout: float) -> object:
+    """proxy(request), given up after `timeout` wall-clock seconds with rospy.ROSException naming the service.
+
+    rospy's service calls have no timeout: a node that accepted the connection and then stopped answering
+    would block the caller forever. (A node that died answers at once: the connection is refused or closed,
+    and rospy raises ServiceException.)
+    """
+    outcome: dict[str, object] = {}
+    done = threading.Event()
+
+    def run() -> None:
+        try:
+            outcome["response"] = proxy(request)
+        except Exception as err:  # re-raised in the caller's thread
+            outcome["error"] = err
+        finally:
+            done.set()
+
+    threading.Thread(target=run, daemon=True).start()
+    if not done.wait(timeout):
+        raise rospy.ROSException(f"service '{proxy.resolved_name}' gave no answer within {timeout:g} s")
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["response"]
+
+
+def server_connected(client: actionlib.SimpleActionClient) -> bool:
+    """True while the action server's status and result topics are connected to this client.
+
+    When the server's node dies, its TCP connections close and rospy drops them at once, whatever the ROS
+    clock does (with use_sim_time and a stopped simulator, time-based checks would never fire).
+    """
+    impl = client.action_client
+    return impl.status_sub.get_num_connections() > 0 and impl.result_sub.get_num_connections() > 0
+
+
+# How long (wall clock) an action server may stay disconnected before a waiting call gives up on it: long enough
+# to ride out a reconnect, short enough that a dead node is noticed within a few seconds.
+SERVER_LOST_AFTER = 2.0
+
+
+def wait_for_done(client: actionlib.SimpleActionClient, done: threading.Event, timeout: float = 0.0) -> str:
+    """Waits until `done` is set (the goal finished). '' then; otherwise why it gave up: the server was lost
+    (disconnected for SERVER_LOST_AFTER s), `timeout` wall-clock seconds passed (0: no limit), or ROS shut down."""
+    start = time.monotonic()
+    lost_since = None
+    while not done.wait(0.05):
+        now = time.monotonic()
+        if rospy.is_shutdown():
+            return "ROS shut down while waiting for the result"
+        if server_connected(client):
+            lost_since = None
+        elif lost_since is None:
+            lost_since = now
+        elif now - lost_since >= SERVER_LOST_AFTER:
+            return f"the action server was lost (disconnected for {SERVER_LOST_AFTER:g} s: did its node die?)"
+        if timeout and now - start >= timeout:
+            return f"no result within {timeout:g} s"
+    return ""
 
 
 class ActionClient(actionlib.SimpleActionClient):

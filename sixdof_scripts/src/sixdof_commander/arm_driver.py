@@ -22,7 +22,6 @@ from .grasping import (
     grasp_tcp_pose,
     object_geometry,
     place_tcp_pose,
-    pose_matrix,
     raised,
     tip_pose,
 )
@@ -30,7 +29,7 @@ from .gripper import Gripper
 from .move_group import MoveGroup
 from .planning_scene import PlanningScene
 from .robot_model import resolve_group
-from .transforms import quaternion_from_matrix
+from .transforms import matrix_from_pose, quaternion_from_matrix
 
 ERROR_NAMES = {
     value: name for name, value in vars(MoveItErrorCodes).items() if name.isupper() and isinstance(value, int)
@@ -51,12 +50,6 @@ def pose_from_matrix(matrix: np.ndarray) -> Pose:
     q = quaternion_from_matrix(matrix[:3, :3])
     pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
     return pose
-
-
-def matrix_from_pose(pose: Pose) -> np.ndarray:
-    """4x4 transform of a geometry_msgs/Pose."""
-    o = pose.orientation
-    return pose_matrix((pose.position.x, pose.position.y, pose.position.z), (o.x, o.y, o.z, o.w))
 
 
 def describe_error(code: MoveItErrorCodes) -> str:

@@ -185,13 +185,27 @@ class GoalBuilder:
         self.max_acceleration_scaling_factor = 0.1
         self.start_state: RobotState | None = None
         self.remembered: dict[str, dict[str, float]] = {}
+        # The frame of pose targets and waypoints given without one (MoveIt's pose reference frame).
+        self.pose_reference_frame = planning_frame
         self._kind: str | None = None
         self._joint_target: dict[str, float] = {}
         self._pose_target: PoseStamped | None = None
+        self._alternative_pose_targets: list[PoseStamped] = []
 
     # Targets -----------------------------------------------------------------------------------------
     def set_pose_target(self, target: object) -> None:
-        self._pose_target = pose_stamped_from_target(target, self.planning_frame)
+        self._pose_target = pose_stamped_from_target(target, self.pose_reference_frame)
+        self._alternative_pose_targets = []
+        self._kind = self.POSE
+
+    def set_pose_targets(self, targets: Sequence[object]) -> None:
+        """Several pose targets of the end-effector link: reaching any one of them is success."""
+        if isinstance(targets, str | Pose | PoseStamped) or not isinstance(targets, Sequence) or not targets:
+            raise SixdofCommanderError("pose targets must be a non-empty list of poses")
+        stamped = [
+            pose_stamped_from_target(t, self.pose_reference_frame, f"pose target {i}") for i, t in enumerate(targets)
+        ]
+        self._pose_target, self._alternative_pose_targets = stamped[0], stamped[1:]
         self._kind = self.POSE
 
     def set_position_target(self, xyz: Sequence[float]) -> None:
@@ -205,9 +219,10 @@ class GoalBuilder:
             target.pose.orientation = self._pose_target.pose.orientation
         else:
             target.pose.orientation.w = 1.0
-        target.header.frame_id = self.planning_frame
+        target.header.frame_id = self.pose_reference_frame
         target.pose.position.x, target.pose.position.y, target.pose.position.z = x, y, z
         self._pose_target = target
+        self._alternative_pose_targets = []
         self._kind = self.POSITION
 
     def set_joint_value_target(self, values: object, current: Mapping[str, float] | None = None) -> None:
@@ -282,8 +297,16 @@ class GoalBuilder:
             )
         self.remembered[name] = {n: check_number(v, f"value of '{n}'") for n, v in zip(names, items, strict=True)}
 
+    def forget_joint_values(self, name: str) -> None:
+        if name not in self.remembered:
+            raise SixdofCommanderError(
+                f"no remembered joint values named '{name}'; remembered: {sorted(self.remembered)}"
+            )
+        del self.remembered[name]
+
     def clear_pose_targets(self) -> None:
         self._pose_target = None
+        self._alternative_pose_targets = []
         if self._kind in (self.POSE, self.POSITION):
             self._kind = None
 
@@ -349,6 +372,18 @@ class GoalBuilder:
             )
         return constraints
 
+    def all_goal_constraints(self) -> list[Constraints]:
+        """The active target's goal constraints, one per alternative pose target."""
+        goals = [self.goal_constraints()]
+        first = self._pose_target
+        try:
+            for alternative in self._alternative_pose_targets:
+                self._pose_target = alternative
+                goals.append(self.goal_constraints())
+        finally:
+            self._pose_target = first
+        return goals
+
     def current_start_state(self) -> RobotState:
         """The start state: the one set, else 'the planner's current state' (an empty diff)."""
         if self.start_state is not None:
@@ -360,7 +395,7 @@ class GoalBuilder:
     def motion_plan_request(self) -> MotionPlanRequest:
         request = MotionPlanRequest()
         request.start_state = self.current_start_state()
-        request.goal_constraints.append(self.goal_constraints())
+        request.goal_constraints.extend(self.all_goal_constraints())
         request.planner_id = self.planner_id
         request.group_name = self.group.name
         request.num_planning_attempts = self.num_planning_attempts
@@ -385,14 +420,15 @@ class GoalBuilder:
         if isinstance(waypoints, Pose | PoseStamped) or not isinstance(waypoints, Sequence) or not waypoints:
             raise SixdofCommanderError("waypoints must be a non-empty list of geometry_msgs/Pose")
         request = GetCartesianPathRequest()
-        request.header.frame_id = self.planning_frame
+        request.header.frame_id = self.pose_reference_frame
         request.start_state = self.current_start_state()
         request.group_name = self.group.name
         request.link_name = self.end_effector_link
         for i, waypoint in enumerate(waypoints):
             if not isinstance(waypoint, Pose):
                 raise SixdofCommanderError(f"waypoint {i} must be a geometry_msgs/Pose, got {type(waypoint).__name__}")
-            request.waypoints.append(pose_stamped_from_target(waypoint, self.planning_frame, f"waypoint {i}").pose)
+            stamped = pose_stamped_from_target(waypoint, self.pose_reference_frame, f"waypoint {i}")
+            request.waypoints.append(stamped.pose)
         request.max_step = check_positive(eef_step, "eef_step")
         request.jump_threshold = check_number(jump_threshold, "jump_threshold")
         if request.jump_threshold < 0.0:

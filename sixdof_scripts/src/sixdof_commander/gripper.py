@@ -6,7 +6,7 @@ import threading
 
 from sixdof_msgs.msg import GripperCommandAction, GripperCommandGoal, GripperCommandResult
 
-from ._ros import ActionClient, ServerWaiter, check_timeout, load_robot_model, require_node, resolve
+from ._ros import ActionClient, ServerWaiter, check_timeout, load_robot_model, require_node, resolve, wait_for_done
 from .exceptions import SixdofCommanderError
 from .goals import check_number
 from .robot_model import resolve_group
@@ -90,11 +90,12 @@ class Gripper:
         # Wall clock: with use_sim_time a paused or stopped simulator never advances ROS time.
         done = threading.Event()
         self._client.send_goal(goal, done_cb=lambda _state, _result: done.set())
-        if not done.wait(self._result_timeout or None):
+        reason = wait_for_done(self._client, done, self._result_timeout)
+        if reason:
             self._client.cancel_goal()
             raise SixdofCommanderError(
-                f"gripper command to {value:.6g}: no result within {self._result_timeout:g} s "
-                f"(goal state {self._client.get_state()}); the goal was canceled"
+                f"gripper command to {value:.6g}: {reason} (goal state {self._client.get_state()}); "
+                "the goal was canceled"
             )
         result = self._client.get_result()
         if result is None:

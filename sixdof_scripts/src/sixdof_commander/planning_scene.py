@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import queue
+import threading
 from collections.abc import Sequence
 
 import rospkg
@@ -13,11 +15,15 @@ from sixdof_msgs.msg import AttachedCollisionObject, CollisionObject, MoveItErro
 from sixdof_msgs.msg import PlanningScene as SceneMsg
 from sixdof_msgs.srv import ApplyPlanningScene, GetPlanningScene
 
-from ._ros import ServerWaiter, load_robot_model, require_node, resolve
+from ._ros import ServerWaiter, call_service, load_robot_model, require_node, resolve
 from .exceptions import SixdofCommanderError
-from .goals import check_positive, pose_stamped_from_target
+from .goals import check_number, check_positive, pose_stamped_from_target
 from .mesh import load_stl
 from .robot_model import RobotDescription, SemanticDescription, group_links_with_descendants, resolve_group
+from .transforms import matrix_from_pose
+
+# Hang guard (wall clock) for scene service calls: a dead node fails at once, this bounds a node that hangs.
+SERVICE_TIMEOUT = 30.0
 
 
 def default_touch_links(urdf: RobotDescription, srdf: SemanticDescription, link: str) -> list[str]:
@@ -120,12 +126,20 @@ class PlanningScene:
     """The move_group node's planning scene, through its apply_planning_scene/get_planning_scene services.
 
     Poses are PoseStamped (or anything set_pose_target accepts); an empty frame means the planning frame.
-    Every change returns True when the node applied it.
+    Synchronous (the default): every change returns True when the node applied it. Asynchronous: changes are
+    queued and applied in order by a background thread; they return True once queued, and a refused change is
+    logged with its error (last_error).
     """
 
-    def __init__(self, ns: str = "", wait_for_servers: float = 5.0) -> None:
+    def __init__(
+        self,
+        ns: str = "",
+        wait_for_servers: float = 5.0,
+        robot_description: str = "robot_description",
+        synchronous: bool = True,
+    ) -> None:
         require_node()
-        self._urdf, self._srdf = load_robot_model(ns)
+        self._urdf, self._srdf = load_robot_model(ns, robot_description)
         self._planning_frame = self._srdf.virtual_joint_parent or self._urdf.root_link
         waiter = ServerWaiter(wait_for_servers)
         for name in ("apply_planning_scene", "get_planning_scene"):
@@ -134,23 +148,65 @@ class PlanningScene:
         self._apply = rospy.ServiceProxy(resolve(ns, "apply_planning_scene"), ApplyPlanningScene)
         self._get = rospy.ServiceProxy(resolve(ns, "get_planning_scene"), GetPlanningScene)
         self.last_error = MoveItErrorCodes()
+        self._synchronous = bool(synchronous)
+        self._queue: queue.Queue[SceneMsg] = queue.Queue()
+        self._worker: threading.Thread | None = None
 
-    def _apply_diff(
-        self,
-        world_objects: Sequence[CollisionObject] = (),
-        attached: Sequence[AttachedCollisionObject] = (),
-    ) -> bool:
+    # Applying changes --------------------------------------------------------------------------------
+    def _call_apply(self, diff: SceneMsg) -> bool:
         try:
-            response = self._apply(scene_diff(world_objects, attached))
+            response = call_service(self._apply, diff, SERVICE_TIMEOUT)
         except (rospy.ServiceException, rospy.ROSException) as err:
             self.last_error = MoveItErrorCodes(val=MoveItErrorCodes.COMMUNICATION_FAILURE, message=str(err))
             return False
         self.last_error = response.error_code
         return bool(response.success)
 
+    def _work(self) -> None:
+        while not rospy.is_shutdown():
+            try:
+                diff = self._queue.get(timeout=0.5)
+            except queue.Empty:
+                continue
+            if not self._call_apply(diff):
+                rospy.logerr(f"PlanningScene (asynchronous): a change was refused: {self.last_error.message}")
+            self._queue.task_done()
+
+    def _submit(self, diff: SceneMsg) -> bool:
+        if self._synchronous:
+            return self._call_apply(diff)
+        if self._worker is None:
+            self._worker = threading.Thread(target=self._work, name="planning_scene_updates", daemon=True)
+            self._worker.start()
+        self._queue.put(diff)
+        return True
+
+    def _apply_diff(
+        self,
+        world_objects: Sequence[CollisionObject] = (),
+        attached: Sequence[AttachedCollisionObject] = (),
+    ) -> bool:
+        return self._submit(scene_diff(world_objects, attached))
+
+    def apply_planning_scene(self, planning_scene_message: SceneMsg) -> bool:
+        """Apply a PlanningScene message (objects only: the robot's joints follow joint_states); True if applied."""
+        if not isinstance(planning_scene_message, SceneMsg):
+            raise SixdofCommanderError(
+                f"apply_planning_scene needs a PlanningScene message, got {type(planning_scene_message).__name__}"
+            )
+        return self._call_apply(planning_scene_message)
+
+    # World objects -----------------------------------------------------------------------------------
     def _add_primitive(self, name: str, pose: object, shape_type: int, dimensions: list[float]) -> bool:
         obj = primitive_object(name, pose, shape_type, dimensions, self._planning_frame)
         return self._apply_diff(world_objects=[obj])
+
+    def add_object(self, collision_object: CollisionObject) -> bool:
+        """Apply a CollisionObject as it is (its operation: ADD, REMOVE, APPEND or MOVE)."""
+        if not isinstance(collision_object, CollisionObject):
+            raise SixdofCommanderError(f"add_object needs a CollisionObject, got {type(collision_object).__name__}")
+        _check_name(collision_object.id)
+        return self._apply_diff(world_objects=[collision_object])
 
     def add_box(self, name: str, pose: object, size: Sequence[float] = (1.0, 1.0, 1.0)) -> bool:
         """Add (or replace) a box of edge lengths size (x, y, z), centred at pose."""
@@ -165,41 +221,151 @@ class PlanningScene:
         dimensions = [check_positive(height, "cylinder height"), check_positive(radius, "cylinder radius")]
         return self._add_primitive(name, pose, SolidPrimitive.CYLINDER, dimensions)
 
-    def add_mesh(self, name: str, pose: object, filename: str, size: Sequence[float] = (1.0, 1.0, 1.0)) -> bool:
-        """Add (or replace) an STL mesh (a path or package:// URI), each axis scaled by size."""
+    def _mesh_object(self, name: str, pose: object, filename: str, size: Sequence[float]) -> CollisionObject:
         scale = _check_size(size, "mesh scale")
         obj = collision_object(name, pose, self._planning_frame)
         obj.meshes.append(load_stl(resolve_resource(filename), scale))
         obj.mesh_poses.append(_identity())
-        return self._apply_diff(world_objects=[obj])
+        return obj
+
+    def add_mesh(self, name: str, pose: object, filename: str, size: Sequence[float] = (1.0, 1.0, 1.0)) -> bool:
+        """Add (or replace) an STL mesh (a path or package:// URI), each axis scaled by size."""
+        return self._apply_diff(world_objects=[self._mesh_object(name, pose, filename, size)])
+
+    def add_plane(self, name: str, pose: object, normal: Sequence[float] = (0, 0, 1), offset: float = 0) -> bool:
+        """Refused: infinite planes are not collision objects of sixdof's planning scene (use a large thin box)."""
+        raise SixdofCommanderError(
+            "add_plane() is not available on sixdof: the planning scene has no infinite planes; "
+            "add a large thin box with add_box() instead"
+        )
 
     def remove_world_object(self, name: str | None = None) -> bool:
         """Remove a world object (every world object with no name)."""
         names = [name] if name is not None else self.get_known_object_names()
         return self._apply_diff(world_objects=[removal(n, self._planning_frame) for n in names])
 
-    def attach_object(self, name: str, link: str, touch_links: Sequence[str] | None = None) -> bool:
-        """Attach the world object `name` rigidly to `link` at its current pose. touch_links (default:
-        the link, links fixed to it and its end effector's links) may be in contact with it."""
+    # Attached objects --------------------------------------------------------------------------------
+    def _touch_links(self, link: str, touch_links: Sequence[str] | None) -> list[str]:
         links = default_touch_links(self._urdf, self._srdf, link) if touch_links is None else list(touch_links)
         unknown = [lk for lk in links if lk not in self._urdf.links]
         if unknown:
             raise SixdofCommanderError(f"touch links {unknown} are not links of the robot")
+        return links
+
+    def attach_object(self, name: str, link: str, touch_links: Sequence[str] | None = None) -> bool:
+        """Attach the world object `name` rigidly to `link` at its current pose. touch_links (default:
+        the link, links fixed to it and its end effector's links) may be in contact with it."""
+        return self._apply_diff(attached=[attach_request(name, link, self._touch_links(link, touch_links))])
+
+    def attach_collision_object(self, attached_collision_object: AttachedCollisionObject) -> bool:
+        """Apply an AttachedCollisionObject as it is (with shapes: a new object; without: a world object)."""
+        if not isinstance(attached_collision_object, AttachedCollisionObject):
+            raise SixdofCommanderError(
+                f"needs an AttachedCollisionObject, got {type(attached_collision_object).__name__}"
+            )
+        self._touch_links(attached_collision_object.link_name, attached_collision_object.touch_links)
+        return self._apply_diff(attached=[attached_collision_object])
+
+    def _attach_existing(self, link: str, name: str, touch_links: Sequence[str]) -> bool:
+        links = self._touch_links(link, list(touch_links) or [link])
         return self._apply_diff(attached=[attach_request(name, link, links)])
+
+    def _attach_new(self, link: str, obj: CollisionObject, touch_links: Sequence[str]) -> bool:
+        attached = AttachedCollisionObject()
+        attached.link_name = link
+        attached.object = obj
+        attached.touch_links = self._touch_links(link, list(touch_links) or [link])
+        return self._apply_diff(attached=[attached])
+
+    def attach_box(
+        self,
+        link: str,
+        name: str,
+        pose: object = None,
+        size: Sequence[float] = (1.0, 1.0, 1.0),
+        touch_links: Sequence[str] = (),
+    ) -> bool:
+        """Attach a new box at pose to `link` (without a pose: attach the existing world object `name`).
+        touch_links default to [link], as in MoveIt."""
+        if pose is None:
+            return self._attach_existing(link, name, touch_links)
+        box = primitive_object(name, pose, SolidPrimitive.BOX, _check_size(size, "box size"), self._planning_frame)
+        return self._attach_new(link, box, touch_links)
+
+    def attach_mesh(
+        self,
+        link: str,
+        name: str,
+        pose: object = None,
+        filename: str = "",
+        size: Sequence[float] = (1.0, 1.0, 1.0),
+        touch_links: Sequence[str] = (),
+    ) -> bool:
+        """Attach a new STL mesh at pose to `link` (without pose and filename: the existing world object)."""
+        if pose is None or not filename:
+            return self._attach_existing(link, name, touch_links)
+        return self._attach_new(link, self._mesh_object(name, pose, filename, size), touch_links)
 
     def detach_object(self, name: str = "") -> bool:
         """Detach `name` (every attached object when empty) and put it back into the world."""
         return self._apply_diff(attached=[detach_request(name)])
 
+    def remove_attached_object(self, link: str | None = None, name: str | None = None) -> bool:
+        """Detach `name`, or every object attached to `link`, or every attached object (neither given). Detached
+        objects return to the world, as in MoveIt (remove_world_object removes them)."""
+        if name is not None:
+            return self.detach_object(_check_name(name))
+        if link is None:
+            return self.detach_object("")
+        if link not in self._urdf.links:
+            raise SixdofCommanderError(f"link '{link}' is not a link of the robot")
+        names = [a.object.id for a in self._scene().robot_state.attached_collision_objects if a.link_name == link]
+        return self._apply_diff(attached=[detach_request(n) for n in names])
+
+    def clear(self) -> bool:
+        """Remove every attached and world object."""
+        detached = self.remove_attached_object()
+        if not self._synchronous:
+            self._queue.join()
+        return self.remove_world_object() and detached
+
+    # Queries -----------------------------------------------------------------------------------------
     def _scene(self) -> SceneMsg:
         try:
-            return self._get().scene
+            return call_service(self._get, GetPlanningScene._request_class(), SERVICE_TIMEOUT).scene
         except (rospy.ServiceException, rospy.ROSException) as err:
             raise SixdofCommanderError(f"get_planning_scene call failed: {err}") from err
 
-    def get_known_object_names(self) -> list[str]:
-        """Ids of the world (not attached) objects."""
-        return [obj.id for obj in self._scene().world.collision_objects]
+    def get_known_object_names(self, with_type: bool = False) -> list[str]:
+        """Ids of the world (not attached) objects. with_type: only objects with a recognised type, which
+        sixdof's collision objects never have (no object recognition), so none."""
+        return [] if with_type else [obj.id for obj in self._scene().world.collision_objects]
+
+    def get_known_object_names_in_roi(
+        self,
+        minx: float,
+        miny: float,
+        minz: float,
+        maxx: float,
+        maxy: float,
+        maxz: float,
+        with_type: bool = False,
+    ) -> list[str]:
+        """Ids of world objects all of whose shapes' origins lie in the box (planning frame), as MoveIt's."""
+        bounds = [check_number(v, f"ROI bound {i}") for i, v in enumerate((minx, miny, minz, maxx, maxy, maxz))]
+        if with_type:
+            return []
+        names = []
+        for obj in self._scene().world.collision_objects:
+            origin = matrix_from_pose(obj.pose)
+            shapes = list(obj.primitive_poses) + list(obj.mesh_poses)
+            inside = bool(shapes)
+            for shape in shapes:
+                point = (origin @ matrix_from_pose(shape))[:3, 3]
+                inside = inside and all(bounds[i] <= point[i] <= bounds[i + 3] for i in range(3))
+            if inside:
+                names.append(obj.id)
+        return names
 
     def get_attached_object_names(self) -> list[str]:
         """Ids of the objects attached to the robot."""
@@ -210,6 +376,19 @@ class PlanningScene:
         objects = self._scene().world.collision_objects
         wanted = None if object_ids is None else set(object_ids)
         return {obj.id: obj.pose for obj in objects if wanted is None or obj.id in wanted}
+
+    def get_objects(self, object_ids: Sequence[str] | None = None) -> dict[str, CollisionObject]:
+        """World objects by id (all when object_ids is empty or None)."""
+        wanted = set(object_ids) if object_ids else None
+        return {o.id: o for o in self._scene().world.collision_objects if wanted is None or o.id in wanted}
+
+    def get_attached_objects(
+        self, object_ids: Sequence[str] | None = None
+    ) -> dict[str, AttachedCollisionObject]:
+        """Attached objects by id (all when object_ids is empty or None)."""
+        wanted = set(object_ids) if object_ids else None
+        attached = self._scene().robot_state.attached_collision_objects
+        return {a.object.id: a for a in attached if wanted is None or a.object.id in wanted}
 
 
 def resolve_resource(filename: str) -> str:

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .exceptions import SixdofCommanderError
+from .exceptions import SixdofCommanderError, UnknownGroupError
 from .transforms import homogeneous, matrix_from_rpy
 
 
@@ -30,6 +30,7 @@ class Joint:
     effort: float
     mimic: str | None
     axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    velocity: float = math.inf  # the URDF's velocity limit (inf when absent)
 
     @property
     def is_active(self) -> bool:
@@ -186,9 +187,11 @@ def parse_urdf(text: str) -> RobotDescription:
         xyz = _floats(origin.get("xyz") if origin is not None else None, 3, f"{what} origin xyz")
         rpy = _floats(origin.get("rpy") if origin is not None else None, 3, f"{what} origin rpy")
         limit = element.find("limit")
-        lower, upper, effort = -math.inf, math.inf, 0.0
+        lower, upper, effort, velocity = -math.inf, math.inf, 0.0, math.inf
         if limit is not None:
             effort = _floats(limit.get("effort"), 1, f"{what} limit effort")[0]
+            if limit.get("velocity") is not None:
+                velocity = _floats(limit.get("velocity"), 1, f"{what} limit velocity")[0]
             if joint_type in ("revolute", "prismatic"):
                 lower = _floats(limit.get("lower"), 1, f"{what} limit lower")[0]
                 upper = _floats(limit.get("upper"), 1, f"{what} limit upper")[0]
@@ -205,6 +208,7 @@ def parse_urdf(text: str) -> RobotDescription:
             effort=effort,
             mimic=_required(mimic, "joint", f"{what} <mimic>") if mimic is not None else None,
             axis=tuple(_floats(axis.get("xyz") if axis is not None else "1 0 0", 3, f"{what} axis")),
+            velocity=velocity,
         )
     children = {joint.child for joint in joints.values()}
     roots = sorted(links - children)
@@ -265,7 +269,7 @@ def _group_joints_and_links(
     urdf: RobotDescription, srdf: SemanticDescription, name: str, seen: frozenset[str]
 ) -> tuple[list[Joint], list[str], str]:
     if name not in srdf.groups:
-        raise SixdofCommanderError(f"the SRDF has no group '{name}'; groups: {sorted(srdf.groups)}")
+        raise UnknownGroupError(f"the SRDF has no group '{name}'; groups: {sorted(srdf.groups)}")
     if name in seen:
         raise SixdofCommanderError(f"SRDF group '{name}' contains itself through its subgroups")
     spec = srdf.groups[name]

@@ -79,3 +79,9 @@ def homogeneous(translation: Sequence[float], rotation: np.ndarray) -> np.ndarra
     t[:3, :3] = rotation
     t[:3, 3] = translation
     return t
+
+
+def matrix_from_pose(pose: object) -> np.ndarray:
+    """4x4 transform of a geometry_msgs/Pose."""
+    p, o = pose.position, pose.orientation
+    return homogeneous((p.x, p.y, p.z), matrix_from_quaternion((o.x, o.y, o.z, o.w)))

@@ -1,0 +1,78 @@
+"""moveit_commander.conversions: lists <-> geometry_msgs, as MoveIt's (quaternions (x, y, z, w); 6-lists are
+x, y, z, roll, pitch, yaw about fixed axes)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from io import BytesIO
+
+from geometry_msgs.msg import Pose, PoseStamped, Transform
+from sixdof_commander.exceptions import SixdofCommanderError
+from sixdof_commander.goals import check_number
+from sixdof_commander.transforms import quaternion_from_rpy
+
+
+def msg_to_string(msg: object) -> bytes:
+    """The message serialized (rospy's wire format)."""
+    buffer = BytesIO()
+    msg.serialize(buffer)
+    return buffer.getvalue()
+
+
+def msg_from_string(msg: object, data: bytes) -> None:
+    """Fill msg from its serialized form."""
+    msg.deserialize(data)
+
+
+def _numbers(values: Sequence[float], lengths: tuple[int, ...], what: str) -> list[float]:
+    if isinstance(values, str) or not hasattr(values, "__len__") or len(values) not in lengths:
+        expected = " or ".join(str(n) for n in lengths)
+        raise SixdofCommanderError(
+            f"{what}: expected a list of {expected} elements (x, y, z, roll, pitch, yaw) or "
+            f"(x, y, z, qx, qy, qz, qw), got {values!r}"
+        )
+    return [check_number(v, f"{what} element {i}") for i, v in enumerate(values)]
+
+
+def _quaternion(values: list[float]) -> tuple[float, float, float, float]:
+    return quaternion_from_rpy(*values[3:]) if len(values) == 6 else tuple(values[3:])
+
+
+def pose_to_list(pose_msg: Pose) -> list[float]:
+    """[x, y, z, qx, qy, qz, qw] of a Pose."""
+    p, o = pose_msg.position, pose_msg.orientation
+    return [p.x, p.y, p.z, o.x, o.y, o.z, o.w]
+
+
+def list_to_pose(pose_list: Sequence[float]) -> Pose:
+    """Pose from [x, y, z, roll, pitch, yaw] or [x, y, z, qx, qy, qz, qw]."""
+    values = _numbers(pose_list, (6, 7), "list_to_pose")
+    pose = Pose()
+    pose.position.x, pose.position.y, pose.position.z = values[:3]
+    o = pose.orientation
+    o.x, o.y, o.z, o.w = _quaternion(values)
+    return pose
+
+
+def list_to_pose_stamped(pose_list: Sequence[float], target_frame: str) -> PoseStamped:
+    """PoseStamped in target_frame from a 6- or 7-list."""
+    stamped = PoseStamped()
+    stamped.header.frame_id = target_frame
+    stamped.pose = list_to_pose(pose_list)
+    return stamped
+
+
+def transform_to_list(trf_msg: Transform) -> list[float]:
+    """[x, y, z, qx, qy, qz, qw] of a Transform."""
+    t, r = trf_msg.translation, trf_msg.rotation
+    return [t.x, t.y, t.z, r.x, r.y, r.z, r.w]
+
+
+def list_to_transform(trf_list: Sequence[float]) -> Transform:
+    """Transform from [x, y, z, roll, pitch, yaw] or [x, y, z, qx, qy, qz, qw]."""
+    values = _numbers(trf_list, (6, 7), "list_to_transform")
+    transform = Transform()
+    transform.translation.x, transform.translation.y, transform.translation.z = values[:3]
+    r = transform.rotation
+    r.x, r.y, r.z, r.w = _quaternion(values)
+    return transform

@@ -1,0 +1,19 @@
+"""PlanningSceneInterface: sixdof_commander.PlanningScene under moveit_commander's signatures."""
+
+from __future__ import annotations
+
+from sixdof_commander.planning_scene import PlanningScene
+
+from sixdof_msgs.msg import AttachedCollisionObject
+
+
+class PlanningSceneInterface(PlanningScene):
+    """MoveIt 1.1.16's PlanningSceneInterface. synchronous=False (upstream's default): changes are applied in order
+    by a background thread and the calls return at once; synchronous=True: each call returns once applied."""
+
+    def __init__(self, ns: str = "", synchronous: bool = False, service_timeout: float = 5.0) -> None:
+        super().__init__(ns=ns, wait_for_servers=service_timeout, synchronous=synchronous)
+
+    def attach_object(self, attached_collision_object: AttachedCollisionObject) -> bool:  # upstream's signature
+        """Apply an AttachedCollisionObject (with shapes: a new object; without: the world object of its id)."""
+        return self.attach_collision_object(attached_collision_object)

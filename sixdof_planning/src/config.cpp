@@ -167,6 +167,8 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
       positiveParam(private_nh, "allowed_goal_duration_margin", config.execution_goal_margin, true);
   config.start_state_tolerance =
       positiveParam(private_nh, "allowed_start_tolerance", config.start_state_tolerance, true);
+  config.execution_watchdog_timeout =
+      positiveParam(private_nh, "execution_watchdog_timeout", config.execution_watchdog_timeout, false);
   config.start_state_max_bounds_error =
       positiveParam(private_nh, "start_state_max_bounds_error", config.start_state_max_bounds_error, true);
   config.joint_state_timeout = positiveParam(private_nh, "joint_state_timeout", config.joint_state_timeout, true);

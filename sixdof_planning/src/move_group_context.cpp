@@ -71,6 +71,7 @@ ErrorCode MoveGroupContext::currentState(const std::string& source, sixdof_core:
     return makeError(ErrorCode::ROBOT_STATE_STALE, "no joint_states received for joints " + joinNames(missing),
                      source);
   }
+  warnIfStale(source);
   return makeSuccess(source);
 }
 
@@ -102,6 +103,7 @@ ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg
                          source);
       }
     }
+    warnIfStale(source);
   }
   for (size_t i = 0; i < joint_state.name.size(); ++i) {
     if (model_->joint(joint_state.name[i]).isActive()) {
@@ -131,6 +133,14 @@ ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg
     *scene = copy;
   }
   return makeSuccess(source);
+}
+
+void MoveGroupContext::warnIfStale(const std::string& source) const {
+  const double age = state_monitor_->liveness().joint_states_age;
+  if (age > config_.joint_state_timeout) {
+    ROS_WARN_STREAM_THROTTLE(5.0, source << ": joint_states stale for " << std::round(age * 10.0) / 10.0
+                                         << " s: using the last known robot state");
+  }
 }
 
 std::shared_ptr<const SceneStore> MoveGroupContext::scene() const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -15,6 +16,8 @@ namespace {
 
 // How long to wait for a controller's action server before giving up on it.
 constexpr double kServerWaitSeconds = 1.0;
+// Wall-clock seconds of silence that end an execution once the wall clock is past its time limit.
+constexpr double kLateSilence = 0.2;
 
 std::string followErrorName(int code) {
   using R = sixdof_msgs::FollowJointTrajectoryResult;
@@ -39,6 +42,13 @@ std::string followErrorName(int code) {
 std::string str(double value) {
   std::ostringstream out;
   out << value;
+  return out.str();
+}
+
+// Seconds to 0.1 s ("3.2"); infinity reads "inf" (never heard of).
+std::string seconds(double value) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << value;
   return out.str();
 }
 
@@ -140,6 +150,12 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   if (!isSuccess(code)) return code;
 
   // The robot must be where the trajectory starts (MoveIt's allowed_start_tolerance).
+  // Executing needs a live robot: a state older than joint_state_timeout is where the robot was, not where it is.
+  const double age = context_->stateLiveness().joint_states_age;
+  if (age > context_->config().joint_state_timeout) {
+    return makeError(ErrorCode::CONTROL_FAILED,
+                     "no current robot state: joint_states stale for " + seconds(age) + " s", source);
+  }
   sixdof_core::RobotState current(context_->model());
   code = context_->currentState(source, &current);
   if (!isSuccess(code)) return code;
@@ -161,11 +177,10 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   }
 
   for (const auto& part : parts) {
-    auto& client = *clients_.at(part.first);
-    if (!client.isServerConnected() && !client.waitForServer(ros::Duration(kServerWaitSeconds))) {
+    if (!waitForServer(part.first)) {
       return makeError(ErrorCode::CONTROL_FAILED,
-                       "controller '" + part.first + "': action server '" +
-                           context_->nodeHandle().resolveName(action_names_.at(part.first)) + "' is not available",
+                       "controller '" + part.first + "': action server '" + serverName(part.first) +
+                           "' is not available",
                        source);
     }
   }
@@ -178,14 +193,16 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
     goal.trajectory.header.stamp = ros::Time(0);  // start now
     clients_.at(part.first)->sendGoal(goal);
   }
-  // Elapsed time is the smaller of the ROS clock's and the wall clock's: a simulator running faster than real time
-  // (headless, real_time_factor 0) would otherwise spend the whole margin on message latency, and one running
-  // slower than real time is still judged on its own clock.
+  // The time limit holds on both clocks (it ends when the smaller elapsed time passes it): a simulator running faster
+  // than real time (headless) would otherwise spend the whole margin on message latency, and one running slower than
+  // real time is judged on its own clock. A controller that stops reporting (its action server gone, /clock standing
+  // still, joint_states silent) stops both from mattering, so it is caught on the wall clock by the watchdog: within
+  // execution_watchdog_timeout, and within kLateSilence once the wall clock is past the limit (a slow simulator
+  // keeps going only while it is visibly alive), so a dead controller ends the execution by the limit (+ kLateSilence
+  // when it died in the last moment of a slow simulation).
   const ros::Time start = ros::Time::now();
   const ros::WallTime wall_start = ros::WallTime::now();
-  const auto elapsed = [&] {
-    return std::min((ros::Time::now() - start).toSec(), (ros::WallTime::now() - wall_start).toSec());
-  };
+  const double watchdog = context_->config().execution_watchdog_timeout;
   ros::WallRate rate(100.0);
   while (ros::ok()) {
     if (preempt_requested && preempt_requested()) {
@@ -215,7 +232,17 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
       return makeSuccess(source, "executed " + str(expected) + " s trajectory on " + std::to_string(parts.size()) +
                                      " controller(s)");
     }
-    if (elapsed() > allowed) {
+    const double wall_elapsed = (ros::WallTime::now() - wall_start).toSec();
+    const double silence = wall_elapsed > allowed ? std::min(watchdog, kLateSilence) : watchdog;
+    const std::string problem = controllerSilence(parts, silence);
+    if (!problem.empty()) {
+      cancelAll(parts);
+      ROS_ERROR_STREAM(source << ": " << problem << ": execution stopped after " << seconds(wall_elapsed)
+                              << " s (wall clock)");
+      return makeError(ErrorCode::CONTROL_FAILED,
+                       problem + ": execution stopped after " + seconds(wall_elapsed) + " s (wall clock)", source);
+    }
+    if (std::min((ros::Time::now() - start).toSec(), wall_elapsed) > allowed) {
       cancelAll(parts);
       return makeError(ErrorCode::TIMED_OUT,
                        "Controller is taking too long to execute trajectory (the expected upper bound for the "
@@ -227,6 +254,38 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   }
   cancelAll(parts);
   return makeError(ErrorCode::PREEMPTED, "node shutting down", source);
+}
+
+std::string TrajectoryExecutor::serverName(const std::string& controller) const {
+  return context_->nodeHandle().resolveName(action_names_.at(controller));
+}
+
+bool TrajectoryExecutor::waitForServer(const std::string& controller) {
+  // On the wall clock: actionlib's waitForServer counts ROS time, which never passes while /clock stands still.
+  auto& client = *clients_.at(controller);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(kServerWaitSeconds);
+  while (!client.isServerConnected()) {
+    if (ros::WallTime::now() > deadline || !ros::ok()) return false;
+    ros::WallDuration(0.01).sleep();
+  }
+  return true;
+}
+
+std::string TrajectoryExecutor::controllerSilence(const std::map<std::string, trajectory_msgs::JointTrajectory>& parts,
+                                                  double limit) const {
+  for (const auto& part : parts) {
+    if (!clients_.at(part.first)->isServerConnected()) {
+      return "controller '" + part.first + "': action server '" + serverName(part.first) + "' lost";
+    }
+  }
+  const StateLiveness live = context_->stateLiveness();
+  if (live.clock_still > limit) {
+    return "/clock has not advanced for " + seconds(live.clock_still) + " s (is the simulator running?)";
+  }
+  if (live.joint_states_age > limit) {
+    return "joint_states stale for " + seconds(live.joint_states_age) + " s";
+  }
+  return "";
 }
 
 }  // namespace sixdof_planning

@@ -57,6 +57,9 @@ struct MoveGroupConfig {
   double execution_duration_scaling = 1.2;  // ~allowed_execution_duration_scaling
   double execution_goal_margin = 0.5;       // ~allowed_goal_duration_margin, s
   double start_state_tolerance = 0.01;      // ~allowed_start_tolerance, rad or m
+  // ~execution_watchdog_timeout: wall-clock seconds an execution tolerates /clock standing still or joint_states
+  // staying silent before it is cancelled with CONTROL_FAILED (the controller stopped reporting), s.
+  double execution_watchdog_timeout = 1.0;
   // ~start_state_max_bounds_error (MoveIt's FixStartStateBounds): a planning start state this far (rad or m)
   // or less outside a joint's limits is moved onto the limit (logged); further out it is START_STATE_INVALID.
   // Covers the numerical drift of measured joint states, e.g. a closed finger reading -2e-8 m.

@@ -40,8 +40,13 @@ class MoveGroupContext {
   std::shared_ptr<const sixdof_core::IkSolver> ikSolver(const std::string& group) const;
   sixdof_core::IkOptions ikOptions(const std::string& group) const;
 
-  // The current state from joint_states (waits up to joint_state_timeout for missing joints).
+  // The current state from joint_states (waits up to joint_state_timeout for missing joints). When joint_states
+  // have been silent for longer than joint_state_timeout (the simulator or driver is gone) this is the last known
+  // state, as in MoveIt, with a warning naming its age: planning keeps answering; execution refuses (see
+  // TrajectoryExecutor).
   ErrorCode currentState(const std::string& source, sixdof_core::RobotState* state) const;
+  // How long (wall clock) joint_states and /clock have been silent.
+  StateLiveness stateLiveness() const { return state_monitor_->liveness(); }
   // A request's robot state: its joints on top of the current state (the current state is only needed for
   // joints the message leaves out), and `base_scene` (null: the current scene) with the message's attached
   // objects added (attached objects in a request are always additions). `what` names the field.
@@ -67,6 +72,8 @@ class MoveGroupContext {
   void publishSceneMarkers();
 
  private:
+  void warnIfStale(const std::string& source) const;
+
   ros::NodeHandle nh_;
   MoveGroupConfig config_;
   sixdof_core::RobotModelConstPtr model_;

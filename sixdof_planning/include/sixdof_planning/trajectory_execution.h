@@ -18,7 +18,8 @@ namespace sixdof_planning {
 
 // MoveIt's TrajectoryExecutionManager with the simple controller manager: a trajectory is split among the
 // FollowJointTrajectory controllers of controller_list, sent to all of them at once and watched until every
-// controller reports, the allowed duration (expected x scaling + margin) passes, or the caller preempts.
+// controller reports, the allowed duration (expected x scaling + margin) passes, a controller stops reporting
+// (action server lost, /clock or joint_states silent: the watchdog, on the wall clock) or the caller preempts.
 class TrajectoryExecutor {
  public:
   explicit TrajectoryExecutor(MoveGroupContext* context);
@@ -36,6 +37,13 @@ class TrajectoryExecutor {
   ErrorCode split(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
                   std::map<std::string, trajectory_msgs::JointTrajectory>* parts) const;
   void cancelAll(const std::map<std::string, trajectory_msgs::JointTrajectory>& parts);
+  std::string serverName(const std::string& controller) const;
+  // Waits up to kServerWaitSeconds of wall-clock time for the controller's action server.
+  bool waitForServer(const std::string& controller);
+  // Why the controllers stopped reporting (an action server lost, /clock or joint_states silent for longer than
+  // `limit` wall-clock seconds), or empty while they are alive.
+  std::string controllerSilence(const std::map<std::string, trajectory_msgs::JointTrajectory>& parts,
+                                double limit) const;
 
   MoveGroupContext* context_;
   std::map<std::string, std::unique_ptr<Client>> clients_;  // by controller name

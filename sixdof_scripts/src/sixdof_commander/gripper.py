@@ -24,8 +24,8 @@ class Gripper:
         wait_for_servers: float = 5.0,
         result_timeout: float = 60.0,
     ) -> None:
-        """result_timeout: wall-clock seconds a command waits for its result (0: forever); then the goal is
-        canceled and SixdofCommanderError raised."""
+        """result_timeout: wall-clock seconds a command waits for its result (0: no limit); then, or as soon as
+        the action server is lost (its node died), the goal is canceled and SixdofCommanderError raised."""
         require_node()
         self._result_timeout = check_timeout(result_timeout, "result_timeout")
         urdf, srdf = load_robot_model(ns)

@@ -60,7 +60,8 @@ def error_code(value: int, message: str, source: str = "sixdof_commander") -> Mo
 
 
 def _refuse(method: str, why: str) -> MoveItCommanderException:
-    return SixdofCommanderError(f"{method}() is not available on sixdof: {why}")
+    call = method if "(" in method else f"{method}()"
+    return SixdofCommanderError(f"{call} is not available on sixdof: {why}")
 
 
 class MoveGroup:
@@ -545,7 +546,7 @@ class MoveGroup:
         elif isinstance(joints, str):
             if joints not in self.get_named_targets():
                 raise SixdofCommanderError(
-                    f"{method}('{joints}'): unknown named target for group '{self._group.name}'; "
+                    f"{method}(): unknown named target '{joints}' for group '{self._group.name}'; "
                     f"known: {self.get_named_targets()}"
                 )
             self.set_named_target(joints)

@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""rostest: go(), plan(), execute() and the gripper return (False with an error code, or SixdofCommanderError)
+when the node serving them is killed mid-request, instead of waiting forever (issue 13, item 3).
+
+The server is a stand-in of our own (stand_in_move_group.py) that never answers, started per case and killed by
+pid with SIGKILL once the request is in flight. Bounds are hang guards (the call returned at all), not speed."""
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import unittest
+from pathlib import Path
+
+import rospy
+import rostest
+from sixdof_commander import Gripper, MoveGroup, SixdofCommanderError
+from trajectory_msgs.msg import JointTrajectoryPoint
+
+from sixdof_msgs.msg import MoveItErrorCodes, RobotTrajectory
+
+STAND_IN = Path(__file__).resolve().parent / "stand_in_move_group.py"
+HANG_GUARD = 60.0
+
+
+class StandIn:
+    """The stand-in server process; kill() sends SIGKILL to its pid."""
+
+    def __init__(self) -> None:
+        if rospy.has_param("/stand_in"):
+            rospy.delete_param("/stand_in")
+        self.process = subprocess.Popen([sys.executable, str(STAND_IN)])
+
+    def wait_for_request(self, name: str) -> None:
+        deadline = time.monotonic() + HANG_GUARD
+        while not rospy.get_param(f"/stand_in/received/{name}", False):
+            assert time.monotonic() < deadline, f"the stand-in never received the {name} request"
+            time.sleep(0.05)
+
+    def kill(self) -> None:
+        os.kill(self.process.pid, signal.SIGKILL)
+        self.process.wait()
+
+
+def in_thread(call):
+    """Runs call() in a thread; returns (thread, outcome dict with 'value' or 'error')."""
+    outcome = {}
+
+    def run():
+        try:
+            outcome["value"] = call()
+        except Exception as err:  # the test inspects it
+            outcome["error"] = err
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    return thread, outcome
+
+
+class CommanderServerDeath(unittest.TestCase):
+    def run_and_kill(self, make, call, request: str):
+        stand_in = StandIn()
+        try:
+            client = make()
+            thread, outcome = in_thread(lambda: call(client))
+            stand_in.wait_for_request(request)
+            stand_in.kill()
+            thread.join(HANG_GUARD)
+            self.assertFalse(thread.is_alive(), f"the call did not return within {HANG_GUARD} s of the kill")
+            return client, outcome
+        finally:
+            if stand_in.process.poll() is None:
+                stand_in.kill()
+
+    def test_go_returns_false_naming_the_lost_server(self):
+        def go(arm):
+            arm.set_joint_value_target([0.0] * 6)
+            return arm.go(wait=True)
+
+        arm, outcome = self.run_and_kill(lambda: MoveGroup("arm", wait_for_servers=HANG_GUARD), go, "move_group")
+        self.assertIs(outcome.get("value"), False, outcome)
+        self.assertEqual(arm.last_error.val, MoveItErrorCodes.COMMUNICATION_FAILURE)
+        self.assertIn("move_group", arm.last_error.message)
+        self.assertIn("lost", arm.last_error.message)
+
+    def test_execute_returns_false_naming_the_lost_server(self):
+        trajectory = RobotTrajectory()
+        trajectory.joint_trajectory.joint_names = [f"joint{i}" for i in range(1, 7)]
+        trajectory.joint_trajectory.points.append(JointTrajectoryPoint(positions=[0.0] * 6))
+        arm, outcome = self.run_and_kill(
+            lambda: MoveGroup("arm", wait_for_servers=HANG_GUARD), lambda a: a.execute(trajectory), "execute_trajectory"
+        )
+        self.assertIs(outcome.get("value"), False, outcome)
+        self.assertIn("execute_trajectory", arm.last_error.message)
+
+    def test_plan_returns_false_with_a_communication_failure(self):
+        def plan(arm):
+            arm.set_joint_value_target([0.0] * 6)
+            return arm.plan()
+
+        arm, outcome = self.run_and_kill(
+            lambda: MoveGroup("arm", wait_for_servers=HANG_GUARD), plan, "plan_kinematic_path"
+        )
+        success, trajectory, _, code = outcome["value"]
+        self.assertFalse(success)
+        self.assertEqual(code.val, MoveItErrorCodes.COMMUNICATION_FAILURE)
+        self.assertIn("plan_kinematic_path", code.message)
+        # The node is gone: the next call fails at once instead of waiting.
+        success, _, _, code = arm.plan()
+        self.assertFalse(success)
+        self.assertEqual(code.val, MoveItErrorCodes.COMMUNICATION_FAILURE)
+
+    def test_gripper_raises_naming_the_lost_server(self):
+        _, outcome = self.run_and_kill(
+            lambda: Gripper(wait_for_servers=HANG_GUARD, result_timeout=0.0),
+            lambda g: g.close(),
+            "gripper_controller/gripper_cmd",
+        )
+        self.assertIsInstance(outcome.get("error"), SixdofCommanderError, outcome)
+        self.assertIn("action server was lost", str(outcome["error"]))
+
+
+if __name__ == "__main__":
+    rospy.init_node("commander_server_death")
+    rostest.rosrun("sixdof_scripts", "commander_server_death", CommanderServerDeath)

@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""A stand-in for the move_group and simulator nodes that accepts every request and never answers: the
+commander_server_death test kills it by pid mid-request. Each request it receives sets the parameter
+/stand_in/received/<name> to True, so the test knows when the request is in flight."""
+
+import threading
+
+import actionlib
+import rospy
+
+from sixdof_msgs.msg import ExecuteTrajectoryAction, GripperCommandAction, MoveGroupAction
+from sixdof_msgs.srv import ApplyPlanningScene, GetCartesianPath, GetMotionPlan, GetPlanningScene, GetPositionFK
+
+
+def hang(name: str):
+    def handler(*_args):
+        rospy.set_param(f"/stand_in/received/{name}", True)
+        threading.Event().wait()
+
+    return handler
+
+
+def main() -> None:
+    rospy.init_node("stand_in_move_group")
+    servers = [
+        actionlib.SimpleActionServer(name, spec, hang(name), auto_start=False)
+        for name, spec in (
+            ("move_group", MoveGroupAction),
+            ("execute_trajectory", ExecuteTrajectoryAction),
+            ("gripper_controller/gripper_cmd", GripperCommandAction),
+        )
+    ]
+    for server in servers:
+        server.start()
+    services = [
+        rospy.Service(name, spec, hang(name))
+        for name, spec in (
+            ("plan_kinematic_path", GetMotionPlan),
+            ("compute_fk", GetPositionFK),
+            ("compute_cartesian_path", GetCartesianPath),
+            ("get_planning_scene", GetPlanningScene),
+            ("apply_planning_scene", ApplyPlanningScene),
+        )
+    ]
+    rospy.loginfo("stand_in_move_group: %d actions, %d services up", len(servers), len(services))
+    rospy.spin()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,148 @@
+#include "world_impl.h"
+
+namespace sixdof_sim {
+
+void World::Impl::collectContacts(std::vector<GraspContact>* grasp_contacts) {
+  last_contacts.clear();
+  const int manifolds = dispatcher->getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+    const int points = manifold->getNumContacts();
+    if (points == 0) continue;
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    auto name_of = [&](const btCollisionObject* o, int shape_index) -> std::string {
+      switch (o->getUserIndex()) {
+        case kRobotBody: {
+          const RobotBody& body = bodies[o->getUserIndex2()];
+          if (shape_index >= 0 && shape_index < static_cast<int>(body.shape_links.size())) {
+            return body.shape_links[shape_index];
+          }
+          return body.links.front();
+        }
+        case kObjectBody:
+          for (const auto& obj : objects) {
+            if (obj->body.get() == o) return obj->spec.name;
+          }
+          return "";
+        default:
+          return "ground";
+      }
+    };
+    const bool a_robot = a->getUserIndex() == kRobotBody;
+    const bool b_robot = b->getUserIndex() == kRobotBody;
+    // Grasp-fix samples: one per (robot link, dynamic object) pair and step, averaged over points.
+    std::map<std::string, GraspContact> pairs;
+    std::map<std::string, int> pair_points;
+    for (int p = 0; p < points; ++p) {
+      const btManifoldPoint& pt = manifold->getContactPoint(p);
+      Contact contact;
+      contact.body_a = name_of(a, pt.m_index0);
+      contact.body_b = name_of(b, pt.m_index1);
+      contact.a_is_robot = a_robot;
+      contact.b_is_robot = b_robot;
+      contact.position_on_b = toEigen(pt.getPositionWorldOnB());
+      contact.normal_on_b = toEigen(pt.m_normalWorldOnB);
+      contact.depth = pt.getDistance();
+      contact.normal_impulse = pt.getAppliedImpulse();
+      last_contacts.push_back(contact);
+      if (a_robot == b_robot) continue;
+      const btCollisionObject* object = a_robot ? b : a;
+      if (object->getUserIndex() != kObjectBody || object->isStaticObject()) continue;
+      // Impulse on body A; the object receives it with the sign of its side.
+      const btVector3 impulse = pt.m_normalWorldOnB * pt.m_appliedImpulse +
+                                pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
+                                pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2;
+      const Eigen::Vector3d force = toEigen(a_robot ? -impulse : impulse) / dt();
+      const std::string link = a_robot ? contact.body_a : contact.body_b;
+      const std::string object_name = a_robot ? contact.body_b : contact.body_a;
+      const std::string key = object_name + '\n' + link;
+      GraspContact& gc = pairs[key];
+      gc.object = object_name;
+      gc.link = link;
+      gc.force_on_object += force;
+      gc.point += toEigen((pt.getPositionWorldOnA() + pt.getPositionWorldOnB()) * 0.5);
+      ++pair_points[key];
+    }
+    for (auto& entry : pairs) {
+      const int n = pair_points[entry.first];
+      entry.second.force_on_object /= n;
+      entry.second.point /= n;
+      grasp_contacts->push_back(entry.second);
+    }
+  }
+}
+
+void World::Impl::pushEvent(GraspEvent::Type type, const std::string& object) {
+  GraspEvent event;
+  event.type = type;
+  event.sim_time = static_cast<double>(steps) * dt();
+  event.arm = grasp_config->arm_name;
+  event.object = object;
+  event.palm_link = grasp_config->palm_link;
+  event.gripper_links = grasp_config->gripper_links;
+  grasp_events.push_back(event);
+}
+
+void World::Impl::attach(const std::string& name) {
+  ObjectRuntime* object = findObject(name);
+  const auto palm = links.find(grasp_config->palm_link);
+  if (object == nullptr || palm == links.end()) return;
+  const int body = palm->second.body;
+  // Fix the object at its current pose relative to the palm's body.
+  const btTransform body_to_object = body_world[body].inverse() * object->body->getWorldTransform();
+  grasp_constraint = std::make_unique<btMultiBodyFixedConstraint>(
+      multibody.get(), bodies[body].bullet_link, object->body.get(), body_to_object.getOrigin(), btVector3(0, 0, 0),
+      body_to_object.getBasis(), btMatrix3x3::getIdentity());
+  grasp_constraint->setMaxAppliedImpulse(kGraspConstraintMaxImpulse);
+  grasp_constraint->finalizeMultiDof();
+  world->addMultiBodyConstraint(grasp_constraint.get());
+  if (grasp_config->disable_collisions_on_attach) {
+    object->body->setCollisionFlags(object->body->getCollisionFlags() | btCollisionObject::CF_NO_CONTACT_RESPONSE);
+  }
+  pushEvent(GraspEvent::Type::kAttached, name);
+}
+
+void World::Impl::detach(const std::string& name) {
+  if (!grasp_constraint) return;
+  world->removeMultiBodyConstraint(grasp_constraint.get());
+  grasp_constraint.reset();
+  ObjectRuntime* object = findObject(name);
+  if (object != nullptr && object->spec.collision) {
+    object->body->setCollisionFlags(object->body->getCollisionFlags() & ~btCollisionObject::CF_NO_CONTACT_RESPONSE);
+  }
+  pushEvent(GraspEvent::Type::kDetached, name);
+}
+
+bool World::graspFixAvailable() const { return impl_->grasp_fix != nullptr; }
+bool World::graspFixEnabled() const { return impl_->grasp_enabled; }
+
+Result World::setGraspFixEnabled(bool enabled) {
+  Impl& d = *impl_;
+  if (enabled && !d.grasp_fix) {
+    return {Status::kInvalidArgument, "no grasp-fix configuration (URDF gazebo_grasp_fix block or options)"};
+  }
+  if (!enabled && d.grasp_fix) {
+    if (!d.grasp_fix->attached().empty()) d.detach(d.grasp_fix->attached());
+    d.grasp_fix->reset();
+  }
+  d.grasp_enabled = enabled;
+  return Result::success();
+}
+
+const std::optional<GraspFixConfig>& World::graspFixConfig() const { return impl_->grasp_config; }
+
+std::vector<GraspEvent> World::takeGraspEvents() {
+  std::vector<GraspEvent> events;
+  events.swap(impl_->grasp_events);
+  return events;
+}
+
+std::vector<std::string> World::attachedObjects() const {
+  if (!impl_->grasp_fix || impl_->grasp_fix->attached().empty()) return {};
+  return {impl_->grasp_fix->attached()};
+}
+
+std::vector<Contact> World::contacts() const { return impl_->last_contacts; }
+
+}  // namespace sixdof_sim

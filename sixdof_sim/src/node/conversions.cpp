@@ -1,33 +1,19 @@
 #include "conversions.h"
 
 #include <shape_msgs/SolidPrimitive.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include <cmath>
 #include <sstream>
 
 namespace sixdof_sim {
 
-geometry_msgs::Pose toMsg(const Eigen::Isometry3d& pose) {
-  geometry_msgs::Pose msg;
-  msg.position.x = pose.translation().x();
-  msg.position.y = pose.translation().y();
-  msg.position.z = pose.translation().z();
-  const Eigen::Quaterniond q(pose.rotation());
-  msg.orientation.x = q.x();
-  msg.orientation.y = q.y();
-  msg.orientation.z = q.z();
-  msg.orientation.w = q.w();
-  return msg;
-}
+geometry_msgs::Pose toMsg(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
 
 geometry_msgs::Twist toMsg(const Twist& twist) {
   geometry_msgs::Twist msg;
-  msg.linear.x = twist.linear.x();
-  msg.linear.y = twist.linear.y();
-  msg.linear.z = twist.linear.z();
-  msg.angular.x = twist.angular.x();
-  msg.angular.y = twist.angular.y();
-  msg.angular.z = twist.angular.z();
+  tf2::toMsg(twist.linear, msg.linear);
+  tf2::toMsg(twist.angular, msg.angular);
   return msg;
 }
 
@@ -54,7 +40,7 @@ sixdof_msgs::SimObject toMsg(const ObjectSpec& spec) {
       msg.mesh_scale.z = spec.shape.mesh_scale.z();
       break;
   }
-  msg.pose = toMsg(spec.pose);
+  msg.pose = tf2::toMsg(spec.pose);
   msg.mass = spec.mass;
   msg.friction = spec.friction;
   msg.restitution = spec.restitution;
@@ -79,10 +65,10 @@ bool fromMsg(const geometry_msgs::Pose& msg, Eigen::Isometry3d* pose, std::strin
     *error = s.str();
     return false;
   }
-  q.normalize();
-  pose->setIdentity();
-  pose->translate(p);
-  pose->rotate(q);
+  // tf2_eigen converts the quaternion as it is: normalising first keeps the rotation orthonormal.
+  geometry_msgs::Pose unit = msg;
+  unit.orientation = tf2::toMsg(q.normalized());
+  tf2::fromMsg(unit, *pose);
   return true;
 }
 

@@ -23,7 +23,20 @@ if command -v ccache >/dev/null; then
   # Precompiled headers: ccache may serve a TU that uses one only with these sloppiness settings.
   export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
 fi
+# colcon keeps only the last --cmake-args: a caller's cmake arguments are appended to ours instead.
+colcon_args=()
+in_cmake_args=0
+for arg in "$@"; do
+  if [ "$arg" = --cmake-args ]; then
+    in_cmake_args=1
+  elif [ $in_cmake_args = 1 ] && [[ "$arg" != --* ]]; then
+    cmake_args+=("$arg")
+  else
+    in_cmake_args=0
+    colcon_args+=("$arg")
+  fi
+done
 # The first build has no install space yet; an empty one keeps catkin's test env cache happy.
 mkdir -p install/lib/python3/dist-packages
 colcon build --merge-install --event-handlers console_direct- console_cohesion+ summary+ \
-  --cmake-args "${cmake_args[@]}" "$@"
+  "${colcon_args[@]}" --cmake-args "${cmake_args[@]}"

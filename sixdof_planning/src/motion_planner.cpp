@@ -5,19 +5,16 @@
 #include <sstream>
 
 #include <ros/console.h>
+#include <sixdof_msgs/MotionPlanRequest.h>
+#include <sixdof_msgs/MotionPlanResponse.h>
 
 #include "sixdof_planning/conversions.h"
+#include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
 
 namespace sixdof_planning {
 
 namespace {
-
-std::string str(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 ErrorCode goalError(const std::string& what, const std::string& message, const std::string& source) {
   return makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS, what + ": " + message, source);
@@ -38,8 +35,8 @@ std::string boundsViolation(const sixdof_core::RobotState& state) {
     const auto& joint = model.variableJoint(i);
     const double value = state.positions()[i];
     if (joint.limits.bounded && (value < joint.limits.lower || value > joint.limits.upper)) {
-      return joint.name + " = " + str(value) + " is outside [" + str(joint.limits.lower) + ", " +
-             str(joint.limits.upper) + "]";
+      return joint.name + " = " + formatNumber(value) + " is outside [" + formatNumber(joint.limits.lower) + ", " +
+             formatNumber(joint.limits.upper) + "]";
     }
   }
   return "";
@@ -58,7 +55,7 @@ std::string fixStartStateBounds(double max_error, sixdof_core::RobotState* state
     if (value > joint.limits.upper && value - joint.limits.upper <= max_error) bound = joint.limits.upper;
     if (bound == value) continue;
     positions[i] = bound;
-    moved += (moved.empty() ? "" : ", ") + joint.name + " " + str(value) + " -> " + str(bound);
+    moved += (moved.empty() ? "" : ", ") + joint.name + " " + formatNumber(value) + " -> " + formatNumber(bound);
   }
   if (!moved.empty()) state->setPositions(positions);
   return moved;
@@ -164,8 +161,8 @@ ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning
     if (!std::isfinite(v)) return makeError(ErrorCode::INVALID_REQUEST, pwhat + " has a non-finite value", source);
   }
   if (!std::isfinite(pc.tolerance) || pc.tolerance < 0.0) {
-    return makeError(ErrorCode::INVALID_REQUEST, pwhat + ".tolerance must be finite and >= 0, got " + str(pc.tolerance),
-                     source);
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     pwhat + ".tolerance must be finite and >= 0, got " + formatNumber(pc.tolerance), source);
   }
   Eigen::Isometry3d frame;
   code = SceneStore::frameTransform(start, pc.header.frame_id, source, &frame);
@@ -224,7 +221,8 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   if (!isSuccess(code)) return;
   if (!std::isfinite(request.allowed_planning_time) || request.allowed_planning_time < 0.0) {
     code = makeError(ErrorCode::INVALID_REQUEST,
-                     "allowed_planning_time must be >= 0 (0: the default), got " + str(request.allowed_planning_time),
+                     "allowed_planning_time must be >= 0 (0: the default), got " +
+                         formatNumber(request.allowed_planning_time),
                      source);
     return;
   }
@@ -286,8 +284,8 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();
   code = makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
-                                      str(result.planning_time) + " s, trajectory " + str(trajectory.duration()) +
-                                      " s");
+                                      formatNumber(result.planning_time) + " s, trajectory " +
+                                      formatNumber(trajectory.duration()) + " s");
   context_->publishDisplayTrajectory(start, response->trajectory.joint_trajectory);
 }
 

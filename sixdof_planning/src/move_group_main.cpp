@@ -1,6 +1,6 @@
 #include <ros/ros.h>
 
-#include "sixdof_planning/capabilities.h"
+#include "sixdof_planning/move_group_node.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "move_group");

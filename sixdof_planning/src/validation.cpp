@@ -8,15 +8,11 @@
 
 namespace sixdof_planning {
 
-namespace {
-
-std::string str(double value) {
+std::string formatNumber(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
 }
-
-}  // namespace
 
 std::string joinNames(const std::vector<std::string>& names) {
   std::string result;
@@ -25,7 +21,7 @@ std::string joinNames(const std::vector<std::string>& names) {
 }
 
 ErrorCode validateFinite(double value, const std::string& what, const std::string& source) {
-  if (!std::isfinite(value)) return makeError(ErrorCode::INVALID_REQUEST, what + " is " + str(value), source);
+  if (!std::isfinite(value)) return makeError(ErrorCode::INVALID_REQUEST, what + " is " + formatNumber(value), source);
   return makeSuccess(source);
 }
 
@@ -42,8 +38,8 @@ ErrorCode validatePose(const geometry_msgs::Pose& pose, const std::string& what,
                                 pose.orientation.z * pose.orientation.z + pose.orientation.w * pose.orientation.w);
   if (std::abs(norm - 1.0) > kQuaternionNormTolerance) {
     return makeError(ErrorCode::INVALID_REQUEST,
-                     what + ".orientation is not a unit quaternion (norm " + str(norm) + ", tolerance " +
-                         str(kQuaternionNormTolerance) + ")",
+                     what + ".orientation is not a unit quaternion (norm " + formatNumber(norm) + ", tolerance " +
+                         formatNumber(kQuaternionNormTolerance) + ")",
                      source);
   }
   return makeSuccess(source);
@@ -56,7 +52,8 @@ ErrorCode validateScalingFactor(double value, const std::string& what, const std
     return makeSuccess(source);
   }
   if (!std::isfinite(value) || value < 0.0 || value > 1.0) {
-    return makeError(ErrorCode::INVALID_REQUEST, what + " must be in (0, 1] (0 means 1), got " + str(value), source);
+    return makeError(ErrorCode::INVALID_REQUEST, what + " must be in (0, 1] (0 means 1), got " + formatNumber(value),
+                     source);
   }
   *effective = value;
   return makeSuccess(source);
@@ -108,7 +105,7 @@ ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_
     }
     if (!std::isfinite(joint_state.position[i])) {
       return makeError(ErrorCode::INVALID_ROBOT_STATE,
-                       "position of joint '" + name + "' is " + str(joint_state.position[i]), source);
+                       "position of joint '" + name + "' is " + formatNumber(joint_state.position[i]), source);
     }
   }
   return makeSuccess(source);
@@ -175,7 +172,8 @@ ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, co
     }
     for (double d : primitive.dimensions) {
       if (!std::isfinite(d) || d <= 0.0) {
-        return makeError(ErrorCode::INVALID_REQUEST, pname + " has a non-positive dimension " + str(d), source);
+        return makeError(ErrorCode::INVALID_REQUEST, pname + " has a non-positive dimension " + formatNumber(d),
+                         source);
       }
     }
     code = validatePose(object.primitive_poses[i], name + " primitive_poses[" + std::to_string(i) + "]", source);

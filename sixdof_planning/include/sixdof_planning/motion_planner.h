@@ -8,11 +8,9 @@
 #include <sixdof_core/planning.h>
 #include <sixdof_core/planning_context.h>
 #include <sixdof_core/robot_model.h>
-#include <sixdof_msgs/MotionPlanRequest.h>
-#include <sixdof_msgs/MotionPlanResponse.h>
 
 #include "sixdof_planning/errors.h"
-#include "sixdof_planning/move_group_context.h"
+#include "sixdof_planning/fwd.h"
 
 namespace sixdof_planning {
 

@@ -39,6 +39,8 @@ ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_
 ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, const std::string& what,
                                   const std::string& source, bool shapes_required = true);
 
+// A number as a stream prints it ("0.001", "1e-08"), for error messages.
+std::string formatNumber(double value);
 // "a, b, c" for error messages.
 std::string joinNames(const std::vector<std::string>& names);
 

@@ -1,12 +1,15 @@
-#include "sixdof_planning/capabilities.h"
-#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/state_validation_service_capability.h"
+
+#include <sixdof_msgs/GetStateValidity.h>
+
+#include "sixdof_planning/motion_planner.h"
+#include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
 
 namespace sixdof_planning {
 
 namespace {
 const char* const kValiditySource = "check_state_validity";
-const char* const kApplySource = "apply_planning_scene";
 
 uint32_t bodyType(sixdof_core::BodyType type) {
   switch (type) {
@@ -25,8 +28,8 @@ StateValidityService::StateValidityService(MoveGroupContext* context) : context_
   server_ = context_->nodeHandle().advertiseService("check_state_validity", &StateValidityService::handle, this);
 }
 
-bool StateValidityService::handle(sixdof_msgs::GetStateValidity::Request& request,
-                                  sixdof_msgs::GetStateValidity::Response& response) {
+bool StateValidityService::handle(sixdof_msgs::GetStateValidityRequest& request,
+                                  sixdof_msgs::GetStateValidityResponse& response) {
   ErrorCode& code = response.error_code;
   response.valid = false;
   if (!request.group_name.empty()) {
@@ -64,37 +67,6 @@ bool StateValidityService::handle(sixdof_msgs::GetStateValidity::Request& reques
   }
   if (!bounds.empty()) message = (report.colliding ? message + "; " : "") + bounds;
   code = makeSuccess(kValiditySource, message);
-  return true;
-}
-
-GetPlanningSceneService::GetPlanningSceneService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("get_planning_scene", &GetPlanningSceneService::handle, this);
-}
-
-bool GetPlanningSceneService::handle(sixdof_msgs::GetPlanningScene::Request&,
-                                     sixdof_msgs::GetPlanningScene::Response& response) {
-  const auto scene = context_->scene();
-  response.scene.name = "move_group";
-  response.scene.robot_model_name = context_->model()->name();
-  response.scene.is_diff = false;
-  sixdof_core::RobotState state(context_->model());
-  // The scene has objects even before joint_states arrive; the joint values are then left empty.
-  if (isSuccess(context_->currentState("get_planning_scene", &state))) {
-    response.scene.robot_state.joint_state = toJointState(state);
-  }
-  response.scene.robot_state.attached_collision_objects = scene->attachedObjects();
-  response.scene.world.collision_objects = scene->worldObjects();
-  return true;
-}
-
-ApplyPlanningSceneService::ApplyPlanningSceneService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("apply_planning_scene", &ApplyPlanningSceneService::handle, this);
-}
-
-bool ApplyPlanningSceneService::handle(sixdof_msgs::ApplyPlanningScene::Request& request,
-                                       sixdof_msgs::ApplyPlanningScene::Response& response) {
-  response.error_code = context_->applyScene(request.scene, kApplySource);
-  response.success = isSuccess(response.error_code);
   return true;
 }
 

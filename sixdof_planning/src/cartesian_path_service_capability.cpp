@@ -1,17 +1,19 @@
+#include "sixdof_planning/cartesian_path_service_capability.h"
+
 #include <cmath>
 #include <sstream>
 
 #include <sixdof_core/cartesian_path.h>
 #include <sixdof_core/planning_context.h>
+#include <sixdof_msgs/GetCartesianPath.h>
 
-#include "sixdof_planning/capabilities.h"
 #include "sixdof_planning/conversions.h"
+#include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
 
 namespace sixdof_planning {
 
 namespace {
-const char* const kPlanSource = "plan_kinematic_path";
 const char* const kCartesianSource = "compute_cartesian_path";
 
 ErrorCode nonNegative(double value, const std::string& what) {
@@ -24,29 +26,19 @@ ErrorCode nonNegative(double value, const std::string& what) {
 }
 }  // namespace
 
-MotionPlanService::MotionPlanService(MoveGroupContext* context) : context_(context), planner_(context) {
-  server_ = context_->nodeHandle().advertiseService("plan_kinematic_path", &MotionPlanService::handle, this);
-}
-
-bool MotionPlanService::handle(sixdof_msgs::GetMotionPlan::Request& request,
-                               sixdof_msgs::GetMotionPlan::Response& response) {
-  planner_.plan(request.motion_plan_request, kPlanSource, &response.motion_plan_response);
-  return true;
-}
-
 CartesianPathService::CartesianPathService(MoveGroupContext* context) : context_(context) {
   server_ = context_->nodeHandle().advertiseService("compute_cartesian_path", &CartesianPathService::handle, this);
 }
 
-bool CartesianPathService::handle(sixdof_msgs::GetCartesianPath::Request& request,
-                                  sixdof_msgs::GetCartesianPath::Response& response) {
+bool CartesianPathService::handle(sixdof_msgs::GetCartesianPathRequest& request,
+                                  sixdof_msgs::GetCartesianPathResponse& response) {
   response.fraction = 0.0;
   response.error_code = compute(request, &response);
   return true;
 }
 
-ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPath::Request& request,
-                                        sixdof_msgs::GetCartesianPath::Response* response) const {
+ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathRequest& request,
+                                        sixdof_msgs::GetCartesianPathResponse* response) const {
   const auto& model = *context_->model();
   ErrorCode code = validateGroup(model, request.group_name, kCartesianSource);
   if (!isSuccess(code)) return code;

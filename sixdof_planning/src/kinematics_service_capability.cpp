@@ -1,11 +1,17 @@
+#include "sixdof_planning/kinematics_service_capability.h"
+
 #include <algorithm>
 #include <chrono>
 #include <random>
 
 #include <sixdof_core/ik_analytic.h>
 
-#include "sixdof_planning/capabilities.h"
+#include <sixdof_msgs/GetPositionFK.h>
+#include <sixdof_msgs/GetPositionIK.h>
+
 #include "sixdof_planning/conversions.h"
+#include "sixdof_planning/motion_planner.h"
+#include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
 
 namespace sixdof_planning {
@@ -19,8 +25,8 @@ ForwardKinematicsService::ForwardKinematicsService(MoveGroupContext* context) : 
   server_ = context_->nodeHandle().advertiseService("compute_fk", &ForwardKinematicsService::handle, this);
 }
 
-bool ForwardKinematicsService::handle(sixdof_msgs::GetPositionFK::Request& request,
-                                      sixdof_msgs::GetPositionFK::Response& response) {
+bool ForwardKinematicsService::handle(sixdof_msgs::GetPositionFKRequest& request,
+                                      sixdof_msgs::GetPositionFKResponse& response) {
   ErrorCode& code = response.error_code;
   const auto& model = *context_->model();
   for (const auto& link : request.fk_link_names) {
@@ -51,8 +57,8 @@ InverseKinematicsService::InverseKinematicsService(MoveGroupContext* context) : 
   server_ = context_->nodeHandle().advertiseService("compute_ik", &InverseKinematicsService::handle, this);
 }
 
-bool InverseKinematicsService::handle(sixdof_msgs::GetPositionIK::Request& request,
-                                      sixdof_msgs::GetPositionIK::Response& response) {
+bool InverseKinematicsService::handle(sixdof_msgs::GetPositionIKRequest& request,
+                                      sixdof_msgs::GetPositionIKResponse& response) {
   response.error_code = solve(request.ik_request, &response.solution);
   return true;
 }

@@ -1,0 +1,45 @@
+#pragma once
+// The whole move_group node: the shared context, the trajectory executor and one object per capability
+// (each in its own <name>_capability.h, MoveIt's default_capabilities layout).
+
+#include <memory>
+
+#include <ros/node_handle.h>
+
+#include "sixdof_planning/config.h"  // ConfigError
+
+namespace sixdof_planning {
+
+class MoveGroupContext;
+class TrajectoryExecutor;
+class ForwardKinematicsService;
+class InverseKinematicsService;
+class MotionPlanService;
+class CartesianPathService;
+class StateValidityService;
+class GetPlanningSceneService;
+class ApplyPlanningSceneService;
+class MoveGroupActionCapability;
+class ExecuteTrajectoryActionCapability;
+
+class MoveGroupNode {
+ public:
+  // Throws ConfigError on bad parameters.
+  MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  ~MoveGroupNode();
+
+ private:
+  std::unique_ptr<MoveGroupContext> context_;
+  std::unique_ptr<TrajectoryExecutor> executor_;
+  std::unique_ptr<ForwardKinematicsService> fk_;
+  std::unique_ptr<InverseKinematicsService> ik_;
+  std::unique_ptr<MotionPlanService> plan_;
+  std::unique_ptr<CartesianPathService> cartesian_;
+  std::unique_ptr<StateValidityService> validity_;
+  std::unique_ptr<GetPlanningSceneService> get_scene_;
+  std::unique_ptr<ApplyPlanningSceneService> apply_scene_;
+  std::unique_ptr<MoveGroupActionCapability> move_group_;
+  std::unique_ptr<ExecuteTrajectoryActionCapability> execute_trajectory_;
+};
+
+}  // namespace sixdof_planning

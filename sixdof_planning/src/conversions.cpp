@@ -1,28 +1,21 @@
 #include "sixdof_planning/conversions.h"
 
+#include <tf2_eigen/tf2_eigen.h>
+
 namespace sixdof_planning {
 
 Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose) {
-  Eigen::Quaterniond q(pose.orientation.w, pose.orientation.x, pose.orientation.y, pose.orientation.z);
-  q.normalize();
-  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.linear() = q.toRotationMatrix();
-  result.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  // tf2_eigen converts the quaternion as it is; normalising first keeps the rotation orthonormal.
+  Eigen::Quaterniond q;
+  tf2::fromMsg(pose.orientation, q);
+  geometry_msgs::Pose unit = pose;
+  unit.orientation = tf2::toMsg(q.normalized());
+  Eigen::Isometry3d result;
+  tf2::fromMsg(unit, result);
   return result;
 }
 
-geometry_msgs::Pose eigenToPose(const Eigen::Isometry3d& pose) {
-  geometry_msgs::Pose msg;
-  msg.position.x = pose.translation().x();
-  msg.position.y = pose.translation().y();
-  msg.position.z = pose.translation().z();
-  const Eigen::Quaterniond q(pose.rotation());
-  msg.orientation.x = q.x();
-  msg.orientation.y = q.y();
-  msg.orientation.z = q.z();
-  msg.orientation.w = q.w();
-  return msg;
-}
+geometry_msgs::Pose eigenToPose(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
 
 sensor_msgs::JointState toJointState(const sixdof_core::RobotState& state) {
   sensor_msgs::JointState msg;

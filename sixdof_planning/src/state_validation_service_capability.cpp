@@ -1,6 +1,7 @@
 #include "sixdof_planning/state_validation_service_capability.h"
 
 #include <sixdof_msgs/GetStateValidity.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
@@ -45,12 +46,8 @@ bool StateValidityService::handle(sixdof_msgs::GetStateValidityRequest& request,
     sixdof_msgs::ContactInformation info;
     info.header.frame_id = context_->planningFrame();
     info.header.stamp = ros::Time::now();
-    info.position.x = contact.position.x();
-    info.position.y = contact.position.y();
-    info.position.z = contact.position.z();
-    info.normal.x = contact.normal.x();
-    info.normal.y = contact.normal.y();
-    info.normal.z = contact.normal.z();
+    info.position = tf2::toMsg(contact.position);
+    tf2::toMsg(contact.normal, info.normal);
     info.depth = contact.depth;
     info.contact_body_1 = contact.body1;
     info.contact_body_2 = contact.body2;

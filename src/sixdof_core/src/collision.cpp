@@ -54,6 +54,18 @@ SceneStatus buildShapes(Body* body) {
   return SceneStatus();
 }
 
+// Sets a link's padding or scale and rebuilds its shapes; the old value and shapes stay if that fails.
+SceneStatus rebuildLink(Body* body, double Body::*member, double value) {
+  const double old = body->*member;
+  body->*member = value;
+  SceneStatus status = buildShapes(body);
+  if (!status.ok()) {
+    body->*member = old;
+    buildShapes(body);
+  }
+  return status;
+}
+
 }  // namespace
 
 CollisionScene::CollisionScene(const std::vector<LinkGeometry>& links,
@@ -150,16 +162,8 @@ SceneStatus CollisionScene::setLinkPadding(const std::string& link_name, double 
   if (!std::isfinite(padding) || padding < 0.0) {
     return error(SceneStatusCode::kInvalidValue, "padding of '" + link_name + "' must be finite and >= 0");
   }
-  Body& body = impl_->links[index];
-  const double old = body.padding;
-  body.padding = padding;
-  SceneStatus status = buildShapes(&body);
-  if (!status.ok()) {
-    body.padding = old;
-    buildShapes(&body);
-    return status;
-  }
-  impl_->rebuild();
+  const SceneStatus status = rebuildLink(&impl_->links[index], &Body::padding, padding);
+  if (status.ok()) impl_->rebuild();
   return status;
 }
 
@@ -177,16 +181,8 @@ SceneStatus CollisionScene::setLinkScale(const std::string& link_name, double sc
   if (!std::isfinite(scale) || scale <= 0.0) {
     return error(SceneStatusCode::kInvalidValue, "scale of '" + link_name + "' must be finite and > 0");
   }
-  Body& body = impl_->links[index];
-  const double old = body.scale;
-  body.scale = scale;
-  SceneStatus status = buildShapes(&body);
-  if (!status.ok()) {
-    body.scale = old;
-    buildShapes(&body);
-    return status;
-  }
-  impl_->rebuild();
+  const SceneStatus status = rebuildLink(&impl_->links[index], &Body::scale, scale);
+  if (status.ok()) impl_->rebuild();
   return status;
 }
 

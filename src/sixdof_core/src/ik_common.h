@@ -76,5 +76,17 @@ inline void setErrors(const KinematicChain& chain, const Eigen::Isometry3d& targ
   result->orientation_error = error.orientation;
 }
 
+// Fills a result for a converged start: q wrapped next to the seed, kSuccess, the attempts used and the
+// errors (no orientation error for a position-only goal).
+inline void setSuccess(const KinematicChain& chain, const Eigen::VectorXd& seed, const Eigen::Isometry3d& target,
+                       const IkOptions& options, int attempts, Eigen::VectorXd q, IkResult* result) {
+  wrapContinuous(chain, seed, &q);
+  result->status = IkStatus::kSuccess;
+  result->solution = q;
+  result->attempts = attempts;
+  setErrors(chain, target, q, result);
+  if (options.position_only) result->orientation_error = 0.0;
+}
+
 }  // namespace ik_detail
 }  // namespace sixdof_core

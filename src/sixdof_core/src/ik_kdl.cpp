@@ -102,12 +102,7 @@ IkResult KdlIkSolver::solveValidated(const Eigen::Isometry3d& target, const IkOp
       q = q_out.data;
     }
     if (converged) {
-      ik_detail::wrapContinuous(chain_, seed, &q);
-      result.status = IkStatus::kSuccess;
-      result.solution = q;
-      result.attempts = budget.used();
-      ik_detail::setErrors(chain_, target, q, &result);
-      if (options.position_only) result.orientation_error = 0.0;
+      ik_detail::setSuccess(chain_, seed, target, options, budget.used(), q, &result);
       return result;
     }
   }

@@ -74,12 +74,7 @@ IkResult NumericIkSolver::solveValidated(const Eigen::Isometry3d& target, const 
     // configurations Levenberg-Marquardt converges only linearly, and a restart would lose that progress.
     for (int it = 0; it < kMaxIterationsPerStart || (cost < 1e-6 && it < 4 * kMaxIterationsPerStart); ++it) {
       if (converged(e)) {
-        ik_detail::wrapContinuous(chain_, seed, &q);
-        result.status = IkStatus::kSuccess;
-        result.solution = q;
-        result.attempts = budget.used();
-        ik_detail::setErrors(chain_, target, q, &result);
-        if (options.position_only) result.orientation_error = 0.0;
+        ik_detail::setSuccess(chain_, seed, target, options, budget.used(), q, &result);
         return result;
       }
       if (budget.expired()) {

@@ -114,8 +114,8 @@ struct CollisionScene::Impl {
     std::map<std::pair<int, int>, std::size_t> world_pair_contacts;
   };
 
-  static void record(Query* q, const detail::Body& b1, const detail::Body& b2, const std::vector<fcl::Contactd>& contacts,
-                     std::size_t* pair_count);
+  static void record(Query* q, const detail::Body& b1, const detail::Body& b2,
+                     const std::vector<fcl::Contactd>& contacts, std::size_t* pair_count);
 
   void finishPair(Query* q) const;
 
@@ -130,7 +130,8 @@ struct CollisionScene::Impl {
 
   void worldCollision(Query* q) const;
 
-  static void consider(DistanceReport* report, const detail::PairDistance& d, const detail::Body& b1, const detail::Body& b2);
+  static void consider(DistanceReport* report, const detail::PairDistance& d, const detail::Body& b1,
+                       const detail::Body& b2);
 };
 
 }  // namespace sixdof_core

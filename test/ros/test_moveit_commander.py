@@ -292,6 +292,7 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         self.assertIs(robot.arm, robot.get_group("arm"))
         self.assertEqual(set(robot.get_current_state().joint_state.name), set(values))
         link6 = robot.get_link("link6").pose()
+        self.assertEqual(link6.header.frame_id, "world")
         current = self.arm.get_current_pose("link6")
         self.assertLess(np.linalg.norm(np.subtract(_xyz(link6), _xyz(current))), 0.01)
         with self.assertRaisesRegex(MoveItCommanderException, "no joint named 'joint9'"):

@@ -6,7 +6,7 @@ from geometry_msgs.msg import PoseStamped
 from sixdof_commander._ros import JointStateMonitor, load_robot_model, require_node, resolve
 from sixdof_commander.exceptions import SixdofCommanderError
 from sixdof_commander.kinematics import link_pose
-from sixdof_commander.robot_model import resolve_group
+from sixdof_commander.robot_model import Group, resolve_group
 from sixdof_commander.transforms import quaternion_from_matrix
 
 from sixdof_msgs.msg import RobotState
@@ -30,6 +30,7 @@ class RobotCommander:
             self._joint = robot._urdf.joints[name]
 
         def name(self) -> str:
+            """The joint's name."""
             return self._name
 
         def variable_count(self) -> int:
@@ -78,7 +79,7 @@ class RobotCommander:
             names = [j.name for j in robot._urdf.chain(robot._urdf.root_link, self._name) if j.type != "fixed"]
             matrix = link_pose(robot._urdf, self._name, robot._values_of(names))
             result = PoseStamped()
-            result.header.frame_id = robot._urdf.root_link
+            result.header.frame_id = robot.get_planning_frame()
             p, o = result.pose.position, result.pose.orientation
             p.x, p.y, p.z = (float(v) for v in matrix[:3, 3])
             o.x, o.y, o.z, o.w = quaternion_from_matrix(matrix[:3, :3])
@@ -112,7 +113,7 @@ class RobotCommander:
             pending[:0] = [j.child for j in self._urdf.joints.values() if j.parent == link]
         return order
 
-    def _group(self, name: str):
+    def _group(self, name: str) -> Group:
         return resolve_group(self._urdf, self._srdf, name)
 
     def get_joint_names(self, group: str | None = None) -> list[str]:

@@ -682,7 +682,9 @@ class MoveGroup:
         state.joint_state.position = self.get_random_joint_values()
         return self._fk(end_effector_link or self._goal.end_effector_link, state)
 
-    def get_jacobian_matrix(self, joint_values: Sequence[float], reference_point: Sequence[float] | None = None):
+    def get_jacobian_matrix(
+        self, joint_values: Sequence[float], reference_point: Sequence[float] | None = None
+    ) -> np.ndarray:
         """Jacobian (numpy 6 x n: linear rows then angular, planning frame) of the group's tip link (at
         reference_point in its frame, default its origin) at joint_values (get_active_joints() order)."""
         names = self._group.joint_names

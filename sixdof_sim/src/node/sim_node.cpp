@@ -9,6 +9,7 @@
 #include <sixdof_msgs/ObjectStates.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -69,7 +70,15 @@ SimNodeOptions SimNode::readOptions(const ros::NodeHandle& pnh) {
   return o;
 }
 
-SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), options_(readOptions(pnh)) {
+SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), options_(readOptions(pnh)) {
+  // A simulator restarted under the same master (roslaunch respawn) continues the clock of the one before it
+  // instead of starting again at 0: every node would otherwise see time jump back, and actionlib servers
+  // (e.g. move_group's) cancel goals stamped before the last goal they saw.
+  double checkpoint = 0.0;
+  if (pnh_.getParam("clock_checkpoint", checkpoint) && std::isfinite(checkpoint) && checkpoint > 0.0) {
+    clock_offset_ = checkpoint;
+    ROS_INFO_STREAM("[sixdof_sim] resuming /clock at " << checkpoint << " s (a previous simulator's checkpoint)");
+  }
   std::string urdf;
   if (!nh_.getParam("robot_description", urdf) || urdf.empty()) {
     throw std::runtime_error("no URDF in parameter '" + nh_.resolveName("robot_description") + "'");
@@ -120,6 +129,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), options_(re
       stepOnce();
     }
     publishClock(true);
+    publishState();  // steps run faster than the wall-clock bound on the state's rate: the last one goes out
   };
   control_services_ = std::make_unique<SimControlServices>(sim_nh, control);
 
@@ -147,6 +157,20 @@ void SimNode::publishClock(bool force) {
   clock_pub_.publish(msg);
 }
 
+void SimNode::checkpointClock() {
+  constexpr auto kCheckpointPeriod = std::chrono::milliseconds(100);
+  const auto wall = std::chrono::steady_clock::now();
+  if (wall - last_checkpoint_wall_ < kCheckpointPeriod) {
+    return;
+  }
+  // Ahead of the clock by twice what it advanced since the last checkpoint: the clock will not have reached it by
+  // the next one, so a simulator dying in between leaves a checkpoint past every stamp it published.
+  const double t = now();
+  pnh_.setParam("clock_checkpoint", t + 2.0 * std::max(t - last_checkpoint_sim_, 0.1));
+  last_checkpoint_wall_ = wall;
+  last_checkpoint_sim_ = t;
+}
+
 void SimNode::stepOnce() {
   world_->step(1);
   const ros::Time stamp(now());
@@ -165,9 +189,20 @@ void SimNode::stepOnce() {
     ROS_INFO_STREAM("[sixdof_sim] " << (attached ? "attached '" : "detached '") << e.object << "' "
                                     << (attached ? "to " : "from ") << e.palm_link);
   }
+  // The state goes out at publish_rate of simulated time and at most about publish_rate per wall-clock second: a
+  // simulator running many times faster than real time (headless) flooded its consumers, and robot_state_publisher
+  // and tf listeners fell seconds of simulated time behind it. The newest state is what goes out, so consumers are
+  // never more than about 1 / publish_rate of wall time behind. (0.9: wall-clock jitter must not halve the rate of
+  // a simulator in real time.)
+  const auto wall = std::chrono::steady_clock::now();
+  if (now() + 1e-9 >= next_state_ && wall >= next_state_wall_) {
+    next_state_ = now() + 1.0 / options_.publish_rate;
+    next_state_wall_ = wall + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                  std::chrono::duration<double>(0.9 / options_.publish_rate));
+    publishState();
+  }
   if (now() + 1e-9 >= next_publish_) {
     next_publish_ = now() + 1.0 / options_.publish_rate;
-    publishState();
     for (const std::unique_ptr<JointDriver>& d : drivers_) {
       d->publishFeedback(stamp);
     }
@@ -220,6 +255,7 @@ void SimNode::reset() {
     d->reset();
   }
   next_publish_ = now();
+  next_state_ = now();
   pace_wall_ = std::chrono::steady_clock::now();
   pace_sim_ = now();
 }
@@ -234,8 +270,10 @@ void SimNode::run() {
   ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
   pace_wall_ = std::chrono::steady_clock::now();
   pace_sim_ = now();
+  last_checkpoint_sim_ = now();
   while (ros::ok()) {
     queue->callAvailable();
+    checkpointClock();
     if (paused_) {
       publishClock(false);
       std::this_thread::sleep_for(std::chrono::milliseconds(1));

@@ -26,7 +26,9 @@ struct SimNodeOptions {
   double physics_step = 0.001;   // s
   double real_time_factor = 1.0; // 0: as fast as possible
   bool grasp_fix = true;
-  double publish_rate = 100.0;   // Hz of simulated time: joint_states, object_states, tf, action feedback
+  // Hz of simulated time: joint_states, object_states, tf (at most this many per wall-clock second too), action
+  // feedback.
+  double publish_rate = 100.0;
   std::vector<std::string> controllers{"arm_controller", "gripper_controller"};
   std::string gripper_command_controller = "gripper_controller";  // serves <name>/gripper_cmd; empty: none
 };
@@ -46,14 +48,22 @@ class SimNode {
   void publishClock(bool force);
   void reset();
   void setPaused(bool paused);
+  void checkpointClock();
 
   ros::NodeHandle nh_;
+  ros::NodeHandle pnh_;
   SimNodeOptions options_;
   std::unique_ptr<World> world_;
   // World::reset() restarts its time at zero; /clock must not jump back, so resets accumulate an offset.
   double clock_offset_ = 0.0;
+  // ~clock_checkpoint on the parameter server: a time /clock has not reached yet, refreshed every
+  // kCheckpointPeriod of wall time. A restarted simulator resumes from it (see SimNode::SimNode).
+  std::chrono::steady_clock::time_point last_checkpoint_wall_;
+  double last_checkpoint_sim_ = 0.0;
   bool paused_ = false;
   double next_publish_ = 0.0;
+  double next_state_ = 0.0;  // joint_states, object_states, tf: due at this simulated time and
+  std::chrono::steady_clock::time_point next_state_wall_;  // this wall time
   std::chrono::steady_clock::time_point last_clock_wall_;
   // Pacing anchor: sim time `pace_sim_` was reached at wall time `pace_wall_`.
   std::chrono::steady_clock::time_point pace_wall_;

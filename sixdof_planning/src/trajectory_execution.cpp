@@ -151,8 +151,16 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
 
   // The robot must be where the trajectory starts (MoveIt's allowed_start_tolerance).
   // Executing needs a live robot: a state older than joint_state_timeout is where the robot was, not where it is.
-  const double age = context_->stateLiveness().joint_states_age;
-  if (age > context_->config().joint_state_timeout) {
+  // Like MoveIt's waitForCurrentState, a fresh one is awaited for joint_state_timeout (e.g. a restarted simulator's
+  // first messages on their way).
+  const double stale = context_->config().joint_state_timeout;
+  const ros::WallTime state_deadline = ros::WallTime::now() + ros::WallDuration(stale);
+  double age = context_->stateLiveness().joint_states_age;
+  while (age > stale && ros::WallTime::now() < state_deadline && ros::ok()) {
+    ros::WallDuration(0.01).sleep();
+    age = context_->stateLiveness().joint_states_age;
+  }
+  if (age > stale) {
     return makeError(ErrorCode::CONTROL_FAILED,
                      "no current robot state: joint_states stale for " + seconds(age) + " s", source);
   }

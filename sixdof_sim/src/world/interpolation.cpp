@@ -6,55 +6,6 @@
 
 namespace sixdof_sim {
 
-JointSpline::JointSpline(InterpolationType type, double duration, double p0, double v0, double a0, double p1,
-                         double v1, double a1)
-    : duration_(duration) {
-  if (!(duration > 0.0)) {
-    throw std::invalid_argument("JointSpline: duration must be positive, got " + std::to_string(duration));
-  }
-  const double t = duration;
-  const double dp = p1 - p0;
-  c_[0] = p0;
-  switch (type) {
-    case InterpolationType::LINEAR:
-      c_[1] = dp / t;
-      break;
-    case InterpolationType::CUBIC:
-      c_[1] = v0;
-      c_[2] = (3.0 * dp - (2.0 * v0 + v1) * t) / (t * t);
-      c_[3] = (-2.0 * dp + (v0 + v1) * t) / (t * t * t);
-      break;
-    case InterpolationType::QUINTIC: {
-      const double t2 = t * t;
-      const double t3 = t2 * t;
-      c_[1] = v0;
-      c_[2] = 0.5 * a0;
-      c_[3] = (20.0 * dp - (8.0 * v1 + 12.0 * v0) * t - (3.0 * a0 - a1) * t2) / (2.0 * t3);
-      c_[4] = (-30.0 * dp + (14.0 * v1 + 16.0 * v0) * t + (3.0 * a0 - 2.0 * a1) * t2) / (2.0 * t3 * t);
-      c_[5] = (12.0 * dp - 6.0 * (v1 + v0) * t - (a0 - a1) * t2) / (2.0 * t3 * t2);
-      break;
-    }
-  }
-}
-
-void JointSpline::sample(double t, double& position, double& velocity, double& acceleration) const {
-  t = std::clamp(t, 0.0, duration_);
-  // Horner evaluation of the polynomial and its first two derivatives.
-  position = ((((c_[5] * t + c_[4]) * t + c_[3]) * t + c_[2]) * t + c_[1]) * t + c_[0];
-  velocity = (((5.0 * c_[5] * t + 4.0 * c_[4]) * t + 3.0 * c_[3]) * t + 2.0 * c_[2]) * t + c_[1];
-  acceleration = ((20.0 * c_[5] * t + 12.0 * c_[4]) * t + 6.0 * c_[3]) * t + 2.0 * c_[2];
-}
-
-InterpolationType interpolationType(const TrajectoryPoint& from, const TrajectoryPoint& to) {
-  if (from.velocities.empty() || to.velocities.empty()) {
-    return InterpolationType::LINEAR;
-  }
-  if (from.accelerations.empty() || to.accelerations.empty()) {
-    return InterpolationType::CUBIC;
-  }
-  return InterpolationType::QUINTIC;
-}
-
 JointTrajectory::JointTrajectory(std::vector<double> times, std::vector<TrajectoryPoint> knots)
     : times_(std::move(times)), knots_(std::move(knots)) {
   if (knots_.empty() || knots_.size() != times_.size()) {

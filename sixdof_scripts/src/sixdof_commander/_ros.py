@@ -56,6 +56,10 @@ def load_robot_model(
     return parse_urdf(texts[0]), parse_srdf(texts[1])
 
 
+# Hang guard (wall clock) for service calls: a dead node fails at once, this only bounds a node that hangs.
+SERVICE_TIMEOUT = 30.0
+
+
 def call_service(proxy: rospy.ServiceProxy, request: object, timeout: float) -> object:
     """proxy(request), given up after `timeout` wall-clock seconds with rospy.ROSException naming the service.
 

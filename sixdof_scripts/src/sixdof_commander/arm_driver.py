@@ -14,7 +14,7 @@ from geometry_msgs.msg import Pose
 from sixdof_msgs.msg import MoveItErrorCodes
 from sixdof_msgs.srv import GetObjectState
 
-from ._ros import ServerWaiter, resolve
+from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .grasping import (
@@ -194,7 +194,7 @@ class ArmDriver:
             waiter.check("ArmDriver")
             self._object_state = rospy.ServiceProxy(service, GetObjectState)
         try:
-            response = self._object_state(name)
+            response = call_service(self._object_state, name, SERVICE_TIMEOUT)
         except (rospy.ServiceException, rospy.ROSException) as err:
             raise SixdofCommanderError(f"sixdof_sim/get_object_state failed: {err}") from err
         if not response.success:

@@ -28,6 +28,7 @@ from sixdof_msgs.msg import (
 from sixdof_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK, GetPositionIK
 
 from ._ros import (
+    SERVICE_TIMEOUT,
     ActionClient,
     JointStateMonitor,
     ServerWaiter,
@@ -45,8 +46,6 @@ from .robot_model import RobotDescription, SemanticDescription, resolve_group
 from .transforms import rpy_from_quaternion
 
 SERVICES = ("plan_kinematic_path", "compute_fk", "compute_cartesian_path", "get_planning_scene", "apply_planning_scene")
-# Hang guards (wall clock) for service calls: a dead node fails at once, these only bound a node that hangs.
-SERVICE_TIMEOUT = 30.0
 RETIME_ALGORITHMS = ("iterative_time_parameterization", "time_optimal_trajectory_generation")
 
 

@@ -15,15 +15,12 @@ from sixdof_msgs.msg import AttachedCollisionObject, CollisionObject, MoveItErro
 from sixdof_msgs.msg import PlanningScene as SceneMsg
 from sixdof_msgs.srv import ApplyPlanningScene, GetPlanningScene
 
-from ._ros import ServerWaiter, call_service, load_robot_model, require_node, resolve
+from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, load_robot_model, require_node, resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_positive, pose_stamped_from_target
 from .mesh import load_stl
 from .robot_model import RobotDescription, SemanticDescription, group_links_with_descendants, resolve_group
 from .transforms import matrix_from_pose
-
-# Hang guard (wall clock) for scene service calls: a dead node fails at once, this bounds a node that hangs.
-SERVICE_TIMEOUT = 30.0
 
 
 def default_touch_links(urdf: RobotDescription, srdf: SemanticDescription, link: str) -> list[str]:

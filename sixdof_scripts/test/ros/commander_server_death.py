@@ -17,9 +17,11 @@ from pathlib import Path
 import rospy
 import rostest
 from sixdof_commander import Gripper, MoveGroup, SixdofCommanderError
+from sixdof_commander._ros import call_service
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import MoveItErrorCodes, RobotTrajectory
+from sixdof_msgs.srv import GetPositionFK
 
 STAND_IN = Path(__file__).resolve().parent / "stand_in_move_group.py"
 HANG_GUARD = 60.0
@@ -111,6 +113,16 @@ class CommanderServerDeath(unittest.TestCase):
         success, _, _, code = arm.plan()
         self.assertFalse(success)
         self.assertEqual(code.val, MoveItErrorCodes.COMMUNICATION_FAILURE)
+
+    def test_a_service_that_never_answers_is_given_up_after_its_timeout(self):
+        stand_in = StandIn()
+        try:
+            rospy.wait_for_service("compute_fk", timeout=HANG_GUARD)
+            proxy = rospy.ServiceProxy("compute_fk", GetPositionFK)
+            with self.assertRaisesRegex(rospy.ROSException, "service '/compute_fk' gave no answer within 0.5 s"):
+                call_service(proxy, GetPositionFK._request_class(), 0.5)
+        finally:
+            stand_in.kill()
 
     def test_gripper_raises_naming_the_lost_server(self):
         _, outcome = self.run_and_kill(

@@ -304,6 +304,17 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         self.assertEqual(self.arm.get_random_pose().header.frame_id, "world")
         bounded = self.arm.enforce_bounds(self._state([0.0, 5.0, 0.0, 0.0, 0.0, 0.0]))
         self.assertEqual(bounded.joint_state.position[1], 1.92)
+        for _ in range(20):
+            for joint, value in zip(self.arm.get_active_joints(), self.arm.get_random_joint_values(), strict=True):
+                low, high = robot.get_joint(joint).bounds()
+                self.assertTrue(low <= value <= high, f"{joint} {value}")
+        self.arm.set_workspace([-1.0, -1.0, -1.0, 1.0, 1.0, 1.0])
+        self.arm.set_workspace([])
+        with self.assertRaisesRegex(MoveItCommanderException, "a minimum exceeds its maximum"):
+            self.arm.set_workspace([1.0, 0.0, 0.0, 0.0])
+        self.arm.shift_pose_target(2, 0.05)
+        self.assertAlmostEqual(self.arm.get_pose_target().pose.position.z, current.pose.position.z + 0.05, delta=0.01)
+        self.arm.clear_pose_targets()
 
     def test_planned_path_reaches_the_rviz_display_topic(self):
         received = []

@@ -99,7 +99,6 @@ class MoveGroup:
                 raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
         self._last_error = error_code(MoveItErrorCodes.SUCCESS, "")
         self._support_surface = ""
-        self._workspace: list[float] = []
 
         self._move_action = ActionClient(resolve(ns, "move_group"), MoveGroupAction)
         self._execute_action = ActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
@@ -522,7 +521,6 @@ class MoveGroup:
         mobile = [j.name for j in self._urdf.joints.values() if j.type in ("floating", "planar")]
         if values and mobile:
             raise _refuse("set_workspace", f"the robot's base joints {mobile} are not planned by sixdof")
-        self._workspace = values
 
     def set_support_surface_name(self, value: str) -> None:
         """The support surface of pick/place (MoveIt uses it only there). Stored and reported by

@@ -1,6 +1,6 @@
 # Thin entry points; the work is in scripts/. Every target that needs the workspace runs setup first
 # (idempotent: apt packages, venv, build are skipped when already up to date).
-.PHONY: setup build demo test bench clean
+.PHONY: setup build demo test bench bench-build clean
 
 setup:
 	scripts/setup.sh
@@ -18,6 +18,10 @@ test:
 bench:
 	SIXDOF_BUILD_BENCHMARKS=ON scripts/setup.sh
 	scripts/bench.sh
+
+# Build cost of a fresh clone (cold, against the previous defaults); add ARGS=--apt for the Debian packages.
+bench-build: setup
+	scripts/bench_build.sh $(ARGS)
 
 clean:
 	rm -rf build install log .setup-stamps

@@ -29,5 +29,9 @@ fi
     "$b"
   done
 } | tee "$out.tmp"
+# The build section comes from scripts/bench_build.sh (`make bench-build`): keep it.
+if [ -f "$out" ]; then
+  sed -n '/^## build (scripts\/bench_build.sh)/,/^## /{/^## build/p;/^## /!p}' "$out" | sed '1s/^/\n/' >> "$out.tmp"
+fi
 mv "$out.tmp" "$out"
 echo "wrote $out"

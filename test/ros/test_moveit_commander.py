@@ -334,6 +334,20 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         finally:
             subscriber.unregister()
 
+    def test_z_clear_removes_every_object(self):
+        # Last (tests run in name order): it also removes the simulator's mirrored objects from the planning scene.
+        scene = moveit_commander.PlanningSceneInterface(synchronous=True)
+        link = self.arm.get_end_effector_link()
+        pose = PoseStamped()
+        pose.header.frame_id = link
+        pose.pose.orientation.w = 1.0
+        scene.attach_box(link, "held_box", pose=pose, size=(0.01, 0.01, 0.01))
+        self.assertIn("held_box", scene.get_attached_objects())
+        self.assertTrue(scene.get_known_object_names())
+        self.assertTrue(scene.clear())
+        self.assertEqual(scene.get_known_object_names(), [])
+        self.assertEqual(scene.get_attached_objects(), {})
+
 
 def _xyz(pose):
     p = pose.pose.position if isinstance(pose, PoseStamped) else pose.position

@@ -3,6 +3,7 @@
 // (= base_link), SI units, angles in radians.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -108,12 +109,29 @@ struct GroundPlane {
   double restitution = 0.0;
 };
 
+// A simulated RGB-D camera (world file `cameras:`; rendered by CameraRenderer, sixdof_sim/camera.h).
+struct CameraSpec {
+  std::string name;         // topics <name>/..., tf frames <name>_link and <name>_optical_frame
+  std::string parent_link;  // robot link the camera is mounted on; empty: fixed in the world frame
+  // The camera link frame (REP 103 body frame: x forward, y left, z up) in the parent frame.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  int width = 640;                   // pixels
+  int height = 480;                  // pixels
+  double horizontal_fov = 1.0471975511965976;  // rad (60 deg), in (0, pi)
+  double rate = 15.0;                // frames per second of simulated time
+  double near_clip = 0.05;           // m: depth is NaN outside [near_clip, far_clip]
+  double far_clip = 5.0;             // m
+  double depth_noise_stddev = 0.0;   // m, Gaussian, added to every valid depth
+  std::uint64_t seed = 0;            // of the depth noise
+};
+
 // A whole world: what a world file describes (see worlds/README.md).
 struct WorldSpec {
   std::string name;
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
   GroundPlane ground;
   std::vector<ObjectSpec> objects;  // tables are static boxes; markers have collision = false
+  std::vector<CameraSpec> cameras;
 };
 
 // Grasp-fix configuration: the URDF's <gazebo><plugin name="gazebo_grasp_fix"><arm> block.

@@ -2,11 +2,15 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <climits>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
+#include "sixdof_sim/camera.h"
 #include "sixdof_sim/world.h"
 
 namespace sixdof_sim {
@@ -57,6 +61,15 @@ class Parser {
   std::string text(const YAML::Node& node, const std::string& context, const std::string& key) const {
     if (!node.IsScalar() || node.Scalar().empty()) fail(node, context, "'" + key + "' must be a non-empty string");
     return node.Scalar();
+  }
+
+  long long integer(const YAML::Node& node, const std::string& context, const std::string& key) const {
+    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be an integer");
+    try {
+      return node.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(node, context, "'" + key + "' must be an integer, got '" + node.Scalar() + "'");
+    }
   }
 
   std::vector<double> numbers(const YAML::Node& node, const std::string& context, const std::string& key,
@@ -168,9 +181,47 @@ class Parser {
     return spec;
   }
 
+  CameraSpec camera(const YAML::Node& node, const std::string& context) const {
+    CameraSpec spec;
+    if (!node.IsMap()) fail(node, context, "must be a mapping");
+    if (!node["name"]) fail(node, context, "'name' is required");
+    spec.name = text(node["name"], context, "name");
+    const std::string named = context + " (" + spec.name + ")";
+    checkKeys(node, named,
+              {"name", "parent", "position", "rpy", "width", "height", "horizontal_fov_deg", "rate", "near", "far",
+               "depth_noise_stddev", "seed"});
+    if (node["parent"]) spec.parent_link = text(node["parent"], named, "parent");
+    spec.pose = pose(node, named);
+    auto pixels = [&](const char* key, int* out) {
+      if (!node[key]) return;
+      const long long value = integer(node[key], named, key);
+      if (value < INT_MIN || value > INT_MAX) fail(node[key], named, "'" + std::string(key) + "' is out of range");
+      *out = static_cast<int>(value);
+    };
+    pixels("width", &spec.width);
+    pixels("height", &spec.height);
+    if (node["horizontal_fov_deg"]) {
+      spec.horizontal_fov = number(node["horizontal_fov_deg"], named, "horizontal_fov_deg") * M_PI / 180.0;
+    }
+    if (node["rate"]) spec.rate = number(node["rate"], named, "rate");
+    if (node["near"]) spec.near_clip = number(node["near"], named, "near");
+    if (node["far"]) spec.far_clip = number(node["far"], named, "far");
+    if (node["depth_noise_stddev"]) {
+      spec.depth_noise_stddev = number(node["depth_noise_stddev"], named, "depth_noise_stddev");
+    }
+    if (node["seed"]) {
+      const long long seed = integer(node["seed"], named, "seed");
+      if (seed < 0) fail(node["seed"], named, "'seed' must be >= 0");
+      spec.seed = static_cast<std::uint64_t>(seed);
+    }
+    const Result valid = validateCameraSpec(spec);
+    if (!valid.ok()) fail(node, named, valid.message);
+    return spec;
+  }
+
   WorldSpec world(const YAML::Node& root) const {
     if (!root.IsDefined() || root.IsNull()) fail(root, "", "the file is empty");
-    checkKeys(root, "", {"name", "gravity", "ground", "tables", "objects"});
+    checkKeys(root, "", {"name", "gravity", "ground", "tables", "objects", "cameras"});
     WorldSpec spec;
     if (root["name"]) spec.name = text(root["name"], "", "name");
     if (root["gravity"]) spec.gravity = vector3(root["gravity"], "", "gravity");
@@ -199,6 +250,18 @@ class Parser {
         ObjectSpec object = this->object(items[i], context, std::string(list) == "tables");
         if (!names.insert(object.name).second) fail(items[i], context, "duplicate name '" + object.name + "'");
         spec.objects.push_back(object);
+      }
+    }
+    if (const YAML::Node cameras = root["cameras"]) {
+      if (!cameras.IsSequence()) fail(cameras, "cameras", "must be a list");
+      std::set<std::string> camera_names;
+      for (size_t i = 0; i < cameras.size(); ++i) {
+        const std::string context = "cameras[" + std::to_string(i) + "]";
+        CameraSpec camera = this->camera(cameras[i], context);
+        if (!camera_names.insert(camera.name).second) {
+          fail(cameras[i], context, "duplicate camera name '" + camera.name + "'");
+        }
+        spec.cameras.push_back(camera);
       }
     }
     return spec;

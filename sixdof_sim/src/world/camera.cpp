@@ -1,0 +1,577 @@
+#include "sixdof_sim/camera.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <embree3/rtcore.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "mesh_loader.h"
+
+namespace sixdof_sim {
+namespace {
+
+// Share of a surface's colour lit regardless of its angle to the light: surfaces seen edge-on stay
+// recognisably coloured instead of going black.
+constexpr float kAmbient = 0.3f;
+// Cylinders are prisms of this many sides: the flats lie at most r (1 - cos(pi / n)) = 0.05 % of the
+// radius inside the true surface (0.01 mm at r = 2.5 cm).
+constexpr int kCylinderSides = 96;
+// The infinite ground plane as a square of this half size (m): beyond any sensible far clip.
+constexpr double kGroundHalfSize = 500.0;
+const Color kGroundColor{0.45, 0.45, 0.45, 1.0};
+const Color kDefaultLinkColor{0.7, 0.7, 0.7, 1.0};
+// Rays are cast in 4 x 4 pixel packets (Embree's 16-wide packets: native with AVX-512, two 8-wide halves
+// otherwise); threads take 4-row strips of the image in turn.
+constexpr int kPacketSide = 4;
+
+bool validName(const std::string& name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+struct TriangleMesh {
+  std::vector<float> vertices;  // x, y, z per vertex
+  std::vector<unsigned> indices;
+};
+
+TriangleMesh unitBox() {
+  TriangleMesh m;
+  for (int i = 0; i < 8; ++i) {
+    m.vertices.insert(m.vertices.end(), {(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f});
+  }
+  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  return m;
+}
+
+// Radius 1, length 1 along z, centred at the origin (URDF and SolidPrimitive cylinders).
+TriangleMesh unitCylinder() {
+  TriangleMesh m;
+  const unsigned n = kCylinderSides;
+  for (unsigned i = 0; i < n; ++i) {
+    const double a = 2.0 * M_PI * i / n;
+    const float x = static_cast<float>(std::cos(a)), y = static_cast<float>(std::sin(a));
+    m.vertices.insert(m.vertices.end(), {x, y, -0.5f, x, y, 0.5f});
+  }
+  m.vertices.insert(m.vertices.end(), {0.0f, 0.0f, -0.5f, 0.0f, 0.0f, 0.5f});
+  const unsigned bottom = 2 * n, top = 2 * n + 1;
+  for (unsigned i = 0; i < n; ++i) {
+    const unsigned j = (i + 1) % n;
+    m.indices.insert(m.indices.end(), {2 * i, 2 * j, 2 * i + 1, 2 * i + 1, 2 * j, 2 * j + 1});
+    m.indices.insert(m.indices.end(), {bottom, 2 * j, 2 * i, top, 2 * i + 1, 2 * j + 1});
+  }
+  return m;
+}
+
+// The square [-1, 1]^2 in the z = 0 plane.
+TriangleMesh unitSquare() {
+  TriangleMesh m;
+  m.vertices = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+// Every triangle of every mesh in the file, node transforms applied (as the file's viewers show it).
+TriangleMesh loadTriangles(const std::string& path) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    throw WorldError("mesh '" + path + "' cannot be read: " + importer.GetErrorString());
+  }
+  TriangleMesh out;
+  std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node, const aiMatrix4x4& parent) {
+    const aiMatrix4x4 transform = parent * node->mTransformation;
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const aiMesh* mesh = scene->mMeshes[node->mMeshes[k]];
+      const auto base = static_cast<unsigned>(out.vertices.size() / 3);
+      for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+        const aiVector3D p = transform * mesh->mVertices[v];
+        out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
+      }
+      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const aiFace& face = mesh->mFaces[f];
+        if (face.mNumIndices != 3) continue;  // points and lines left by triangulation have no surface
+        out.indices.insert(out.indices.end(), {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+      }
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], transform);
+  };
+  visit(scene->mRootNode, aiMatrix4x4());
+  if (out.indices.empty()) throw WorldError("mesh '" + path + "' has no triangles");
+  return out;
+}
+
+bool sameLook(const ObjectSpec& a, const ObjectSpec& b) {
+  const Shape& s = a.shape;
+  const Shape& t = b.shape;
+  return s.type == t.type && s.box_size == t.box_size && s.radius == t.radius && s.length == t.length &&
+         s.mesh_resource == t.mesh_resource && s.mesh_scale == t.mesh_scale && a.color.r == b.color.r &&
+         a.color.g == b.color.g && a.color.b == b.color.b;
+}
+
+Eigen::Affine3d scaling(const Eigen::Vector3d& s) { return Eigen::Affine3d(Eigen::Scaling(s)); }
+
+}  // namespace
+
+CameraIntrinsics cameraIntrinsics(const CameraSpec& camera) {
+  CameraIntrinsics k;
+  k.fx = camera.width / (2.0 * std::tan(camera.horizontal_fov / 2.0));
+  k.fy = k.fx;
+  k.cx = (camera.width - 1) / 2.0;
+  k.cy = (camera.height - 1) / 2.0;
+  return k;
+}
+
+Eigen::Isometry3d opticalInLink() {
+  // rpy(-pi/2, 0, -pi/2): optical z = link x (forward), optical x = -link y (right), optical y = -link z (down).
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return t;
+}
+
+Result validateCameraSpec(const CameraSpec& c) {
+  auto bad = [](const std::string& what) { return Result{Status::kInvalidArgument, what}; };
+  auto text = [](double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+  };
+  if (!validName(c.name)) {
+    return bad("'name' must start with a letter and hold only letters, digits and '_' (it names topics and frames), got '" +
+               c.name + "'");
+  }
+  if (!c.pose.matrix().allFinite()) return bad("'position' and 'rpy' must be finite");
+  constexpr int kMaxSide = 8192;
+  if (c.width <= 0 || c.width > kMaxSide) {
+    return bad("'width' must be in [1, " + std::to_string(kMaxSide) + "] pixels, got " + std::to_string(c.width));
+  }
+  if (c.height <= 0 || c.height > kMaxSide) {
+    return bad("'height' must be in [1, " + std::to_string(kMaxSide) + "] pixels, got " + std::to_string(c.height));
+  }
+  if (!(c.horizontal_fov > 0.0 && c.horizontal_fov < M_PI)) {
+    return bad("'horizontal_fov_deg' must be in (0, 180) degrees, got " + text(c.horizontal_fov * 180.0 / M_PI));
+  }
+  if (!(c.rate > 0.0) || !std::isfinite(c.rate)) return bad("'rate' must be > 0 (Hz), got " + text(c.rate));
+  if (!(c.near_clip > 0.0) || !std::isfinite(c.near_clip)) return bad("'near' must be > 0 (m), got " + text(c.near_clip));
+  if (!(c.far_clip > c.near_clip) || !std::isfinite(c.far_clip)) {
+    return bad("'near' must be < 'far', got near " + text(c.near_clip) + " and far " + text(c.far_clip));
+  }
+  if (!(c.depth_noise_stddev >= 0.0) || !std::isfinite(c.depth_noise_stddev)) {
+    return bad("'depth_noise_stddev' must be >= 0 (m), got " + text(c.depth_noise_stddev));
+  }
+  return Result::success();
+}
+
+struct CameraRenderer::Impl {
+  // One placed copy of a shape's hierarchy in the top-level scene.
+  struct Instance {
+    RTCGeometry geometry = nullptr;
+    unsigned id = RTC_INVALID_GEOMETRY_ID;
+  };
+  struct LinkVisual {
+    std::string link;
+    Eigen::Affine3d in_link;  // the unit shape (scaled) in the link frame
+    Color color;
+    Instance instance;
+  };
+  struct ObjectVisual {
+    ObjectSpec spec;
+    Eigen::Affine3d in_object;  // the unit shape (scaled) in the object frame
+    Instance instance;
+  };
+  // What shading needs of the instance a ray hit, by instance id.
+  struct Shading {
+    Eigen::Matrix3f normal_to_world = Eigen::Matrix3f::Identity();  // inverse transpose of the linear part
+    float rgb[3] = {0.0f, 0.0f, 0.0f};
+  };
+
+  const World& world;
+  std::vector<CameraSpec> cameras;
+  std::vector<std::uint64_t> frames;  // frames rendered per camera (noise seeds)
+  int threads = 1;
+  std::vector<std::string> roots;
+  RTCDevice device = nullptr;
+  RTCScene top = nullptr;
+  std::map<std::string, RTCScene> shapes;  // one hierarchy per unit primitive and per mesh file
+  std::vector<LinkVisual> links;
+  std::map<std::string, ObjectVisual> objects;
+  Instance ground;  // geometry null without a ground plane
+  std::vector<Shading> shading;
+  std::string error;  // the device's last error
+
+  explicit Impl(const World& w) : world(w) {}
+
+  ~Impl() {
+    for (LinkVisual& l : links) rtcReleaseGeometry(l.instance.geometry);
+    for (auto& entry : objects) rtcReleaseGeometry(entry.second.instance.geometry);
+    if (ground.geometry != nullptr) rtcReleaseGeometry(ground.geometry);
+    for (auto& entry : shapes) rtcReleaseScene(entry.second);
+    if (top != nullptr) rtcReleaseScene(top);
+    if (device != nullptr) rtcReleaseDevice(device);
+  }
+
+  void check(const std::string& what) const {
+    if (!error.empty()) throw WorldError("camera renderer: " + what + ": " + error);
+  }
+
+  RTCScene triangleScene(const TriangleMesh& mesh) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), mesh.vertices.size() / 3));
+    auto* i = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), mesh.indices.size() / 3));
+    std::copy(mesh.vertices.begin(), mesh.vertices.end(), v);
+    std::copy(mesh.indices.begin(), mesh.indices.end(), i);
+    return commitShape(g);
+  }
+
+  RTCScene commitShape(RTCGeometry g) {
+    rtcCommitGeometry(g);
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(scene);
+    return scene;
+  }
+
+  RTCScene unitShape(const std::string& key) {
+    auto it = shapes.find(key);
+    if (it != shapes.end()) return it->second;
+    RTCScene scene = nullptr;
+    if (key == "box") {
+      scene = triangleScene(unitBox());
+    } else if (key == "cylinder") {
+      scene = triangleScene(unitCylinder());
+    } else if (key == "square") {
+      scene = triangleScene(unitSquare());
+    } else if (key == "sphere") {
+      // A true sphere (ray-sphere intersection), not a tessellation.
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* p = static_cast<float*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+      p[0] = p[1] = p[2] = 0.0f;
+      p[3] = 1.0f;
+      scene = commitShape(g);
+    } else {
+      scene = triangleScene(loadTriangles(key));
+    }
+    check("building shape '" + key + "'");
+    return shapes.emplace(key, scene).first->second;
+  }
+
+  // The hierarchy of a shape and the transform from its unit shape to the shape in its own frame.
+  RTCScene shapeScene(const Shape& shape, Eigen::Affine3d* unit_to_shape) {
+    switch (shape.type) {
+      case ShapeType::kBox:
+        *unit_to_shape = scaling(shape.box_size);
+        return unitShape("box");
+      case ShapeType::kCylinder:
+        *unit_to_shape = scaling(Eigen::Vector3d(shape.radius, shape.radius, shape.length));
+        return unitShape("cylinder");
+      case ShapeType::kSphere:
+        *unit_to_shape = scaling(Eigen::Vector3d::Constant(shape.radius));
+        return unitShape("sphere");
+      case ShapeType::kMesh: {
+        const std::string path = resolveResource(shape.mesh_resource, roots);
+        if (path.empty()) throw WorldError("mesh '" + shape.mesh_resource + "' not found");
+        *unit_to_shape = scaling(shape.mesh_scale);
+        return unitShape(path);
+      }
+    }
+    throw WorldError("unknown shape type");
+  }
+
+  Instance addInstance(RTCScene scene) {
+    Instance instance;
+    instance.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance.geometry, scene);
+    rtcSetGeometryTimeStepCount(instance.geometry, 1);
+    instance.id = rtcAttachGeometry(top, instance.geometry);
+    if (shading.size() <= instance.id) shading.resize(instance.id + 1);
+    return instance;
+  }
+
+  void removeInstance(const Instance& instance) {
+    rtcDetachGeometry(top, instance.id);
+    rtcReleaseGeometry(instance.geometry);
+  }
+
+  void place(const Instance& instance, const Eigen::Affine3d& transform, const Color& color) {
+    const Eigen::Matrix<float, 3, 4> m = transform.matrix().topRows<3>().cast<float>();
+    rtcSetGeometryTransform(instance.geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m.data());
+    rtcCommitGeometry(instance.geometry);
+    Shading& s = shading[instance.id];
+    s.normal_to_world = transform.linear().inverse().transpose().cast<float>();
+    s.rgb[0] = static_cast<float>(color.r);
+    s.rgb[1] = static_cast<float>(color.g);
+    s.rgb[2] = static_cast<float>(color.b);
+  }
+
+  void addRobot(const std::string& urdf_xml) {
+    const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf_xml);
+    if (!model) throw WorldError("camera renderer: the URDF cannot be parsed");
+    for (const auto& entry : model->links_) {
+      const urdf::Link& link = *entry.second;
+      auto add = [&](const urdf::GeometrySharedPtr& geometry, const urdf::Pose& origin, const Color& color) {
+        if (!geometry) return;
+        Shape shape;
+        switch (geometry->type) {
+          case urdf::Geometry::BOX: {
+            const urdf::Vector3& d = static_cast<const urdf::Box&>(*geometry).dim;
+            shape.type = ShapeType::kBox;
+            shape.box_size = Eigen::Vector3d(d.x, d.y, d.z);
+            break;
+          }
+          case urdf::Geometry::CYLINDER: {
+            const auto& c = static_cast<const urdf::Cylinder&>(*geometry);
+            shape.type = ShapeType::kCylinder;
+            shape.radius = c.radius;
+            shape.length = c.length;
+            break;
+          }
+          case urdf::Geometry::SPHERE:
+            shape.type = ShapeType::kSphere;
+            shape.radius = static_cast<const urdf::Sphere&>(*geometry).radius;
+            break;
+          case urdf::Geometry::MESH: {
+            const auto& m = static_cast<const urdf::Mesh&>(*geometry);
+            shape.type = ShapeType::kMesh;
+            shape.mesh_resource = m.filename;
+            shape.mesh_scale = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
+            break;
+          }
+          default:
+            return;  // nothing else exists in URDF
+        }
+        Eigen::Affine3d unit_to_shape;
+        LinkVisual visual;
+        try {
+          visual.instance = addInstance(shapeScene(shape, &unit_to_shape));
+        } catch (const WorldError& e) {
+          throw WorldError("camera renderer: URDF link '" + link.name + "': " + e.what());
+        }
+        Eigen::Affine3d in_link = Eigen::Affine3d::Identity();
+        in_link.translation() = Eigen::Vector3d(origin.position.x, origin.position.y, origin.position.z);
+        in_link.linear() = Eigen::Quaterniond(origin.rotation.w, origin.rotation.x, origin.rotation.y,
+                                              origin.rotation.z).normalized().toRotationMatrix();
+        visual.link = link.name;
+        visual.in_link = in_link * unit_to_shape;
+        visual.color = color;
+        links.push_back(visual);
+      };
+      if (!link.visual_array.empty()) {
+        for (const urdf::VisualSharedPtr& v : link.visual_array) {
+          Color color = kDefaultLinkColor;
+          if (v->material) color = Color{v->material->color.r, v->material->color.g, v->material->color.b, 1.0};
+          add(v->geometry, v->origin, color);
+        }
+      } else {
+        for (const urdf::CollisionSharedPtr& c : link.collision_array) add(c->geometry, c->origin, kDefaultLinkColor);
+      }
+    }
+  }
+
+  // Moves every instance to the world's current poses; adds and removes objects.
+  void sync() {
+    Eigen::Isometry3d pose;
+    for (const LinkVisual& l : links) {
+      if (world.linkPose(l.link, &pose).ok()) place(l.instance, pose * l.in_link, l.color);
+    }
+    std::set<std::string> present;
+    ObjectState state;
+    for (const std::string& name : world.objectNames()) {
+      if (!world.objectState(name, &state).ok()) continue;
+      present.insert(name);
+      auto it = objects.find(name);
+      if (it != objects.end() && !sameLook(it->second.spec, state.spec)) {
+        removeInstance(it->second.instance);
+        objects.erase(it);
+        it = objects.end();
+      }
+      if (it == objects.end()) {
+        ObjectVisual visual;
+        Eigen::Affine3d unit_to_shape;
+        try {
+          visual.instance = addInstance(shapeScene(state.spec.shape, &unit_to_shape));
+        } catch (const WorldError& e) {
+          throw WorldError("camera renderer: object '" + name + "': " + e.what());
+        }
+        visual.in_object = unit_to_shape;
+        it = objects.emplace(name, visual).first;
+      }
+      it->second.spec = state.spec;
+      place(it->second.instance, state.spec.pose * it->second.in_object, state.spec.color);
+    }
+    for (auto it = objects.begin(); it != objects.end();) {
+      if (present.count(it->first)) {
+        ++it;
+      } else {
+        removeInstance(it->second.instance);
+        it = objects.erase(it);
+      }
+    }
+    rtcCommitScene(top);
+    check("updating the scene");
+  }
+
+  Eigen::Isometry3d linkPose(const CameraSpec& camera) const {
+    if (camera.parent_link.empty()) return camera.pose;
+    Eigen::Isometry3d parent = Eigen::Isometry3d::Identity();
+    world.linkPose(camera.parent_link, &parent);  // checked at construction
+    return parent * camera.pose;
+  }
+
+  void render(size_t index, CameraFrame* frame) {
+    sync();
+    const CameraSpec& camera = cameras.at(index);
+    const std::uint64_t frame_index = frames[index]++;
+    const CameraIntrinsics k = cameraIntrinsics(camera);
+    const int width = camera.width, height = camera.height;
+    frame->width = width;
+    frame->height = height;
+    frame->rgb.assign(static_cast<size_t>(width) * height * 3, 0);
+    frame->depth.assign(static_cast<size_t>(width) * height, std::numeric_limits<float>::quiet_NaN());
+    frame->link_pose = linkPose(camera);
+    frame->sim_time = world.simTime();
+
+    // Ray of pixel (u, v): origin o, direction d0 + u du + v dv, whose optical z component is 1, so the
+    // hit distance in units of the direction is the depth along the optical axis.
+    const Eigen::Isometry3d optical = frame->link_pose * opticalInLink();
+    const Eigen::Matrix3d r = optical.linear();
+    const Eigen::Vector3f o = optical.translation().cast<float>();
+    const Eigen::Vector3f d0 = (r * Eigen::Vector3d(-k.cx / k.fx, -k.cy / k.fy, 1.0)).cast<float>();
+    const Eigen::Vector3f du = (r.col(0) / k.fx).cast<float>();
+    const Eigen::Vector3f dv = (r.col(1) / k.fy).cast<float>();
+    const float near_clip = static_cast<float>(camera.near_clip);
+    const float far_clip = static_cast<float>(camera.far_clip);
+    const float noise = static_cast<float>(camera.depth_noise_stddev);
+
+    const int strips = (height + kPacketSide - 1) / kPacketSide;
+    std::atomic<int> next_strip{0};
+    auto work = [&] {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (int strip = next_strip++; strip < strips; strip = next_strip++) {
+        const int v0 = strip * kPacketSide;
+        for (int u0 = 0; u0 < width; u0 += kPacketSide) {
+          alignas(64) int valid[16];
+          alignas(64) RTCRayHit16 packet;
+          for (int i = 0; i < 16; ++i) {
+            const int u = u0 + i % kPacketSide, v = v0 + i / kPacketSide;
+            valid[i] = (u < width && v < height) ? -1 : 0;
+            const Eigen::Vector3f d = d0 + static_cast<float>(u) * du + static_cast<float>(v) * dv;
+            packet.ray.org_x[i] = o.x();
+            packet.ray.org_y[i] = o.y();
+            packet.ray.org_z[i] = o.z();
+            packet.ray.dir_x[i] = d.x();
+            packet.ray.dir_y[i] = d.y();
+            packet.ray.dir_z[i] = d.z();
+            packet.ray.tnear[i] = 0.0f;
+            packet.ray.tfar[i] = std::numeric_limits<float>::infinity();
+            packet.ray.time[i] = 0.0f;
+            packet.ray.mask[i] = 0xFFFFFFFFu;
+            packet.ray.id[i] = static_cast<unsigned>(i);
+            packet.ray.flags[i] = 0;
+            packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+            packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+          }
+          rtcIntersect16(valid, top, &context, &packet);
+          for (int i = 0; i < 16; ++i) {
+            const unsigned instance = packet.hit.instID[0][i];
+            if (!valid[i] || instance == RTC_INVALID_GEOMETRY_ID) continue;
+            const size_t pixel = static_cast<size_t>(v0 + i / kPacketSide) * width + u0 + i % kPacketSide;
+            const Shading& s = shading[instance];
+            const Eigen::Vector3f n =
+                s.normal_to_world * Eigen::Vector3f(packet.hit.Ng_x[i], packet.hit.Ng_y[i], packet.hit.Ng_z[i]);
+            const Eigen::Vector3f d(packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]);
+            const float cosine = std::abs(n.dot(d)) / std::sqrt(std::max(n.squaredNorm() * d.squaredNorm(), 1e-30f));
+            const float light = 255.0f * (kAmbient + (1.0f - kAmbient) * cosine);
+            std::uint8_t* rgb = &frame->rgb[3 * pixel];
+            for (int c = 0; c < 3; ++c) rgb[c] = static_cast<std::uint8_t>(std::min(255.0f, s.rgb[c] * light) + 0.5f);
+            const float depth = packet.ray.tfar[i];
+            if (depth >= near_clip && depth <= far_clip) frame->depth[pixel] = depth;
+          }
+        }
+        if (noise > 0.0f) {
+          // Per strip and frame: the same noise whichever thread renders the strip.
+          std::seed_seq seed{static_cast<std::uint64_t>(camera.seed), frame_index, static_cast<std::uint64_t>(strip)};
+          std::mt19937 rng(seed);
+          std::normal_distribution<float> gauss(0.0f, noise);
+          const size_t end = std::min<size_t>(static_cast<size_t>(v0 + kPacketSide), height) * width;
+          for (size_t p = static_cast<size_t>(v0) * width; p < end; ++p) {
+            if (!std::isnan(frame->depth[p])) frame->depth[p] += gauss(rng);
+          }
+        }
+      }
+    };
+    std::vector<std::thread> helpers;
+    for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+    work();
+    for (std::thread& t : helpers) t.join();
+  }
+};
+
+CameraRenderer::CameraRenderer(const World& world, const std::string& urdf_xml, const WorldSpec& spec,
+                               const CameraRendererOptions& options)
+    : impl_(std::make_unique<Impl>(world)) {
+  Impl& d = *impl_;
+  const std::vector<std::string> link_names = world.linkNames();
+  const std::set<std::string> robot_links(link_names.begin(), link_names.end());
+  std::set<std::string> names;
+  for (const CameraSpec& camera : spec.cameras) {
+    const std::string context = "camera '" + camera.name + "': ";
+    const Result valid = validateCameraSpec(camera);
+    if (!valid.ok()) throw WorldError(context + valid.message);
+    if (!names.insert(camera.name).second) throw WorldError(context + "duplicate camera 'name'");
+    if (!camera.parent_link.empty() && !robot_links.count(camera.parent_link)) {
+      throw WorldError(context + "'parent' '" + camera.parent_link + "' is not a link of the robot");
+    }
+    for (const std::string& frame : {camera.name + "_link", camera.name + "_optical_frame"}) {
+      if (robot_links.count(frame)) throw WorldError(context + "its frame '" + frame + "' is a robot link");
+    }
+  }
+  d.cameras = spec.cameras;
+  d.frames.assign(spec.cameras.size(), 0);
+  d.roots = options.package_search_roots;
+  d.threads = options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // BVH builds stay on the calling thread: shapes are built once and the per-frame top-level build of a few
+  // dozen instances is too small to spread.
+  d.device = rtcNewDevice("threads=1");
+  if (d.device == nullptr) throw WorldError("camera renderer: Embree device creation failed");
+  rtcSetDeviceErrorFunction(
+      d.device, [](void* user, RTCError, const char* text) { static_cast<Impl*>(user)->error = text; }, &d);
+  d.top = rtcNewScene(d.device);
+  rtcSetSceneFlags(d.top, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(d.top, RTC_BUILD_QUALITY_LOW);
+  d.addRobot(urdf_xml);
+  if (spec.ground.enabled) {
+    d.ground = d.addInstance(d.unitShape("square"));
+    Eigen::Affine3d t = Eigen::Affine3d::Identity();
+    t.translation().z() = spec.ground.z;
+    d.place(d.ground, t * scaling(Eigen::Vector3d(kGroundHalfSize, kGroundHalfSize, 1.0)), kGroundColor);
+  }
+  d.sync();
+}
+
+CameraRenderer::~CameraRenderer() = default;
+
+const std::vector<CameraSpec>& CameraRenderer::cameras() const { return impl_->cameras; }
+
+Eigen::Isometry3d CameraRenderer::linkPose(size_t camera) const { return impl_->linkPose(impl_->cameras.at(camera)); }
+
+void CameraRenderer::render(size_t camera, CameraFrame* frame) { impl_->render(camera, frame); }
+
+}  // namespace sixdof_sim

@@ -226,9 +226,12 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
                      source);
     return;
   }
-  if (request.num_planning_attempts < 0) {
+  // Each attempt holds a planner (and a thread when they run in parallel): an unbounded count ran out of memory.
+  constexpr int kMaxPlanningAttempts = 1000;
+  if (request.num_planning_attempts < 0 || request.num_planning_attempts > kMaxPlanningAttempts) {
     code = makeError(ErrorCode::INVALID_REQUEST,
-                     "num_planning_attempts must be >= 0 (0: 1), got " + std::to_string(request.num_planning_attempts),
+                     "num_planning_attempts must be in [0, " + std::to_string(kMaxPlanningAttempts) + "] (0: 1), got " +
+                         std::to_string(request.num_planning_attempts),
                      source);
     return;
   }

@@ -51,8 +51,11 @@ ErrorCode validateScalingFactor(double value, const std::string& what, const std
     *effective = 1.0;
     return makeSuccess(source);
   }
-  if (!std::isfinite(value) || value < 0.0 || value > 1.0) {
-    return makeError(ErrorCode::INVALID_REQUEST, what + " must be in (0, 1] (0 means 1), got " + formatNumber(value),
+  // Tiny factors (1e-308) made the time parameterization run for ages: below kMin the request is refused.
+  constexpr double kMin = 1e-3;
+  if (!std::isfinite(value) || value < kMin || value > 1.0) {
+    return makeError(ErrorCode::INVALID_REQUEST,
+                     what + " must be in [" + formatNumber(kMin) + ", 1] (0 means 1), got " + formatNumber(value),
                      source);
   }
   *effective = value;

@@ -518,11 +518,11 @@ class MoveGroupTest(unittest.TestCase):
 
     def test_32_scaling_factors_outside_zero_one(self) -> None:
         for field in ("max_velocity_scaling_factor", "max_acceleration_scaling_factor"):
-            for value in (1.5, -0.1, float("nan")):
+            for value in (1.5, -0.1, float("nan"), 1e-308):
                 request = self.plan_request(joint_goal(self.states[("arm", "home pose")]))
                 setattr(request, field, value)
                 code = self.plan(motion_plan_request=request).motion_plan_response.error_code
-                self.assert_code(code, MoveItErrorCodes.INVALID_REQUEST, field, "(0, 1]")
+                self.assert_code(code, MoveItErrorCodes.INVALID_REQUEST, field, "[0.001, 1]")
         request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
         request.max_velocity_scaling_factor = 2.0
         self.assert_code(

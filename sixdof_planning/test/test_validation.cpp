@@ -75,7 +75,8 @@ TEST_F(ValidationTest, ScalingFactorsAreInZeroOneWithZeroMeaningOne) {
   EXPECT_TRUE(isSuccess(validateScalingFactor(0.25, "f", kSource, &effective)));
   EXPECT_EQ(effective, 0.25);
   EXPECT_TRUE(isSuccess(validateScalingFactor(1.0, "f", kSource, &effective)));
-  for (double bad : {1.0001, -0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (double bad : {1.0001, -0.1, 1e-308, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
     const auto code = validateScalingFactor(bad, "max_velocity_scaling_factor", kSource, &effective);
     EXPECT_EQ(code.val, ErrorCode::INVALID_REQUEST) << bad;
     EXPECT_NE(code.message.find("max_velocity_scaling_factor"), std::string::npos);

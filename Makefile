@@ -1,6 +1,6 @@
 # Thin entry points; the work is in scripts/. Every target that needs the workspace runs setup first
 # (idempotent: apt packages, venv, build are skipped when already up to date).
-.PHONY: setup build demo test bench bench-build clean
+.PHONY: setup build demo test bench bench-build fuzz clean
 
 setup:
 	scripts/setup.sh
@@ -18,6 +18,11 @@ test:
 bench:
 	SIXDOF_BUILD_BENCHMARKS=ON scripts/setup.sh
 	scripts/bench.sh
+
+# Seeded fuzzing of every move_group and simulator service and action with more requests than `make test` sends.
+fuzz:
+	SIXDOF_BUILD_TESTS=ON scripts/setup.sh
+	scripts/fuzz.sh
 
 # Build cost of a fresh clone (cold, against the previous defaults); add ARGS=--apt for the Debian packages.
 bench-build: setup

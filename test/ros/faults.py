@@ -15,7 +15,7 @@ import actionlib
 import rosgraph
 import rosnode
 import rospy
-from actionlib import SimpleGoalState
+from actionlib import CommState
 from e2e import wait_for_stack
 from sixdof_commander import MoveGroup
 
@@ -70,7 +70,10 @@ def bounded_call(function, *args, timeout: float, what: str):
 def wait_for_action(client, timeout: float, what: str) -> tuple[float, object]:
     """Waits for an actionlib client's goal to finish: (wall seconds waited, result)."""
     start = time.monotonic()
-    wait_until(lambda: client.simple_state == SimpleGoalState.DONE, timeout, what, period=0.01)
+    # The goal handle's state, not simple_state: a result arriving before SimpleActionClient.send_goal has stored the
+    # new handle (a fast server) is dropped by its transition callback ("a goal handle that we're not tracking"), and
+    # simple_state never becomes DONE.
+    wait_until(lambda: client.gh is not None and client.gh.get_comm_state() == CommState.DONE, timeout, what, 0.01)
     return time.monotonic() - start, client.get_result()
 
 

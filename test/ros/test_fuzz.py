@@ -1,0 +1,295 @@
+#!/usr/bin/env python3
+"""Fuzzing (issue 13 item 6): seeded random and malformed requests to every move_group service and action and to
+the simulator's services and controller actions. Values are drawn per field type from the message definitions
+(NaN, inf, huge and tiny numbers, empty, unknown and real names, unknown frames, unnormalised quaternions, empty,
+mismatched and huge arrays, negative and non-monotonic times), most of them starting from a valid request with a
+few fields broken, so that the checks past the first one are reached too. Every request must be answered (a
+service response, an action result) within CALL_TIMEOUT, failures must say why (error code and message), and no
+node may die. The count is printed. ~requests (default in faults_headless.test) sets how many per target; ~seed
+the seed (`make fuzz` runs a bigger count)."""
+
+import io
+import math
+import random
+import re
+import sys
+import tempfile
+import time
+import unittest
+
+import actionlib
+import genpy
+import rospy
+import rostest
+from e2e import planning_scene, wait_for_stack
+from faults import bounded_call, node_pid, wait_for_action
+from std_srvs.srv import Empty
+
+from sixdof_msgs.msg import (
+    Constraints,
+    ExecuteTrajectoryAction,
+    ExecuteTrajectoryGoal,
+    FollowJointTrajectoryAction,
+    FollowJointTrajectoryGoal,
+    GripperCommandAction,
+    GripperCommandGoal,
+    MotionPlanRequest,
+    MoveGroupAction,
+    MoveGroupGoal,
+    MoveItErrorCodes,
+)
+from sixdof_msgs.srv import (
+    ApplyPlanningScene,
+    DeleteObject,
+    GetCartesianPath,
+    GetMotionPlan,
+    GetObjectState,
+    GetPlanningScene,
+    GetPositionFK,
+    GetPositionIK,
+    GetStateValidity,
+    QueryTrajectoryState,
+    SetObjectState,
+    SpawnObject,
+    StepSimulation,
+)
+
+CALL_TIMEOUT = 60.0  # s of wall time: a request unanswered by then hangs (planning alone is bounded by its time)
+GOAL_TIMEOUT = 10.0  # s of wall time after which a goal still running is cancelled
+NODES = ("/move_group", "/sixdof_sim", "/robot_state_publisher", "/scene_mirror")
+FLOATS = (0.0, 1.0, -1.0, 0.5, math.nan, math.inf, -math.inf, 1e308, -1e308, 1e-308, 3.0e9)
+INT_RANGES = {
+    "int8": (-(2**7), 2**7 - 1), "uint8": (0, 2**8 - 1), "byte": (-(2**7), 2**7 - 1), "char": (0, 2**8 - 1),
+    "int16": (-(2**15), 2**15 - 1), "uint16": (0, 2**16 - 1), "int32": (-(2**31), 2**31 - 1),
+    "uint32": (0, 2**32 - 1), "int64": (-(2**63), 2**63 - 1), "uint64": (0, 2**64 - 1),
+}
+
+
+class Fuzzer:
+    """Random values for message fields; `names` are the real names worth hitting (joints, links, groups, objects,
+    frames, named states)."""
+
+    def __init__(self, rng: random.Random, names: list[str]) -> None:
+        self.rng = rng
+        self.names = names
+
+    def string(self) -> str:
+        return self.rng.choice(
+            [*self.names, *self.names, "", "unknown", "x" * 5000, "world ", "base_link/../x", "\u00e9\u2603", "a b"]
+        )
+
+    def number(self, kind: str):
+        r = self.rng
+        if kind in ("float32", "float64"):
+            value = r.choice([*FLOATS, r.uniform(-4.0, 4.0), r.uniform(-4.0, 4.0)])
+            return value if kind == "float64" or not math.isfinite(value) or abs(value) < 3e38 else math.inf
+        low, high = INT_RANGES[kind]
+        return r.choice([low, high, 0, 1, -1 if low < 0 else 2, r.randint(low, high), r.randint(0, 10)])
+
+    def length(self, huge_ok: bool) -> int:
+        r = self.rng.random()
+        if r < 0.3:
+            return 0
+        if r < 0.9:
+            return self.rng.randint(1, 8)
+        return self.rng.choice([20000, 100000]) if huge_ok else self.rng.randint(9, 40)
+
+    def value(self, kind: str, depth: int = 0):
+        if kind.endswith("]"):
+            base = kind[: kind.index("[")]
+            fixed = kind[kind.index("[") + 1 : -1]
+            n = int(fixed) if fixed else self.length(huge_ok=base in INT_RANGES or base.startswith("float"))
+            if base in ("uint8", "char"):
+                return bytes(self.rng.randint(0, 255) for _ in range(n))
+            return [self.value(base, depth + 1) for _ in range(n if fixed or depth < 4 else 0)]
+        if kind == "string":
+            return self.string()
+        if kind == "bool":
+            return self.rng.random() < 0.5
+        if kind in INT_RANGES or kind.startswith("float"):
+            return self.number(kind)
+        if kind in ("time", "duration"):
+            secs = self.rng.choice([0, 1, 5, 100, 2**31 - 1] + ([-1, -100] if kind == "duration" else []))
+            cls = genpy.Duration if kind == "duration" else genpy.Time
+            return cls(secs, self.rng.randint(0, 999999999))
+        return self.message(genpy.message.get_message_class(kind if "/" in kind else "std_msgs/" + kind), depth + 1)
+
+    def message(self, cls, depth: int = 0):
+        msg = cls()
+        if depth > 6:
+            return msg
+        for slot, kind in zip(cls.__slots__, cls._slot_types, strict=True):
+            setattr(msg, slot, self.value(kind, depth))
+        return msg
+
+    def mutate(self, msg, count: int):
+        """A copy of msg with `count` randomly chosen fields (at any depth) replaced by random values."""
+        msg = _copy(msg)
+        for _ in range(count):
+            fields = list(_fields(msg))
+            if not fields:
+                break
+            parent, slot, kind = self.rng.choice(fields)
+            setattr(parent, slot, self.value(kind, 1))
+        return msg
+
+
+def _copy(msg):
+    buffer = io.BytesIO()
+    msg.serialize(buffer)
+    return type(msg)().deserialize(buffer.getvalue())
+
+
+def _fields(msg):
+    """(parent, slot, type) of every field, nested messages and array elements included."""
+    for slot, kind in zip(msg.__slots__, msg._slot_types, strict=True):
+        yield msg, slot, kind
+        value = getattr(msg, slot)
+        if isinstance(value, genpy.Message):
+            yield from _fields(value)
+        elif isinstance(value, list):
+            for item in value:
+                if isinstance(item, genpy.Message):
+                    yield from _fields(item)
+
+
+def explains_failure(response) -> str:
+    """'' when the response is a success or a failure that says why; otherwise what is wrong."""
+    code = getattr(response, "error_code", None)
+    if isinstance(code, int):  # FollowJointTrajectory: 0 is SUCCESSFUL, error_string says why otherwise
+        return f"error code {code} without an error_string" if code != 0 and not response.error_string else ""
+    if code is not None:
+        if code.val != MoveItErrorCodes.SUCCESS and not code.message:
+            return f"error code {code.val} without a message"
+        return ""
+    if hasattr(response, "success"):
+        message = getattr(response, "status_message", getattr(response, "message", None))
+        if not response.success and not message:
+            return "success false without a message"
+    return ""
+
+
+class Fuzz(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_fuzz")
+        wait_for_stack()
+        cls.seed = int(rospy.get_param("~seed", 13))
+        cls.requests = int(rospy.get_param("~requests", 100))
+        cls.pids = {name: node_pid(name) for name in NODES}
+        urdf = rospy.get_param("robot_description")
+        srdf = rospy.get_param("robot_description_semantic")
+        names = set(re.findall(r'<(?:joint|link)\s+name="([^"]+)"', urdf))
+        names |= set(re.findall(r'<(?:group|group_state)\s+name="([^"]+)"', srdf))
+        names |= {o.id for o in planning_scene().world.collision_objects} | {"world"}
+        cls.names = sorted(names)
+
+    def dump(self, target: str, i: int, message) -> str:
+        """Writes a request that failed to a file (for replaying it) and names it."""
+        path = f"{tempfile.gettempdir()}/fuzz_{target.replace('/', '_')}_{self.seed}_{i}"
+        with open(path + ".bin", "wb") as out:
+            buffer = io.BytesIO()
+            message.serialize(buffer)
+            out.write(buffer.getvalue())
+        with open(path + ".txt", "w") as out:
+            out.write(str(message))
+        return f"{type(message)._type} in {path}.txt/.bin"
+
+    def check_nodes(self):
+        for name, pid in self.pids.items():
+            self.assertEqual(node_pid(name), pid, f"{name} died or was restarted")
+
+    def run_service(self, name, srv_class, base, rng, count):
+        proxy = rospy.ServiceProxy(name, srv_class)
+        fuzzer = Fuzzer(rng, self.names)
+        request_class = srv_class._request_class
+        answered = 0
+        for i in range(count):
+            if i % 4 == 0:
+                request = fuzzer.message(request_class)
+            else:
+                request = fuzzer.mutate(base, rng.randint(1, 3))
+            try:
+                response = bounded_call(proxy, request, timeout=CALL_TIMEOUT, what=f"{name} request {i}")
+            except (rospy.ServiceException, AssertionError) as exc:
+                self.fail(f"{name} request {i}: no response ({exc}): {self.dump(name, i, request)}")
+            problem = explains_failure(response)
+            if problem:
+                self.fail(f"{name} request {i}: {problem}: {self.dump(name, i, request)}")
+            answered += 1
+        return answered
+
+    def run_action(self, name, action_class, goal_class, base, rng, count):
+        client = actionlib.SimpleActionClient(name, action_class)
+        self.assertTrue(client.wait_for_server(rospy.Duration(30.0)), f"no {name} action server")
+        fuzzer = Fuzzer(rng, self.names)
+        answered = 0
+        for i in range(count):
+            goal = fuzzer.message(goal_class) if i % 4 == 0 else fuzzer.mutate(base, rng.randint(1, 3))
+            client.send_goal(goal)
+            try:
+                wait_for_action(client, GOAL_TIMEOUT, f"{name} goal {i}")
+            except AssertionError:
+                # A goal may legitimately run long (a trajectory starting in a year): cancelled, it must end.
+                client.cancel_goal()
+                try:
+                    wait_for_action(client, CALL_TIMEOUT, f"{name} goal {i} cancelled")
+                except AssertionError as exc:
+                    self.fail(f"{exc}: {self.dump(name, i, goal)}")
+            result = client.get_result()
+            self.assertIsNotNone(result, f"{name} goal {i}: no result message")
+            problem = explains_failure(result)
+            if problem:
+                self.fail(f"{name} goal {i}: {problem}: {self.dump(name, i, goal)}")
+            answered += 1
+        return answered
+
+    def test_every_request_is_answered_and_no_node_dies(self):
+        rng = random.Random(self.seed)
+        n = self.requests
+        arm = "arm" if "arm" in self.names else self.names[0]
+        valid_plan = MotionPlanRequest(group_name=arm, goal_constraints=[Constraints(name="home pose")],
+                                       allowed_planning_time=1.0)
+        plan = bounded_call(rospy.ServiceProxy("plan_kinematic_path", GetMotionPlan), valid_plan,
+                            timeout=CALL_TIMEOUT, what="a valid plan").motion_plan_response
+        trajectory = plan.trajectory
+        counts = {}
+        services = [
+            ("plan_kinematic_path", GetMotionPlan, GetMotionPlan._request_class(motion_plan_request=valid_plan)),
+            ("compute_cartesian_path", GetCartesianPath, GetCartesianPath._request_class(group_name=arm)),
+            ("compute_fk", GetPositionFK, GetPositionFK._request_class(fk_link_names=self.names[:2])),
+            ("compute_ik", GetPositionIK, GetPositionIK._request_class()),
+            ("check_state_validity", GetStateValidity, GetStateValidity._request_class(group_name=arm)),
+            ("get_planning_scene", GetPlanningScene, GetPlanningScene._request_class()),
+            ("apply_planning_scene", ApplyPlanningScene, ApplyPlanningScene._request_class()),
+            ("sixdof_sim/spawn_object", SpawnObject, SpawnObject._request_class()),
+            ("sixdof_sim/get_object_state", GetObjectState, GetObjectState._request_class()),
+            ("sixdof_sim/set_object_state", SetObjectState, SetObjectState._request_class()),
+            ("sixdof_sim/delete_object", DeleteObject, DeleteObject._request_class()),
+            ("sixdof_sim/step", StepSimulation, StepSimulation._request_class()),
+            ("arm_controller/query_state", QueryTrajectoryState, QueryTrajectoryState._request_class()),
+        ]
+        start = time.monotonic()
+        for name, srv_class, base in services:
+            counts[name] = self.run_service(name, srv_class, base, rng, n)
+            self.check_nodes()
+        actions = [
+            ("move_group", MoveGroupAction, MoveGroupGoal, MoveGroupGoal(request=valid_plan)),
+            ("execute_trajectory", ExecuteTrajectoryAction, ExecuteTrajectoryGoal,
+             ExecuteTrajectoryGoal(trajectory=trajectory)),
+            ("arm_controller/follow_joint_trajectory", FollowJointTrajectoryAction, FollowJointTrajectoryGoal,
+             FollowJointTrajectoryGoal(trajectory=trajectory.joint_trajectory)),
+            ("gripper_controller/gripper_cmd", GripperCommandAction, GripperCommandGoal, GripperCommandGoal()),
+        ]
+        for name, action_class, goal_class, base in actions:
+            counts[name] = self.run_action(name, action_class, goal_class, base, rng, max(n // 4, 1))
+            self.check_nodes()
+        # The simulator's world is put back for whatever runs next on this stack.
+        rospy.ServiceProxy("sixdof_sim/reset_world", Empty)()
+        total = sum(counts.values())
+        print(f"fuzz: {total} requests answered in {time.monotonic() - start:.0f} s (seed {self.seed}): {counts}")
+        rospy.loginfo("fuzz: %d requests answered (seed %d): %s", total, self.seed, counts)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("sixdof_tests", "test_fuzz", Fuzz, sys.argv)

@@ -458,6 +458,10 @@ struct CameraRenderer::Impl {
     const float far_clip = static_cast<float>(camera.far_clip);
     const float noise = static_cast<float>(camera.depth_noise_stddev);
 
+    // Raw pointers: stores through the vectors' data would make the compiler reload them for every pixel.
+    std::uint8_t* const rgb_out = frame->rgb.data();
+    float* const depth_out = frame->depth.data();
+    const Shading* const shade = shading.data();
     const int strips = (height + kPacketSide - 1) / kPacketSide;
     std::atomic<int> next_strip{0};
     auto work = [&] {
@@ -493,16 +497,16 @@ struct CameraRenderer::Impl {
             const unsigned instance = packet.hit.instID[0][i];
             if (!valid[i] || instance == RTC_INVALID_GEOMETRY_ID) continue;
             const size_t pixel = static_cast<size_t>(v0 + i / kPacketSide) * width + u0 + i % kPacketSide;
-            const Shading& s = shading[instance];
+            const Shading& s = shade[instance];
             const Eigen::Vector3f n =
                 s.normal_to_world * Eigen::Vector3f(packet.hit.Ng_x[i], packet.hit.Ng_y[i], packet.hit.Ng_z[i]);
             const Eigen::Vector3f d(packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]);
             const float cosine = std::abs(n.dot(d)) / std::sqrt(std::max(n.squaredNorm() * d.squaredNorm(), 1e-30f));
             const float light = 255.0f * (kAmbient + (1.0f - kAmbient) * cosine);
-            std::uint8_t* rgb = &frame->rgb[3 * pixel];
+            std::uint8_t* rgb = rgb_out + 3 * pixel;
             for (int c = 0; c < 3; ++c) rgb[c] = static_cast<std::uint8_t>(std::min(255.0f, s.rgb[c] * light) + 0.5f);
             const float depth = packet.ray.tfar[i];
-            if (depth >= near_clip && depth <= far_clip) frame->depth[pixel] = depth;
+            if (depth >= near_clip && depth <= far_clip) depth_out[pixel] = depth;
           }
         }
         if (noise > 0.0f) {
@@ -512,7 +516,7 @@ struct CameraRenderer::Impl {
           std::normal_distribution<float> gauss(0.0f, noise);
           const size_t end = std::min<size_t>(static_cast<size_t>(v0 + kPacketSide), height) * width;
           for (size_t p = static_cast<size_t>(v0) * width; p < end; ++p) {
-            if (!std::isnan(frame->depth[p])) frame->depth[p] += gauss(rng);
+            if (!std::isnan(depth_out[p])) depth_out[p] += gauss(rng);
           }
         }
       }

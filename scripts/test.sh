@@ -12,8 +12,18 @@ set +u
 set -u
 status=0
 
+# The build gets the package selection (--packages-*) of the arguments, not test-only ones (--ctest-args ...).
+build_args=()
+selecting=0
+for arg in "$@"; do
+  case "$arg" in
+    --packages-*) selecting=1; build_args+=("$arg") ;;
+    --*) selecting=0 ;;
+    *) [ $selecting = 1 ] && build_args+=("$arg") ;;
+  esac
+done
 echo "== build (tests enabled)"
-SIXDOF_BUILD_TESTS=ON scripts/build.sh "$@" || exit 1
+SIXDOF_BUILD_TESTS=ON scripts/build.sh "${build_args[@]}" || exit 1
 
 echo "== ruff"
 ruff check . || status=1

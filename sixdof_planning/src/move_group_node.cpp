@@ -8,6 +8,7 @@
 #include "sixdof_planning/move_action_capability.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/plan_service_capability.h"
+#include "sixdof_planning/retime_trajectory_service_capability.h"
 #include "sixdof_planning/state_validation_service_capability.h"
 #include "sixdof_planning/trajectory_execution.h"
 
@@ -21,6 +22,7 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   plan_ = std::make_unique<MotionPlanService>(context_.get());
   cartesian_ = std::make_unique<CartesianPathService>(context_.get());
   validity_ = std::make_unique<StateValidityService>(context_.get());
+  retime_ = std::make_unique<RetimeTrajectoryService>(context_.get());
   get_scene_ = std::make_unique<GetPlanningSceneService>(context_.get());
   apply_scene_ = std::make_unique<ApplyPlanningSceneService>(context_.get());
   move_group_ = std::make_unique<MoveGroupActionCapability>(context_.get(), executor_.get());

@@ -5,6 +5,7 @@ target setting in every form, planning (the Noetic 4-tuple), go with every argum
 Cartesian paths in both signatures, retiming, the planning scene synchronous and asynchronous, RobotCommander,
 the planned path display, and upstream's exceptions for bad input."""
 
+import copy
 import subprocess
 import sys
 import time
@@ -200,8 +201,6 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
             (lambda: self.arm.allow_replanning(True), "allow_replanning"),
             (lambda: self.arm.set_orientation_target([0, 0, 0, 1]), "set_orientation_target"),
             (lambda: self.arm.pick("red_cube"), "pick"),
-            (lambda: self.arm.retime_trajectory(RobotState(), RobotTrajectory(),
-                                                algorithm="time_optimal_trajectory_generation"), "retime_trajectory"),
         ):
             with case(method=name), self.assertRaisesRegex(MoveItCommanderException, f"{name}.* not available"):
                 call()
@@ -231,6 +230,25 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         self.assertGreater(end_slow, end_fast)
         self.assertEqual(len(slow.joint_trajectory.points), len(plan.joint_trajectory.points))
         self.assertGreater(duration, 0.0)
+        # Time-optimal (move_group's retime_trajectory service): the same path, slower at smaller factors.
+        optimal = {
+            factor: self.arm.retime_trajectory(
+                self.robot.get_current_state(), plan, factor, factor, algorithm="time_optimal_trajectory_generation"
+            )
+            for factor in (0.2, 1.0)
+        }
+        for retimed in optimal.values():
+            self.assertEqual(retimed.joint_trajectory.joint_names, plan.joint_trajectory.joint_names)
+            last, expected = retimed.joint_trajectory.points[-1], plan.joint_trajectory.points[-1]
+            for a, b in zip(last.positions, expected.positions, strict=True):
+                self.assertAlmostEqual(a, b, places=6)
+        self.assertGreater(optimal[0.2].joint_trajectory.points[-1].time_from_start,
+                           optimal[1.0].joint_trajectory.points[-1].time_from_start)
+        unknown = RobotTrajectory()
+        unknown.joint_trajectory = copy.deepcopy(plan.joint_trajectory)
+        unknown.joint_trajectory.joint_names[0] = "no_such_joint"
+        with self.assertRaisesRegex(MoveItCommanderException, "unknown joint 'no_such_joint'"):
+            self.arm.retime_trajectory(RobotState(), unknown, algorithm="time_optimal_trajectory_generation")
         self.assertTrue(self.arm.execute(slow, wait=True), self.arm.last_error.message)
         self.assertLess(abs(self.arm.get_current_pose().pose.position.z - waypoint.position.z), 0.005)
 

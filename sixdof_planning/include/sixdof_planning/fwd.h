@@ -53,6 +53,10 @@ struct MoveItErrorCodes_;
 template <class ContainerAllocator>
 struct PositionIKRequest_;
 template <class ContainerAllocator>
+struct RetimeTrajectoryRequest_;
+template <class ContainerAllocator>
+struct RetimeTrajectoryResponse_;
+template <class ContainerAllocator>
 struct RobotState_;
 
 typedef ApplyPlanningSceneRequest_<std::allocator<void>> ApplyPlanningSceneRequest;
@@ -78,6 +82,8 @@ typedef MoveGroupAction_<std::allocator<void>> MoveGroupAction;
 typedef MoveGroupGoal_<std::allocator<void>> MoveGroupGoal;
 typedef MoveItErrorCodes_<std::allocator<void>> MoveItErrorCodes;
 typedef PositionIKRequest_<std::allocator<void>> PositionIKRequest;
+typedef RetimeTrajectoryRequest_<std::allocator<void>> RetimeTrajectoryRequest;
+typedef RetimeTrajectoryResponse_<std::allocator<void>> RetimeTrajectoryResponse;
 typedef RobotState_<std::allocator<void>> RobotState;
 }  // namespace sixdof_msgs
 

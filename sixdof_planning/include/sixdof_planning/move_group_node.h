@@ -17,6 +17,7 @@ class InverseKinematicsService;
 class MotionPlanService;
 class CartesianPathService;
 class StateValidityService;
+class RetimeTrajectoryService;
 class GetPlanningSceneService;
 class ApplyPlanningSceneService;
 class MoveGroupActionCapability;
@@ -36,6 +37,7 @@ class MoveGroupNode {
   std::unique_ptr<MotionPlanService> plan_;
   std::unique_ptr<CartesianPathService> cartesian_;
   std::unique_ptr<StateValidityService> validity_;
+  std::unique_ptr<RetimeTrajectoryService> retime_;
   std::unique_ptr<GetPlanningSceneService> get_scene_;
   std::unique_ptr<ApplyPlanningSceneService> apply_scene_;
   std::unique_ptr<MoveGroupActionCapability> move_group_;

@@ -25,7 +25,14 @@ from sixdof_msgs.msg import (
     RobotState,
     RobotTrajectory,
 )
-from sixdof_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK, GetPositionIK
+from sixdof_msgs.srv import (
+    GetCartesianPath,
+    GetMotionPlan,
+    GetPositionFK,
+    GetPositionIK,
+    RetimeTrajectory,
+    RetimeTrajectoryRequest,
+)
 
 from ._ros import (
     SERVICE_TIMEOUT,
@@ -113,6 +120,7 @@ class MoveGroup:
         self._fk_service = rospy.ServiceProxy(resolve(ns, "compute_fk"), GetPositionFK)
         self._ik_service = rospy.ServiceProxy(resolve(ns, "compute_ik"), GetPositionIK)
         self._cartesian_service = rospy.ServiceProxy(resolve(ns, "compute_cartesian_path"), GetCartesianPath)
+        self._retime_service = rospy.ServiceProxy(resolve(ns, "retime_trajectory"), RetimeTrajectory)
         self._joint_states = JointStateMonitor(resolve(ns, "joint_states"))
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
         self._rng = np.random.default_rng()
@@ -338,9 +346,7 @@ class MoveGroup:
 
     def get_remembered_joint_values(self) -> dict[str, list[float]]:
         """Remembered joint values by name, each in get_active_joints() order."""
-        return {
-            name: [values[j] for j in self._group.joint_names] for name, values in self._goal.remembered.items()
-        }
+        return {name: [values[j] for j in self._group.joint_names] for name, values in self._goal.remembered.items()}
 
     def forget_joint_values(self, name: str) -> None:
         """Forget remembered joint values."""
@@ -760,22 +766,18 @@ class MoveGroup:
     ) -> RobotTrajectory:
         """The trajectory's path re-timed for these scaling factors of the joint limits (robot_description_planning,
         else the URDF's velocity limits), starting and ending at rest. 'iterative_time_parameterization' is
-        computed here; 'time_optimal_trajectory_generation' needs move_group's time-optimal parameterization,
-        which has no service of its own yet, and raises."""
+        computed here; 'time_optimal_trajectory_generation' is move_group's time-optimal parameterization (the one
+        every plan gets), through its retime_trajectory service. A failure raises SixdofCommanderError."""
         if algorithm not in RETIME_ALGORITHMS:
             raise SixdofCommanderError(
                 f"retime_trajectory: unknown algorithm '{algorithm}'; known: {list(RETIME_ALGORITHMS)}"
-            )
-        if algorithm == "time_optimal_trajectory_generation":
-            raise _refuse(
-                "retime_trajectory(algorithm='time_optimal_trajectory_generation')",
-                "move_group time-parameterizes every plan with it but offers no service to re-time a given path; "
-                "use 'iterative_time_parameterization' or plan() with the scaling factors set",
             )
         if not isinstance(ref_state_in, RobotState) or not isinstance(traj_in, RobotTrajectory):
             raise SixdofCommanderError("retime_trajectory needs a RobotState and a RobotTrajectory")
         velocity = check_scaling_factor(velocity_scaling_factor, "velocity_scaling_factor")
         acceleration = check_scaling_factor(acceleration_scaling_factor, "acceleration_scaling_factor")
+        if algorithm == "time_optimal_trajectory_generation":
+            return self._retime_time_optimal(traj_in, velocity, acceleration)
         names = list(traj_in.joint_trajectory.joint_names)
         points = traj_in.joint_trajectory.points
         if not names or not points:
@@ -803,6 +805,22 @@ class MoveGroup:
                 )
             )
         return result
+
+    def _retime_time_optimal(
+        self, trajectory: RobotTrajectory, velocity: float, acceleration: float
+    ) -> RobotTrajectory:
+        request = RetimeTrajectoryRequest(
+            trajectory=trajectory, velocity_scaling_factor=velocity, acceleration_scaling_factor=acceleration
+        )
+        try:
+            response = call_service(self._retime_service, request, SERVICE_TIMEOUT)
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise SixdofCommanderError(
+                f"retime_trajectory: move_group's retime_trajectory service failed: {err}"
+            ) from err
+        if response.error_code.val != MoveItErrorCodes.SUCCESS:
+            raise SixdofCommanderError(f"retime_trajectory: {response.error_code.message}")
+        return response.trajectory
 
     def _joint_limits(self, names: list[str]) -> tuple[np.ndarray, np.ndarray]:
         """Velocity and acceleration limits of the joints, as move_group reads them (MoveIt's joint_limits)."""

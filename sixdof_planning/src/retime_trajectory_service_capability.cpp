@@ -1,0 +1,93 @@
+#include "sixdof_planning/retime_trajectory_service_capability.h"
+
+#include <cmath>
+#include <set>
+
+#include <sixdof_core/trajectory.h>
+#include <sixdof_msgs/RetimeTrajectory.h>
+
+#include "sixdof_planning/conversions.h"
+#include "sixdof_planning/move_group_context.h"
+#include "sixdof_planning/validation.h"
+
+namespace sixdof_planning {
+
+namespace {
+const char* const kRetimeSource = "retime_trajectory";
+
+// Known, active, distinct joints and one finite position per joint at every point (INVALID_MOTION_PLAN).
+ErrorCode validatePath(const sixdof_core::RobotModel& model, const trajectory_msgs::JointTrajectory& trajectory) {
+  if (trajectory.joint_names.empty() || trajectory.points.empty()) {
+    return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory has no joints or no points", kRetimeSource);
+  }
+  std::set<std::string> seen;
+  for (const auto& name : trajectory.joint_names) {
+    const int index = model.jointIndex(name);
+    if (index < 0) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'",
+                       kRetimeSource);
+    }
+    if (!model.joints()[index].isActive()) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN,
+                       "trajectory joint '" + name + "' is fixed or a mimic joint (give its source joint)",
+                       kRetimeSource);
+    }
+    if (!seen.insert(name).second) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names joint '" + name + "' twice", kRetimeSource);
+    }
+  }
+  for (size_t i = 0; i < trajectory.points.size(); ++i) {
+    const auto& positions = trajectory.points[i].positions;
+    if (positions.size() != trajectory.joint_names.size()) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN,
+                       "point " + std::to_string(i) + " has " + std::to_string(positions.size()) + " positions for " +
+                           std::to_string(trajectory.joint_names.size()) + " joints",
+                       kRetimeSource);
+    }
+    for (size_t j = 0; j < positions.size(); ++j) {
+      if (!std::isfinite(positions[j])) {
+        return makeError(ErrorCode::INVALID_MOTION_PLAN,
+                         "point " + std::to_string(i) + " has a non-finite position for joint '" +
+                             trajectory.joint_names[j] + "'",
+                         kRetimeSource);
+      }
+    }
+  }
+  return makeSuccess(kRetimeSource);
+}
+}  // namespace
+
+RetimeTrajectoryService::RetimeTrajectoryService(MoveGroupContext* context) : context_(context) {
+  server_ = context_->nodeHandle().advertiseService("retime_trajectory", &RetimeTrajectoryService::handle, this);
+}
+
+bool RetimeTrajectoryService::handle(sixdof_msgs::RetimeTrajectoryRequest& request,
+                                     sixdof_msgs::RetimeTrajectoryResponse& response) {
+  ErrorCode& code = response.error_code;
+  const auto& path = request.trajectory.joint_trajectory;
+  code = validatePath(*context_->model(), path);
+  if (!isSuccess(code)) return true;
+  double velocity_scaling = 1.0;
+  double acceleration_scaling = 1.0;
+  code = validateScalingFactor(request.velocity_scaling_factor, "velocity_scaling_factor", kRetimeSource,
+                               &velocity_scaling);
+  if (!isSuccess(code)) return true;
+  code = validateScalingFactor(request.acceleration_scaling_factor, "acceleration_scaling_factor", kRetimeSource,
+                               &acceleration_scaling);
+  if (!isSuccess(code)) return true;
+  std::vector<Eigen::VectorXd> waypoints;
+  for (const auto& point : path.points) {
+    waypoints.push_back(Eigen::Map<const Eigen::VectorXd>(point.positions.data(), point.positions.size()));
+  }
+  sixdof_core::Trajectory trajectory;
+  code = context_->timeParameterize(path.joint_names, waypoints, velocity_scaling, acceleration_scaling, kRetimeSource,
+                                    &trajectory);
+  if (!isSuccess(code)) return true;
+  response.trajectory.joint_trajectory = toJointTrajectory(trajectory);
+  response.trajectory.joint_trajectory.header = path.header;
+  code = makeSuccess(kRetimeSource, "retimed " + std::to_string(path.points.size()) + " points to " +
+                                        formatNumber(trajectory.duration()) + " s");
+  return true;
+}
+
+}  // namespace sixdof_planning

@@ -1,7 +1,6 @@
 #include "sixdof_planning/retime_trajectory_service_capability.h"
 
 #include <cmath>
-#include <set>
 
 #include <sixdof_core/trajectory.h>
 #include <sixdof_msgs/RetimeTrajectory.h>
@@ -15,27 +14,14 @@ namespace sixdof_planning {
 namespace {
 const char* const kRetimeSource = "retime_trajectory";
 
-// Known, active, distinct joints and one finite position per joint at every point (INVALID_MOTION_PLAN).
+// Known, active, distinct joints and one finite position per joint at every point (INVALID_MOTION_PLAN); the
+// times are not checked: they are what gets replaced.
 ErrorCode validatePath(const sixdof_core::RobotModel& model, const trajectory_msgs::JointTrajectory& trajectory) {
   if (trajectory.joint_names.empty() || trajectory.points.empty()) {
     return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory has no joints or no points", kRetimeSource);
   }
-  std::set<std::string> seen;
-  for (const auto& name : trajectory.joint_names) {
-    const int index = model.jointIndex(name);
-    if (index < 0) {
-      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'",
-                       kRetimeSource);
-    }
-    if (!model.joints()[index].isActive()) {
-      return makeError(ErrorCode::INVALID_MOTION_PLAN,
-                       "trajectory joint '" + name + "' is fixed or a mimic joint (give its source joint)",
-                       kRetimeSource);
-    }
-    if (!seen.insert(name).second) {
-      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names joint '" + name + "' twice", kRetimeSource);
-    }
-  }
+  ErrorCode code = validateTrajectoryJoints(model, trajectory.joint_names, kRetimeSource);
+  if (!isSuccess(code)) return code;
   for (size_t i = 0; i < trajectory.points.size(); ++i) {
     const auto& positions = trajectory.points[i].positions;
     if (positions.size() != trajectory.joint_names.size()) {

@@ -9,6 +9,7 @@
 #include <sixdof_core/trajectory.h>
 
 #include "sixdof_planning/conversions.h"
+#include "sixdof_planning/validation.h"
 
 namespace sixdof_planning {
 
@@ -67,21 +68,7 @@ ErrorCode TrajectoryExecutor::validate(const trajectory_msgs::JointTrajectory& t
   const auto& model = *context_->model();
   const std::string problem = sixdof_core::validateTrajectory(fromJointTrajectory(trajectory));
   if (!problem.empty()) return makeError(ErrorCode::INVALID_MOTION_PLAN, "invalid trajectory: " + problem, source);
-  std::set<std::string> seen;
-  for (const auto& name : trajectory.joint_names) {
-    const int index = model.jointIndex(name);
-    if (index < 0) {
-      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'", source);
-    }
-    if (!model.joints()[index].isActive()) {
-      return makeError(ErrorCode::INVALID_MOTION_PLAN,
-                       "trajectory joint '" + name + "' is fixed or a mimic joint (give its source joint)", source);
-    }
-    if (!seen.insert(name).second) {
-      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names joint '" + name + "' twice", source);
-    }
-  }
-  return makeSuccess(source);
+  return validateTrajectoryJoints(model, trajectory.joint_names, source);
 }
 
 ErrorCode TrajectoryExecutor::split(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,

@@ -87,6 +87,25 @@ ErrorCode validateNamedState(const sixdof_core::RobotModel& model, const std::st
                    source);
 }
 
+ErrorCode validateTrajectoryJoints(const sixdof_core::RobotModel& model, const std::vector<std::string>& joint_names,
+                                   const std::string& source) {
+  std::set<std::string> seen;
+  for (const auto& name : joint_names) {
+    const int index = model.jointIndex(name);
+    if (index < 0) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names unknown joint '" + name + "'", source);
+    }
+    if (!model.joints()[index].isActive()) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN,
+                       "trajectory joint '" + name + "' is fixed or a mimic joint (give its source joint)", source);
+    }
+    if (!seen.insert(name).second) {
+      return makeError(ErrorCode::INVALID_MOTION_PLAN, "trajectory names joint '" + name + "' twice", source);
+    }
+  }
+  return makeSuccess(source);
+}
+
 ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_msgs::JointState& joint_state,
                              const std::string& source) {
   if (joint_state.position.size() != joint_state.name.size()) {

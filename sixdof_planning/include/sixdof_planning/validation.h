@@ -33,6 +33,9 @@ ErrorCode validateNamedState(const sixdof_core::RobotModel& model, const std::st
 // Known, non-fixed joints, one position per name, no duplicates, finite values (INVALID_ROBOT_STATE).
 ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_msgs::JointState& joint_state,
                              const std::string& source);
+// A trajectory's joints: known, active (not fixed, not mimic), each named once (INVALID_MOTION_PLAN).
+ErrorCode validateTrajectoryJoints(const sixdof_core::RobotModel& model, const std::vector<std::string>& joint_names,
+                                   const std::string& source);
 // A known operation; a non-empty id (except REMOVE: empty = all); for ADD/APPEND valid poses, at least one
 // shape when shapes_required (attaching an existing world object needs none), primitive dimensions complete
 // and positive, one pose per shape, meshes with finite vertices and in-range triangle indices.

@@ -464,7 +464,11 @@ struct CameraRenderer::Impl {
     const Shading* const shade = shading.data();
     const int strips = (height + kPacketSide - 1) / kPacketSide;
     std::atomic<int> next_strip{0};
-    auto work = [&] {
+    RTCScene scene = top;
+    const std::uint64_t seed = camera.seed;
+    // The lambda copies what the pixel loop reads: captures by reference would be reloaded after every byte
+    // stored (a uint8_t store may alias anything).
+    auto work = [=, &next_strip] {
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -492,7 +496,7 @@ struct CameraRenderer::Impl {
             packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
             packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
           }
-          rtcIntersect16(valid, top, &context, &packet);
+          rtcIntersect16(valid, scene, &context, &packet);
           for (int i = 0; i < 16; ++i) {
             const unsigned instance = packet.hit.instID[0][i];
             if (!valid[i] || instance == RTC_INVALID_GEOMETRY_ID) continue;
@@ -511,8 +515,8 @@ struct CameraRenderer::Impl {
         }
         if (noise > 0.0f) {
           // Per strip and frame: the same noise whichever thread renders the strip.
-          std::seed_seq seed{static_cast<std::uint64_t>(camera.seed), frame_index, static_cast<std::uint64_t>(strip)};
-          std::mt19937 rng(seed);
+          std::seed_seq strip_seed{seed, frame_index, static_cast<std::uint64_t>(strip)};
+          std::mt19937 rng(strip_seed);
           std::normal_distribution<float> gauss(0.0f, noise);
           const size_t end = std::min<size_t>(static_cast<size_t>(v0 + kPacketSide), height) * width;
           for (size_t p = static_cast<size_t>(v0) * width; p < end; ++p) {

@@ -1,6 +1,7 @@
 """moveit_commander and moveit_msgs without a ROS master: names, exceptions, conversions, argument forms,
 kinematics (Jacobian, bounds) and the iterative time parameterization, on the fixture robot."""
 
+import inspect
 import math
 
 import moveit_commander
@@ -52,6 +53,13 @@ def test_module_level_api():
     moveit_commander.roscpp_shutdown()
     with pytest.raises(MoveItCommanderException, match="roscpp_initialize needs a list of strings"):
         moveit_commander.roscpp_initialize("script.py")
+
+
+def test_planning_scene_interface_is_synchronous_by_default():
+    # Upstream defaults to False; ours applies each change before returning unless asked not to.
+    parameters = inspect.signature(moveit_commander.PlanningSceneInterface).parameters
+    assert parameters["synchronous"].default is True
+    assert parameters["ns"].default == ""
 
 
 def test_pose_list_conversions_round_trip():

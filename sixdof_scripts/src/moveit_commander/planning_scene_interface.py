@@ -8,10 +8,11 @@ from sixdof_msgs.msg import AttachedCollisionObject
 
 
 class PlanningSceneInterface(PlanningScene):
-    """MoveIt 1.1.16's PlanningSceneInterface. synchronous=False (upstream's default): changes are applied in order
-    by a background thread and the calls return at once; synchronous=True: each call returns once applied."""
+    """MoveIt 1.1.16's PlanningSceneInterface. synchronous=True (our default; upstream's is False): each call returns
+    once move_group applied it, so a script that then waits for the scene to update finds it updated at once;
+    synchronous=False: changes are applied in order by a background thread and the calls return at once."""
 
-    def __init__(self, ns: str = "", synchronous: bool = False, service_timeout: float = 5.0) -> None:
+    def __init__(self, ns: str = "", synchronous: bool = True, service_timeout: float = 5.0) -> None:
         super().__init__(ns=ns, wait_for_servers=service_timeout, synchronous=synchronous)
 
     def attach_object(self, attached_collision_object: AttachedCollisionObject) -> bool:  # upstream's signature

@@ -19,7 +19,11 @@ for arg in "$@"; do
   esac
 done
 work=$(mktemp -d /tmp/sixdof-bench-build.XXXXXX)
-trap 'rm -rf "$work"' EXIT
+cleanup() {
+  mountpoint -q "$work/chroot/proc" 2>/dev/null && umount "$work/chroot/proc"
+  rm -rf "$work"
+}
+trap cleanup EXIT
 report=$work/report.md
 
 # Seconds of wall time and CPU (user + sys) of a command, appended as a table row: name, wall, cpu.
@@ -59,6 +63,7 @@ if [ $apt = 1 ]; then
     http://deb.debian.org/debian
   grep -v '^\s*#' scripts/apt-packages.txt | sed '/^\s*$/d' > "$chroot_dir/root/packages.txt"
   cp /etc/resolv.conf "$chroot_dir/etc/resolv.conf"
+  mount -t proc proc "$chroot_dir/proc"
   measure "Debian packages (apt-get update + install, fresh minbase chroot)" chroot "$chroot_dir" bash -c \
     'export DEBIAN_FRONTEND=noninteractive; apt-get update -qq && apt-get install -y -qq --no-install-recommends $(cat /root/packages.txt)'
 fi

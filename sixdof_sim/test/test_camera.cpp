@@ -55,7 +55,9 @@ struct Scene {
 };
 
 float depthAt(const CameraFrame& f, int u, int v) { return f.depth[static_cast<size_t>(v) * f.width + u]; }
-const std::uint8_t* rgbAt(const CameraFrame& f, int u, int v) { return &f.rgb[3 * (static_cast<size_t>(v) * f.width + u)]; }
+const std::uint8_t* rgbAt(const CameraFrame& f, int u, int v) {
+  return &f.rgb[3 * (static_cast<size_t>(v) * f.width + u)];
+}
 
 TEST(Camera, IntrinsicsAndOpticalFrame) {
   const CameraIntrinsics k = cameraIntrinsics(frontCamera());
@@ -212,7 +214,8 @@ TEST(Camera, SeesTheRobotInItsMaterialColours) {
   spec.ground.enabled = false;  // every hit is the robot
   spec.cameras = {c};
   World world(test::robotUrdf(), spec, test::options(false));
-  CameraRenderer renderer(world, test::robotUrdf(), spec, CameraRendererOptions{test::options(false).package_search_roots, 2});
+  CameraRenderer renderer(world, test::robotUrdf(), spec,
+                          CameraRendererOptions{test::options(false).package_search_roots, 2});
   CameraFrame f;
   renderer.render(0, &f);
   int robot = 0, orange = 0;
@@ -288,7 +291,8 @@ TEST(CameraConfig, UnknownParentLinkRefusedByTheRenderer) {
   const WorldSpec spec = boxWorld({c});
   World world(test::robotUrdf(), spec, test::options(false));
   try {
-    CameraRenderer renderer(world, test::robotUrdf(), spec, CameraRendererOptions{test::options(false).package_search_roots, 1});
+    CameraRenderer renderer(world, test::robotUrdf(), spec,
+                            CameraRendererOptions{test::options(false).package_search_roots, 1});
     ADD_FAILURE() << "accepted an unknown parent link";
   } catch (const WorldError& e) {
     EXPECT_NE(std::string(e.what()).find("'parent'"), std::string::npos) << e.what();

@@ -113,7 +113,8 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
         ros::NodeHandle(nh_, name), readGripperControllerConfig(nh_, name, world_->joints()), *world_, arbiter_,
         clock));
   }
-  drivers_.push_back(std::make_unique<CameraPublisher>(nh_, *world_, urdf, spec, packageRoots(), static_tf_broadcaster_));
+  drivers_.push_back(
+      std::make_unique<CameraPublisher>(nh_, *world_, urdf, spec, packageRoots(), static_tf_broadcaster_));
   world_->setPreStepCallback([this](double sim_time) {
     for (const std::unique_ptr<JointDriver>& d : drivers_) {
       d->update(clock_offset_ + sim_time);

@@ -38,7 +38,8 @@ constexpr int kPacketSide = 4;
 
 bool validName(const std::string& name) {
   if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
-  return std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(name.begin(), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 struct TriangleMesh {
@@ -51,7 +52,8 @@ TriangleMesh unitBox() {
   for (int i = 0; i < 8; ++i) {
     m.vertices.insert(m.vertices.end(), {(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f});
   }
-  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
   return m;
 }
 
@@ -102,7 +104,7 @@ TriangleMesh loadTriangles(const std::string& path) {
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
         const aiFace& face = mesh->mFaces[f];
         if (face.mNumIndices != 3) continue;  // points and lines left by triangulation have no surface
-        out.indices.insert(out.indices.end(), {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+        for (unsigned corner = 0; corner < 3; ++corner) out.indices.push_back(base + face.mIndices[corner]);
       }
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], transform);
@@ -148,7 +150,8 @@ Result validateCameraSpec(const CameraSpec& c) {
     return out.str();
   };
   if (!validName(c.name)) {
-    return bad("'name' must start with a letter and hold only letters, digits and '_' (it names topics and frames), got '" +
+    return bad("'name' must start with a letter and hold only letters, digits and '_' (it names topics and "
+               "frames), got '" +
                c.name + "'");
   }
   if (!c.pose.matrix().allFinite()) return bad("'position' and 'rpy' must be finite");
@@ -163,7 +166,9 @@ Result validateCameraSpec(const CameraSpec& c) {
     return bad("'horizontal_fov_deg' must be in (0, 180) degrees, got " + text(c.horizontal_fov * 180.0 / M_PI));
   }
   if (!(c.rate > 0.0) || !std::isfinite(c.rate)) return bad("'rate' must be > 0 (Hz), got " + text(c.rate));
-  if (!(c.near_clip > 0.0) || !std::isfinite(c.near_clip)) return bad("'near' must be > 0 (m), got " + text(c.near_clip));
+  if (!(c.near_clip > 0.0) || !std::isfinite(c.near_clip)) {
+    return bad("'near' must be > 0 (m), got " + text(c.near_clip));
+  }
   if (!(c.far_clip > c.near_clip) || !std::isfinite(c.far_clip)) {
     return bad("'near' must be < 'far', got near " + text(c.near_clip) + " and far " + text(c.far_clip));
   }
@@ -554,7 +559,8 @@ CameraRenderer::CameraRenderer(const World& world, const std::string& urdf_xml, 
   d.cameras = spec.cameras;
   d.frames.assign(spec.cameras.size(), 0);
   d.roots = options.package_search_roots;
-  d.threads = options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  d.threads =
+      options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   // BVH builds stay on the calling thread: shapes are built once and the per-frame top-level build of a few
   // dozen instances is too small to spread.
   d.device = rtcNewDevice("threads=1");

@@ -13,36 +13,24 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "sixdof_sim/camera.h"
 #include "sixdof_sim/world.h"
 #include "sixdof_sim/world_file.h"
 
 namespace {
 
-namespace fs = std::filesystem;
+using sixdof_sim::bench::readFile;
+using sixdof_sim::bench::shareDir;
 using sixdof_sim::CameraFrame;
 using sixdof_sim::CameraRenderer;
 using sixdof_sim::CameraSpec;
 using sixdof_sim::World;
 using sixdof_sim::WorldSpec;
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-// <prefix>/lib/sixdof_sim/camera_bench -> <prefix>/share
-fs::path shareDir() { return fs::canonical("/proc/self/exe").parent_path().parent_path().parent_path() / "share"; }
 
 double percentile(std::vector<double> values, double q) {
   std::sort(values.begin(), values.end());

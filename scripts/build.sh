@@ -20,8 +20,6 @@ cmake_args=(
 )
 if command -v ccache >/dev/null; then
   cmake_args+=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  # Precompiled headers: ccache may serve a TU that uses one only with these sloppiness settings.
-  export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
 fi
 # colcon keeps only the last --cmake-args: a caller's cmake arguments are appended to ours instead.
 colcon_args=()

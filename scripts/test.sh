@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test: builds with tests enabled (the same package selection), static checks (ruff,
 # catkin_lint, generated files), then colcon test (gtest, rostest, pytest) of all packages. Results are
-# aggregated from the JUnit files, because `colcon test` exits 0 when tests fail. Exits non-zero on any failure or on zero tests.
+# aggregated from the JUnit files, because `colcon test` exits 0 when tests fail. Exits non-zero on any
+# failure or on zero tests.
 #   scripts/test.sh [colcon test args, e.g. --packages-select sixdof_core]
 set -uo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)

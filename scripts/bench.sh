@@ -29,9 +29,10 @@ fi
     "$b"
   done
 } | tee "$out.tmp"
-# The build section comes from scripts/bench_build.sh (`make bench-build`): keep it.
+# Sections written by other scripts (`make bench-build`, `make bench-pick`, ...) name the script in their
+# header, "## <name> (scripts/<script>.sh)": keep them.
 if [ -f "$out" ]; then
-  sed -n '/^## build (scripts\/bench_build.sh)/,/^## /{/^## build/p;/^## /!p}' "$out" | sed '1s/^/\n/' >> "$out.tmp"
+  awk '/^## /{keep = ($0 ~ /^## .* \(scripts\/[a-z_]+\.sh\)$/)} keep' "$out" | sed '1s/^/\n/' >> "$out.tmp"
 fi
 mv "$out.tmp" "$out"
 echo "wrote $out"

@@ -83,15 +83,5 @@ cat "$report"
 
 # Replace (or add) the build section of bench/results.md, keeping every other section.
 results=$repo/bench/results.md
-python3 - "$results" "$report" <<'EOF'
-import re
-import sys
-from pathlib import Path
-
-results, report = Path(sys.argv[1]), Path(sys.argv[2]).read_text()
-text = results.read_text() if results.exists() else "# Benchmark results\n"
-section = re.compile(r"^## build \(scripts/bench_build\.sh\).*?(?=^## |\Z)", re.S | re.M)
-text = section.sub("", text).rstrip("\n") + "\n\n" + report
-results.write_text(text)
-EOF
+python3 "$repo/scripts/results_section.py" "$results" "$report"
 echo "wrote the build section of $results"

@@ -137,6 +137,21 @@ TEST(WorldFile, ErrorsNameTheProblem) {
       {"gravity: [0, 0]\n", {"'gravity' must be a list of 3 numbers"}},
       {"objects: [\n", {"w.yaml:", "YAML syntax error"}},
       {"", {"the file is empty"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], position: [0, 0, 0]}\n", {"bins[0] (b)", "'size' [x, y]"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], size: [0.1, 0.1]}\n", {"bins[0] (b)", "'position' [x, y, z]"}},
+      {"bins:\n  - {name: b, position: [0, 0, 0], size: [0.1, 0.1]}\n", {"bins[0] (b)", "'color' is required"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], position: [0, 0, 0], size: [0.1, 0]}\n",
+       {"bins[0] (b)", "'size' must be > 0"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], position: [0, 0, 0], size: [0.1, 0.1], wall_height: -1}\n",
+       {"bins[0] (b)", "'wall_height' must be > 0"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], position: [0, 0, 0], size: [0.1, 0.1], wall_thickness: 0.05}\n",
+       {"w.yaml:2", "bins[0] (b)", "'wall_thickness'"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], position: [0, 0, 0], size: [0.1, 0.1], colour: red}\n",
+       {"bins[0] (b)", "unknown key 'colour'"}},
+      {"bins:\n  - {name: b, color: [1, 0, 0], position: [0, 0, 0], size: [0.1, 0.1]}\n"
+       "  - {name: b, color: [0, 1, 0], position: [1, 0, 0], size: [0.1, 0.1]}\n",
+       {"bins[1]", "duplicate bin name 'b'"}},
+      {"bins: {b: 1}\n", {"bins", "must be a list"}},
   };
   for (const Case& c : cases) {
     const std::string message = errorOf(c.yaml);
@@ -145,6 +160,41 @@ TEST(WorldFile, ErrorsNameTheProblem) {
       EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' missing in: " << message;
     }
   }
+}
+
+// A bin becomes four static walls inside its footprint, in its colour, standing on position.z.
+TEST(WorldFile, BinsBecomeStaticWalls) {
+  const WorldSpec spec = parseWorldYaml(R"(
+bins:
+  - {name: red_bin, color: [0.9, 0.1, 0.1], position: [0.3, 0.2, 0.0], size: [0.2, 0.1], wall_height: 0.04,
+     wall_thickness: 0.01}
+)",
+                                       "inline");
+  ASSERT_EQ(spec.objects.size(), 4u);
+  Eigen::AlignedBox3d bounds;
+  for (const ObjectSpec& wall : spec.objects) {
+    EXPECT_EQ(wall.name.rfind("red_bin_wall_", 0), 0u) << wall.name;
+    EXPECT_TRUE(wall.is_static);
+    EXPECT_TRUE(wall.collision);
+    EXPECT_DOUBLE_EQ(wall.color.r, 0.9);
+    EXPECT_NEAR(wall.pose.translation().z(), 0.02, 1e-12);
+    const Eigen::Vector3d half = wall.shape.box_size / 2;
+    bounds.extend(wall.pose.translation() - half);
+    bounds.extend(wall.pose.translation() + half);
+  }
+  EXPECT_TRUE(bounds.min().isApprox(Eigen::Vector3d(0.2, 0.15, 0.0)));
+  EXPECT_TRUE(bounds.max().isApprox(Eigen::Vector3d(0.4, 0.25, 0.04)));
+  const ObjectSpec* x_min = find(spec, "red_bin_wall_x_min");
+  ASSERT_NE(x_min, nullptr);
+  EXPECT_TRUE(x_min->shape.box_size.isApprox(Eigen::Vector3d(0.01, 0.1, 0.04)));
+}
+
+TEST(WorldFile, SortingWorldHasABinPerColour) {
+  const WorldSpec spec = loadWorldFile(std::string(SIXDOF_SIM_DIR) + "/worlds/sorting.yaml");
+  int walls = 0;
+  for (const ObjectSpec& o : spec.objects) walls += o.name.find("_bin_wall_") != std::string::npos;
+  EXPECT_EQ(walls, 12);
+  ASSERT_EQ(spec.cameras.size(), 1u);
 }
 
 TEST(WorldFile, MissingFileAndRelativeMeshes) {

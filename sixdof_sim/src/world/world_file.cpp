@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -219,9 +220,66 @@ class Parser {
     return spec;
   }
 
+  // A bin: an open box of four static walls standing on the surface at position.z, its outer edges the
+  // footprint. The walls are named <bin>_wall_{x_min,x_max,y_min,y_max} and take the bin's colour.
+  std::vector<ObjectSpec> bin(const YAML::Node& node, const std::string& context) const {
+    if (!node.IsMap()) fail(node, context, "must be a mapping");
+    if (!node["name"]) fail(node, context, "'name' is required");
+    const std::string name = text(node["name"], context, "name");
+    const std::string named = context + " (" + name + ")";
+    checkKeys(node, named, {"name", "color", "position", "yaw", "size", "wall_height", "wall_thickness"});
+    if (!node["position"]) fail(node, named, "'position' [x, y, z] (centre of the bottom) is required");
+    const Eigen::Vector3d position = vector3(node["position"], named, "position");
+    if (!node["size"]) fail(node, named, "'size' [x, y] (the outer footprint) is required");
+    const std::vector<double> size = numbers(node["size"], named, "size", 2);
+    if (!node["color"]) fail(node, named, "'color' is required (it names the bin's colour class)");
+    const Color color = this->color(node["color"], named);
+    const double yaw = node["yaw"] ? number(node["yaw"], named, "yaw") : 0.0;
+    const double height = node["wall_height"] ? number(node["wall_height"], named, "wall_height") : 0.03;
+    const double thickness = node["wall_thickness"] ? number(node["wall_thickness"], named, "wall_thickness") : 0.01;
+    if (!position.allFinite() || !std::isfinite(yaw)) fail(node, named, "'position' and 'yaw' must be finite");
+    if (!(size[0] > 0.0 && size[1] > 0.0) || !std::isfinite(size[0]) || !std::isfinite(size[1])) {
+      fail(node["size"], named, "'size' must be > 0 in x and y");
+    }
+    if (!(height > 0.0) || !std::isfinite(height)) fail(node["wall_height"], named, "'wall_height' must be > 0");
+    if (!(thickness > 0.0) || !(2.0 * thickness < std::min(size[0], size[1]))) {
+      fail(node["wall_thickness"] ? node["wall_thickness"] : node, named,
+           "'wall_thickness' must be > 0 and less than half the smaller side of 'size'");
+    }
+    Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+    frame.translation() = position;
+    frame.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    std::vector<ObjectSpec> walls;
+    const double hx = size[0] / 2.0, hy = size[1] / 2.0;
+    // x walls span the full y side; y walls fit between them.
+    const struct {
+      const char* suffix;
+      Eigen::Vector3d centre, extent;
+    } sides[] = {
+        {"x_min", {-hx + thickness / 2, 0, height / 2}, {thickness, size[1], height}},
+        {"x_max", {hx - thickness / 2, 0, height / 2}, {thickness, size[1], height}},
+        {"y_min", {0, -hy + thickness / 2, height / 2}, {size[0] - 2 * thickness, thickness, height}},
+        {"y_max", {0, hy - thickness / 2, height / 2}, {size[0] - 2 * thickness, thickness, height}},
+    };
+    for (const auto& side : sides) {
+      ObjectSpec wall;
+      wall.name = name + "_wall_" + side.suffix;
+      wall.shape.type = ShapeType::kBox;
+      wall.shape.box_size = side.extent;
+      wall.pose = frame * Eigen::Translation3d(side.centre);
+      wall.is_static = true;
+      wall.collision = true;
+      wall.color = color;
+      const Result valid = validateObjectSpec(wall);
+      if (!valid.ok()) fail(node, named, valid.message);
+      walls.push_back(wall);
+    }
+    return walls;
+  }
+
   WorldSpec world(const YAML::Node& root) const {
     if (!root.IsDefined() || root.IsNull()) fail(root, "", "the file is empty");
-    checkKeys(root, "", {"name", "gravity", "ground", "tables", "objects", "cameras"});
+    checkKeys(root, "", {"name", "gravity", "ground", "tables", "objects", "bins", "cameras"});
     WorldSpec spec;
     if (root["name"]) spec.name = text(root["name"], "", "name");
     if (root["gravity"]) spec.gravity = vector3(root["gravity"], "", "gravity");
@@ -250,6 +308,21 @@ class Parser {
         ObjectSpec object = this->object(items[i], context, std::string(list) == "tables");
         if (!names.insert(object.name).second) fail(items[i], context, "duplicate name '" + object.name + "'");
         spec.objects.push_back(object);
+      }
+    }
+    if (const YAML::Node bins = root["bins"]) {
+      if (!bins.IsSequence()) fail(bins, "bins", "must be a list");
+      std::set<std::string> bin_names;
+      for (size_t i = 0; i < bins.size(); ++i) {
+        const std::string context = "bins[" + std::to_string(i) + "]";
+        if (bins[i].IsMap() && bins[i]["name"] && bins[i]["name"].IsScalar() &&
+            !bin_names.insert(bins[i]["name"].Scalar()).second) {
+          fail(bins[i], context, "duplicate bin name '" + bins[i]["name"].Scalar() + "'");
+        }
+        for (const ObjectSpec& wall : bin(bins[i], context)) {
+          if (!names.insert(wall.name).second) fail(bins[i], context, "duplicate name '" + wall.name + "'");
+          spec.objects.push_back(wall);
+        }
       }
     }
     if (const YAML::Node cameras = root["cameras"]) {

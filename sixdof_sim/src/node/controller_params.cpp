@@ -68,6 +68,57 @@ double readStatePublishRate(const ros::NodeHandle& nh, const std::string& name) 
   return rate;
 }
 
+std::vector<std::string> readControllerList(const ros::NodeHandle& nh) {
+  const std::string name = nh.resolveName("controller_list");
+  XmlRpc::XmlRpcValue list;
+  if (!nh.getParam("controller_list", list)) {
+    throw std::runtime_error("no parameter '" + name +
+                             "' (the controllers config lists the controllers to run; or set ~controllers)");
+  }
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) {
+    throw std::runtime_error("parameter '" + name + "' must be a list");
+  }
+  const auto text = [](XmlRpc::XmlRpcValue& entry, const std::string& key) {
+    return entry.hasMember(key) && entry[key].getType() == XmlRpc::XmlRpcValue::TypeString
+               ? static_cast<std::string>(entry[key])
+               : std::string();
+  };
+  std::vector<std::string> names;
+  for (int i = 0; i < list.size(); ++i) {
+    const std::string who = name + "[" + std::to_string(i) + "]";
+    XmlRpc::XmlRpcValue& entry = list[i];
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct || text(entry, "name").empty()) {
+      throw std::runtime_error(who + " must be a dictionary with a 'name'");
+    }
+    const std::string type = entry.hasMember("type") ? text(entry, "type") : "FollowJointTrajectory";
+    const std::string action_ns = entry.hasMember("action_ns") ? text(entry, "action_ns") : "follow_joint_trajectory";
+    if (type != "FollowJointTrajectory" || action_ns != "follow_joint_trajectory") {
+      throw std::runtime_error(who + " ('" + text(entry, "name") + "'): type '" + type + "' on '" + action_ns +
+                               "' is not served (the simulator serves FollowJointTrajectory on "
+                               "follow_joint_trajectory, and gripper_cmd)");
+    }
+    names.push_back(text(entry, "name"));
+  }
+  if (names.empty()) {
+    throw std::runtime_error("parameter '" + name + "' lists no controller");
+  }
+  return names;
+}
+
+std::string defaultGripperCommandController(const ros::NodeHandle& nh, const std::vector<std::string>& controllers) {
+  for (const std::string& c : controllers) {
+    if (nh.hasParam(c + "/gripper_cmd")) {
+      return c;
+    }
+  }
+  for (const std::string& c : controllers) {
+    if (c == "gripper_controller") {
+      return c;
+    }
+  }
+  return "";
+}
+
 GripperControllerConfig readGripperControllerConfig(const ros::NodeHandle& nh, const std::string& name,
                                                     const std::vector<JointInfo>& robot_joints) {
   const std::string who = "controller '" + nh.resolveName(name) + "'";

@@ -20,6 +20,7 @@
 #include "controller_params.h"
 #include "conversions.h"
 #include "gripper_action.h"
+#include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/world_file.h"
 #include "trajectory_action.h"
 
@@ -48,17 +49,39 @@ void readParam(const ros::NodeHandle& pnh, const std::string& key, T* value) {
   }
 }
 
+std::string controllerSummary(const SimNodeOptions& o) {
+  std::string text;
+  for (const std::string& name : o.controllers) {
+    text += (text.empty() ? "" : ", ") + name + (name == o.gripper_command_controller ? " (+gripper_cmd)" : "");
+  }
+  if (!o.gripper_command_controller.empty() &&
+      std::find(o.controllers.begin(), o.controllers.end(), o.gripper_command_controller) == o.controllers.end()) {
+    text += ", " + o.gripper_command_controller + " (gripper_cmd only)";
+  }
+  return text.empty() ? "none" : text;
+}
+
 }  // namespace
 
-SimNodeOptions SimNode::readOptions(const ros::NodeHandle& pnh) {
+SimNodeOptions SimNode::readOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   SimNodeOptions o;
   readParam(pnh, "world_file", &o.world_file);
   readParam(pnh, "physics_step", &o.physics_step);
   readParam(pnh, "real_time_factor", &o.real_time_factor);
   readParam(pnh, "grasp_fix", &o.grasp_fix);
   readParam(pnh, "publish_rate", &o.publish_rate);
-  readParam(pnh, "controllers", &o.controllers);
-  readParam(pnh, "gripper_command_controller", &o.gripper_command_controller);
+  // The controllers config says which controllers exist (controller_list), so any robot's config package
+  // runs as it is: no gripper is required.
+  if (pnh.hasParam("controllers")) {
+    readParam(pnh, "controllers", &o.controllers);
+  } else {
+    o.controllers = readControllerList(nh);
+  }
+  if (pnh.hasParam("gripper_command_controller")) {
+    readParam(pnh, "gripper_command_controller", &o.gripper_command_controller);
+  } else {
+    o.gripper_command_controller = defaultGripperCommandController(nh, o.controllers);
+  }
   if (!(o.physics_step > 0.0) || !std::isfinite(o.physics_step)) {
     throw std::runtime_error("~physics_step must be > 0 (seconds)");
   }
@@ -71,7 +94,7 @@ SimNodeOptions SimNode::readOptions(const ros::NodeHandle& pnh) {
   return o;
 }
 
-SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), options_(readOptions(pnh)) {
+SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), options_(readOptions(nh, pnh)) {
   // A simulator restarted under the same master (roslaunch respawn) continues the clock of the one before it
   // instead of starting again at 0: every node would otherwise see time jump back, and actionlib servers
   // (e.g. move_group's) cancel goals stamped before the last goal they saw.
@@ -91,15 +114,24 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
   WorldOptions world_options;
   world_options.time_step = options_.physics_step;
   world_options.package_search_roots = packageRoots();
-  world_options.grasp_fix_enabled = options_.grasp_fix;
+  // grasp_fix defaults to true in every launch file; a robot without the URDF block (no gripper, or one that
+  // is not set up for it) simply runs without it.
+  const bool has_grasp_fix_block = parseGraspFixConfig(urdf).has_value();
+  if (options_.grasp_fix && !has_grasp_fix_block) {
+    ROS_INFO_STREAM("[sixdof_sim] grasp fix off: the URDF has no <gazebo><plugin name=\"gazebo_grasp_fix\"> block");
+  }
+  world_options.grasp_fix_enabled = options_.grasp_fix && has_grasp_fix_block;
   world_ = std::make_unique<World>(urdf, spec, world_options);
-  // docs/design.md: the world frame is the robot's (fixed) root link.
+  // docs/design.md: the world frame is the robot's (fixed) root link; a robot whose root is `world` (an arm on
+  // a mount joint) publishes that frame itself.
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
-  geometry_msgs::TransformStamped world_to_root;
-  world_to_root.header.frame_id = "world";
-  world_to_root.child_frame_id = model->getRoot()->name;
-  world_to_root.transform.rotation.w = 1.0;
-  static_tf_broadcaster_.sendTransform(world_to_root);
+  if (model->getRoot()->name != "world") {
+    geometry_msgs::TransformStamped world_to_root;
+    world_to_root.header.frame_id = "world";
+    world_to_root.child_frame_id = model->getRoot()->name;
+    world_to_root.transform.rotation.w = 1.0;
+    static_tf_broadcaster_.sendTransform(world_to_root);
+  }
 
   const auto clock = [this] { return now(); };
   for (const std::string& name : options_.controllers) {
@@ -143,7 +175,8 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
   ROS_INFO_STREAM("[sixdof_sim] " << world_->joints().size() << " joints, " << world_->objectNames().size()
                                   << " objects, step " << options_.physics_step << " s, real-time factor "
                                   << options_.real_time_factor << ", grasp fix "
-                                  << (world_->graspFixEnabled() ? "on" : "off"));
+                                  << (world_->graspFixEnabled() ? "on" : "off") << ", controllers "
+                                  << controllerSummary(options_));
 }
 
 SimNode::~SimNode() = default;

@@ -29,8 +29,11 @@ struct SimNodeOptions {
   // Hz of simulated time: joint_states, object_states, tf (at most this many per wall-clock second too), action
   // feedback.
   double publish_rate = 100.0;
-  std::vector<std::string> controllers{"arm_controller", "gripper_controller"};
-  std::string gripper_command_controller = "gripper_controller";  // serves <name>/gripper_cmd; empty: none
+  // FollowJointTrajectory controllers (~controllers; default: the names in controller_list).
+  std::vector<std::string> controllers;
+  // Also serves <name>/gripper_cmd; empty: none (~gripper_command_controller; default:
+  // defaultGripperCommandController).
+  std::string gripper_command_controller;
 };
 
 class SimNode {
@@ -41,7 +44,7 @@ class SimNode {
   void run();
 
  private:
-  static SimNodeOptions readOptions(const ros::NodeHandle& pnh);
+  static SimNodeOptions readOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
   double now() const { return clock_offset_ + world_->simTime(); }
   void stepOnce();
   void publishState();

@@ -364,6 +364,29 @@ bool CollisionScene::hasAttachedObject(const std::string& id) const {
   return Impl::findBody(impl_->attached, id) >= 0;
 }
 
+void CollisionScene::setOccupancyMap(std::shared_ptr<const OccupancyMap> map, const Eigen::Isometry3d& map_pose) {
+  impl_->setOccupancy(std::move(map), map_pose);
+}
+
+std::shared_ptr<const OccupancyMap> CollisionScene::occupancyMap() const { return impl_->occupancy; }
+
+std::vector<PlacedShape> CollisionScene::bodyShapes(const std::vector<Eigen::Isometry3d>& link_poses) const {
+  impl_->checkPoses(link_poses);
+  std::vector<PlacedShape> shapes;
+  for (int r = 0, n = impl_->robotCount(); r < n; ++r) {
+    const Body& body = impl_->robot(r);
+    const Eigen::Isometry3d base =
+        body.type == BodyType::kAttachedObject ? link_poses[body.link] * body.pose : link_poses[body.link];
+    for (const PlacedShape& placed : body.source) shapes.push_back(PlacedShape{placed.shape, base * placed.origin});
+  }
+  for (const Body& body : impl_->world) {
+    for (const PlacedShape& placed : body.source) {
+      shapes.push_back(PlacedShape{placed.shape, body.pose * placed.origin});
+    }
+  }
+  return shapes;
+}
+
 bool CollisionScene::isColliding(const std::vector<Eigen::Isometry3d>& link_poses, CollisionScope scope) const {
   impl_->checkPoses(link_poses);
   // The hot path of planning: shape poses go to a per-thread buffer instead of a new vector per query.

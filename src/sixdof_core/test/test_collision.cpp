@@ -12,6 +12,7 @@
 #include "sixdof_core/collision.h"
 #include "sixdof_core/mesh_loader.h"
 #include "test_collision_urdf_arm.h"
+#include "test_shapes.h"
 
 namespace sixdof_core {
 namespace {
@@ -31,40 +32,11 @@ std::vector<std::pair<std::string, std::string>> disabledPairs(const sixdof_test
   return pairs;
 }
 
-Shape box(double x, double y, double z) {
-  Shape s;
-  s.type = Shape::Type::kBox;
-  s.box_size << x, y, z;
-  return s;
-}
-
-Shape sphere(double r) {
-  Shape s;
-  s.type = Shape::Type::kSphere;
-  s.radius = r;
-  return s;
-}
-
-Shape cylinder(double r, double length) {
-  Shape s;
-  s.type = Shape::Type::kCylinder;
-  s.radius = r;
-  s.length = length;
-  return s;
-}
-
-Shape mesh(const std::string& path) {
-  Shape s;
-  s.type = Shape::Type::kMesh;
-  s.mesh_path = path;
-  return s;
-}
-
-Eigen::Isometry3d at(double x, double y, double z) {
-  Eigen::Isometry3d tf = Eigen::Isometry3d::Identity();
-  tf.translation() << x, y, z;
-  return tf;
-}
+using sixdof_test::at;
+using sixdof_test::box;
+using sixdof_test::cylinder;
+using sixdof_test::mesh;
+using sixdof_test::sphere;
 
 WorldObject object(const std::string& id, const Shape& shape, const Eigen::Isometry3d& pose) {
   WorldObject o;

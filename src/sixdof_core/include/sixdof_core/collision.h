@@ -15,6 +15,11 @@ namespace sixdof_core {
 
 enum class BodyType { kRobotLink, kAttachedObject, kWorldObject };
 
+class OccupancyMap;
+
+// The body name of the occupancy map's cells in contacts (MoveIt's OCTOMAP_NS); its type is kWorldObject.
+inline constexpr char kOccupancyMapBody[] = "<octomap>";
+
 // A planning-scene object fixed in the world: one id, one pose, several shapes placed in the object's frame.
 struct WorldObject {
   std::string id;
@@ -146,12 +151,24 @@ class CollisionScene {
   std::vector<std::string> attachedObjectIds() const;
   bool hasAttachedObject(const std::string& id) const;
 
+  // The occupancy map (occupancy_map.h) robot links and attached objects collide against (world objects do
+  // not), placed in the world by map_pose; null removes it. The map must not change while a scene holds it:
+  // give each scene a snapshot. Copies of the scene share it. Allowed-collision entries do not apply to it.
+  void setOccupancyMap(std::shared_ptr<const OccupancyMap> map,
+                       const Eigen::Isometry3d& map_pose = Eigen::Isometry3d::Identity());
+  std::shared_ptr<const OccupancyMap> occupancyMap() const;
+
+  // Every body's own shapes (neither padded nor scaled) placed in the world at link_poses: robot links, attached
+  // objects, then world objects. A depth sensor's self filter masks these.
+  std::vector<PlacedShape> bodyShapes(const std::vector<Eigen::Isometry3d>& link_poses) const;
+
   // Queries. link_poses[i] is the world pose of link i. A pose vector of the wrong size is a programming
   // error and throws std::invalid_argument (as std::vector::at would); everything else is a result.
   bool isColliding(const std::vector<Eigen::Isometry3d>& link_poses,
                    CollisionScope scope = CollisionScope::kAll) const;
   CollisionReport checkCollision(const std::vector<Eigen::Isometry3d>& link_poses,
                                  const CollisionRequest& request = CollisionRequest()) const;
+  // distance() leaves the occupancy map out (checkCollision and isColliding include it).
   DistanceReport distance(const std::vector<Eigen::Isometry3d>& link_poses,
                           CollisionScope scope = CollisionScope::kAll) const;
 

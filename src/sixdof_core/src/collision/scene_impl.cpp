@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/narrowphase/collision.h>
 #include <sstream>
 #include <stdexcept>
+
+#include "occupancy_map_impl.h"
 
 namespace sixdof_core {
 
@@ -188,11 +191,55 @@ bool CollisionScene::Impl::visitWorld(Query* q, int r, int s, const fcl::detail:
 }
 
 void CollisionScene::Impl::worldCollision(Query* q) const {
-  if (world.empty()) return;
-  const auto* root = manager->getTree().getRoot();
-  for (int r = 0, n = robotCount(); r < n && !q->done; ++r) {
-    if (!robot_has_world_pair[r]) continue;
-    for (std::size_t s = 0; s < robot(r).shapes.size() && !q->done; ++s) visitWorld(q, r, static_cast<int>(s), root);
+  if (!world.empty()) {
+    const auto* root = manager->getTree().getRoot();
+    for (int r = 0, n = robotCount(); r < n && !q->done; ++r) {
+      if (!robot_has_world_pair[r]) continue;
+      for (std::size_t s = 0; s < robot(r).shapes.size() && !q->done; ++s) {
+        visitWorld(q, r, static_cast<int>(s), root);
+      }
+    }
+  }
+  if (!q->done && octree) octreeCollision(q);
+}
+
+void CollisionScene::Impl::setOccupancy(std::shared_ptr<const OccupancyMap> map, const Eigen::Isometry3d& pose) {
+  occupancy = std::move(map);
+  occupancy_pose = pose;
+  octree.reset();
+  Eigen::Vector3d lo, hi;
+  if (!occupancy || !occupancy->occupiedBounds(&lo, &hi)) return;
+  octree = std::make_shared<const fcl::OcTreed>(detail::OccupancyMapAccess::tree(*occupancy));
+  // The octree's own bounding volume is the whole key space; the occupied cells' box prunes far better.
+  const Eigen::Vector3d center = pose * (0.5 * (lo + hi));
+  const Eigen::Vector3d extent = pose.linear().cwiseAbs() * (0.5 * (hi - lo));
+  octree_aabb = fcl::AABBd(center - extent, center + extent);
+}
+
+void CollisionScene::Impl::octreeCollision(Query* q) const {
+  const std::size_t max_contacts = q->report ? q->request->max_contacts_per_pair : 1;
+  const fcl::CollisionRequestd request(max_contacts, q->report != nullptr);
+  std::vector<fcl::Contactd> contacts;
+  for (int r = 0, n = robotCount(); r < n; ++r) {
+    const Body& body = robot(r);
+    bool hit = false;
+    std::size_t pair_count = 0;
+    for (std::size_t s = 0; s < body.shapes.size(); ++s) {
+      const ShapePose& pose = (*q->poses)[shape_offset[r] + s];
+      if (!pose.aabb.overlap(octree_aabb)) continue;
+      fcl::CollisionResultd result;
+      fcl::collide(body.shapes[s].geometry.get(), pose.tf, octree.get(), occupancy_pose, request, result);
+      if (!result.isCollision()) continue;
+      hit = true;
+      if (!q->report) break;
+      contacts.clear();
+      result.getContacts(contacts);
+      record(q, body, octomap_body, contacts, &pair_count);
+    }
+    if (hit) {
+      finishPair(q);
+      if (q->done) return;
+    }
   }
 }
 

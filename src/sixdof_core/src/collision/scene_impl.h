@@ -11,12 +11,14 @@
 #include <vector>
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/octree/octree.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/contact.h>
 
 #include "fcl_geometry.h"
 #include "narrow_phase.h"
 #include "sixdof_core/collision.h"
+#include "sixdof_core/occupancy_map.h"
 
 namespace sixdof_core {
 namespace detail {
@@ -66,11 +68,29 @@ struct CollisionScene::Impl {
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> world_objects;
   std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager;
 
-  Impl() = default;
-  Impl(const Impl& o) : links(o.links), attached(o.attached), world(o.world), link_names(o.link_names),
-                        link_index(o.link_index), acm(o.acm) {
+  // The occupancy map and FCL's octree geometry over its tree; octree is null while the map has no occupied cell.
+  std::shared_ptr<const OccupancyMap> occupancy;
+  Eigen::Isometry3d occupancy_pose = Eigen::Isometry3d::Identity();
+  std::shared_ptr<const fcl::OcTreed> octree;
+  fcl::AABBd octree_aabb;  // world frame, around the occupied cells
+  detail::Body octomap_body;
+
+  Impl() { octomap_body.name = kOccupancyMapBody; octomap_body.type = BodyType::kWorldObject; }
+  Impl(const Impl& o) : Impl() {
+    links = o.links;
+    attached = o.attached;
+    world = o.world;
+    link_names = o.link_names;
+    link_index = o.link_index;
+    acm = o.acm;
+    occupancy = o.occupancy;
+    occupancy_pose = o.occupancy_pose;
+    octree = o.octree;
+    octree_aabb = o.octree_aabb;
     rebuild();
   }
+
+  void setOccupancy(std::shared_ptr<const OccupancyMap> map, const Eigen::Isometry3d& pose);
 
   int robotCount() const { return static_cast<int>(links.size() + attached.size()); }
   const detail::Body& robot(int r) const {
@@ -129,6 +149,9 @@ struct CollisionScene::Impl {
   bool visitWorld(Query* q, int r, int s, const fcl::detail::NodeBase<fcl::AABBd>* node) const;
 
   void worldCollision(Query* q) const;
+
+  // Robot bodies against the occupancy map's occupied cells.
+  void octreeCollision(Query* q) const;
 
   static void consider(DistanceReport* report, const detail::PairDistance& d, const detail::Body& b1,
                        const detail::Body& b2);

@@ -183,7 +183,7 @@ std::string PackageResolver::resolve(const std::string& uri) const {
 
 RobotModel::RobotModel(const std::string& urdf_xml, const std::string& srdf_xml, const PackageResolver& resolver) {
   parseUrdf(urdf_xml, resolver);
-  parseSrdf(srdf_xml);
+  if (!srdf_xml.empty()) parseSrdf(srdf_xml);
 }
 
 std::shared_ptr<const RobotModel> RobotModel::fromFiles(const std::string& urdf_path, const std::string& srdf_path,
@@ -246,6 +246,7 @@ void RobotModel::parseUrdf(const std::string& urdf_xml, const PackageResolver& r
         case urdf::Geometry::MESH: {
           const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
           placed.shape.type = Shape::Type::kMesh;
+          placed.shape.mesh_resource = mesh.filename;
           try {
             placed.shape.mesh_path = resolver.resolve(mesh.filename);
           } catch (const RobotModelError& e) {
@@ -256,6 +257,14 @@ void RobotModel::parseUrdf(const std::string& urdf_xml, const PackageResolver& r
         }
       }
       link.collision.shapes.push_back(placed);
+    }
+    if (ulink->inertial) {
+      const urdf::Inertial& in = *ulink->inertial;
+      LinkInertial inertial;
+      inertial.mass = in.mass;
+      inertial.origin = toIsometry(in.origin);
+      inertial.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+      link.inertial = inertial;
     }
     const int link_index = static_cast<int>(links_.size());
     if (ulink->parent_joint) {
@@ -300,6 +309,10 @@ void RobotModel::parseUrdf(const std::string& urdf_xml, const PackageResolver& r
                    !std::isfinite(joint.limits.upper)) {
           throw RobotModelError("URDF: joint '" + ujoint.name + "' has invalid limits [" +
                                 std::to_string(joint.limits.lower) + ", " + std::to_string(joint.limits.upper) + "]");
+        }
+        if (ujoint.dynamics) {
+          joint.damping = ujoint.dynamics->damping;
+          joint.friction = ujoint.dynamics->friction;
         }
         if (ujoint.mimic) {
           joint.mimic = MimicInfo{ujoint.mimic->joint_name, ujoint.mimic->multiplier, ujoint.mimic->offset};

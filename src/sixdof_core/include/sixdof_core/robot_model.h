@@ -22,7 +22,9 @@ class RobotModelError : public std::runtime_error {
 enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
 
 struct JointLimits {
-  // Continuous joints are unbounded: lower/upper are then -pi/pi, the range random sampling uses.
+  // The one convention of every package (docs/design.md, "Joint limits"), MoveIt's: a continuous joint is
+  // unbounded (bounded = false, no position limit is enforced anywhere) and lower/upper are then -pi/pi,
+  // the range random sampling uses and displays show.
   bool bounded = true;
   double lower = 0.0;
   double upper = 0.0;
@@ -45,6 +47,8 @@ struct JointModel {
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // child frame at zero, in the parent link frame
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();           // unit, in the joint (child) frame
   JointLimits limits;
+  double damping = 0.0;   // URDF <dynamics damping> (N s/m or N m s/rad); the simulator applies it
+  double friction = 0.0;  // URDF <dynamics friction> (N or N m, Coulomb)
   std::optional<MimicInfo> mimic;
   int variable_index = -1;  // index in RobotState::positions(); -1 for fixed and mimic joints
 
@@ -53,12 +57,20 @@ struct JointModel {
   bool isMultiTurn() const;
 };
 
+// A link's URDF <inertial>: mass, centre of mass and inertia about it.
+struct LinkInertial {
+  double mass = 0.0;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // the inertial frame in the link frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         // about the centre of mass, inertial-frame axes
+};
+
 struct LinkModel {
   std::string name;
   int parent_joint = -1;  // index into RobotModel::joints(); -1 for the root link
   int parent_link = -1;   // index into RobotModel::links(); -1 for the root link
   std::vector<int> child_joints;
   LinkGeometry collision;  // shapes in the link frame; empty for links without collision geometry
+  std::optional<LinkInertial> inertial;  // absent for links without <inertial>
 };
 
 // An SRDF planning group. joints/links are the fully expanded contents (chains and subgroups included),
@@ -127,7 +139,8 @@ class PackageResolver {
 // The immutable kinematic and semantic description of the robot (URDF + SRDF), ROS-free.
 class RobotModel {
  public:
-  // Throws RobotModelError on malformed input, naming the problem.
+  // Throws RobotModelError on malformed input, naming the problem. An empty srdf_xml gives a model without
+  // semantics (no groups, states or end effectors): what a simulator needs.
   RobotModel(const std::string& urdf_xml, const std::string& srdf_xml,
              const PackageResolver& resolver = PackageResolver());
   static std::shared_ptr<const RobotModel> fromFiles(const std::string& urdf_path, const std::string& srdf_path,
@@ -136,7 +149,9 @@ class RobotModel {
   const std::string& name() const { return name_; }
   const std::string& rootLink() const { return links_.front().name; }
 
-  // Links in topological order (every parent before its children); joints in the same order.
+  // Links in breadth-first order from the root, siblings in URDF document order (every parent before its
+  // children); joints in the same order: joints()[i] is the parent joint of links()[i + 1]. Every package
+  // lists links and joints in this order.
   const std::vector<LinkModel>& links() const { return links_; }
   const std::vector<JointModel>& joints() const { return joints_; }
   int linkIndex(const std::string& name) const;   // -1 if unknown

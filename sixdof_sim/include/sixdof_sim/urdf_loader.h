@@ -1,20 +1,21 @@
 #pragma once
-// URDF -> a plain robot description for the Bullet world (urdfdom for the model, tinyxml2 for the
-// <gazebo> extensions urdfdom skips). No Bullet types here.
+// The core robot model (sixdof_core_model, the project's only URDF reader) mapped to a plain robot
+// description for the Bullet world: masses, inertias and collision shapes per link, the moving joints with
+// the core's limit convention. Only the <gazebo> extensions urdfdom skips (link friction, the grasp-fix block)
+// are read here. No Bullet types.
 
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "sixdof_core/geometry.h"
+#include "sixdof_core/robot_model.h"
 #include "sixdof_sim/world_types.h"
 
 namespace sixdof_sim {
 
-struct RobotCollision {
-  Shape shape;                                               // kMesh keeps the URI unresolved
-  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // in the link frame
-};
+using RobotCollision = sixdof_core::PlacedShape;  // in the link frame; meshes resolved to files
 
 struct RobotLink {
   std::string name;
@@ -35,14 +36,21 @@ struct RobotJoint {
 struct RobotDescription {
   std::string name;
   std::string root_link;
-  std::vector<RobotLink> links;    // parents before children (root first)
+  std::vector<RobotLink> links;    // the core model's link order (breadth-first, root first)
   std::vector<RobotJoint> joints;  // joints[i] has child links[i + 1]; same order as links
   std::optional<GraspFixConfig> grasp_fix;
 };
 
-// Throws std::invalid_argument naming the problem: unparsable URDF, floating/planar/continuous-less
-// unsupported joint types, a moving link without mass, non-symmetric/negative inertia, mimic of an
-// unknown joint, <mu1> that is not a non-negative number, a malformed grasp-fix block.
-RobotDescription parseRobotDescription(const std::string& urdf_xml);
+// What the simulator needs beyond the model, checked here. Throws std::invalid_argument with one line naming
+// the link or joint: a link moved by a joint without an <inertial> of mass > 0 ("cannot be simulated", as
+// Gazebo refuses it; fixed links may go without), a negative mass or a non-positive-semi-definite inertia,
+// a moving joint without an effort limit > 0 (the servo bound), negative damping or friction, <mu1> that is
+// not a non-negative number or names no link, a malformed grasp-fix block.
+RobotDescription describeRobot(const sixdof_core::RobotModel& model, const std::string& urdf_xml);
+
+// The core model of urdf_xml (no SRDF: the simulator needs no semantics) through describeRobot. Mesh URIs
+// resolve with `resolver`. Throws std::invalid_argument naming the problem, the model's errors included.
+RobotDescription parseRobotDescription(const std::string& urdf_xml,
+                                       const sixdof_core::PackageResolver& resolver = sixdof_core::PackageResolver());
 
 }  // namespace sixdof_sim

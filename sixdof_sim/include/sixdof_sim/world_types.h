@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "sixdof_core/geometry.h"
+
 namespace sixdof_sim {
 
 // Outcome of a World call that can fail on bad input. message names the problem (empty on success).
@@ -31,12 +33,16 @@ struct Result {
 
 enum class JointType { kRevolute, kPrismatic };
 
-// One actuated (revolute or prismatic) URDF joint. Fixed joints are merged into their parent link.
+// One actuated (revolute, continuous or prismatic) URDF joint, in the core robot model's joint order. Fixed
+// joints are merged into their parent link.
 struct JointInfo {
   std::string name;
   JointType type = JointType::kRevolute;
   std::string parent_link;
   std::string child_link;
+  // Continuous joints follow the core's convention (docs/design.md "One robot model"): bounded = false and
+  // lower/upper -pi/pi, a nominal range only; no limit is enforced on them.
+  bool bounded = true;
   double lower = 0.0;         // URDF <limit lower>
   double upper = 0.0;         // URDF <limit upper>
   double max_velocity = 0.0;  // URDF <limit velocity>: information for controllers, not enforced
@@ -53,6 +59,8 @@ struct JointInfo {
   std::string mimic_of;  // empty: not a mimic joint
   double mimic_multiplier = 1.0;
   double mimic_offset = 0.0;
+
+  bool withinLimits(double position) const { return !bounded || (position >= lower && position <= upper); }
 };
 
 // How a joint is currently driven.
@@ -62,17 +70,10 @@ struct JointInfo {
 //  kEffort:   a constant generalised force applied every step (no servo).
 enum class JointControlMode { kPosition, kVelocity, kEffort };
 
-enum class ShapeType { kBox, kCylinder, kSphere, kMesh };
-
-// Collision + visual shape of an object. Cylinders are along their local z axis (SolidPrimitive).
-struct Shape {
-  ShapeType type = ShapeType::kBox;
-  Eigen::Vector3d box_size = Eigen::Vector3d::Zero();  // full extents (kBox)
-  double radius = 0.0;                                 // kCylinder, kSphere
-  double length = 0.0;                                 // kCylinder
-  std::string mesh_resource;                           // kMesh: file path or package:// URI
-  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
-};
+// The shape value type is the core's (sixdof_core/geometry.h): one Shape for the robot model, the planning
+// scene and the simulator. Objects give mesh_resource (a path or package:// URI); the world resolves it.
+using ShapeType = sixdof_core::ShapeType;
+using Shape = sixdof_core::Shape;
 
 struct Color {
   double r = 0.7, g = 0.7, b = 0.7, a = 1.0;

@@ -1,6 +1,7 @@
 #include "controller_params.h"
 
 #include <cmath>
+#include <limits>
 
 #include <stdexcept>
 
@@ -51,8 +52,9 @@ TrajectoryControllerConfig readTrajectoryControllerConfig(const ros::NodeHandle&
   c.stopped_velocity_tolerance = readDouble(nh, cons + "stopped_velocity_tolerance", 0.01);
   for (const std::string& j : c.joints) {
     const JointInfo& info = findJoint(robot_joints, j, who);
-    c.lower_limits.push_back(info.lower);
-    c.upper_limits.push_back(info.upper);
+    // Continuous joints (bounded = false) have no position limit to check.
+    c.lower_limits.push_back(info.bounded ? info.lower : -std::numeric_limits<double>::infinity());
+    c.upper_limits.push_back(info.bounded ? info.upper : std::numeric_limits<double>::infinity());
     c.path_tolerance.push_back(readDouble(nh, cons + j + "/trajectory", 0.0));
     c.goal_tolerance.push_back(readDouble(nh, cons + j + "/goal", 0.0));
   }

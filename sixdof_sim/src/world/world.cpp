@@ -108,7 +108,8 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
   impl_->options = options;
   impl_->spec = world;
   try {
-    impl_->robot = parseRobotDescription(urdf_xml);
+    impl_->robot =
+        parseRobotDescription(urdf_xml, sixdof_core::PackageResolver::fromSearchRoots(options.package_search_roots));
   } catch (const std::invalid_argument& e) {
     throw WorldError(e.what());
   }

@@ -61,7 +61,7 @@ Result World::setJointPositions(const std::vector<std::string>& names, const std
       return {Status::kInvalidArgument, "joint '" + names[i] + "': position is not finite"};
     }
     const JointInfo& info = d.joint_infos[j];
-    if (positions[i] < info.lower || positions[i] > info.upper) {
+    if (!info.withinLimits(positions[i])) {
       return {Status::kOutOfLimits, "joint '" + names[i] + "': position " + std::to_string(positions[i]) +
                                         " outside [" + std::to_string(info.lower) + ", " +
                                         std::to_string(info.upper) + "]"};
@@ -142,7 +142,7 @@ Result World::setPositionTarget(const std::string& joint, double position, doubl
   if (!std::isfinite(position) || !std::isfinite(velocity)) {
     return {Status::kInvalidArgument, "joint '" + joint + "': target is not finite"};
   }
-  if (position < info.lower || position > info.upper) {
+  if (!info.withinLimits(position)) {
     return {Status::kOutOfLimits, "joint '" + joint + "': target " + std::to_string(position) + " outside [" +
                                       std::to_string(info.lower) + ", " + std::to_string(info.upper) + "]"};
   }

@@ -51,7 +51,9 @@ std::unique_ptr<btCollisionShape> World::Impl::makeShape(const Shape& shape, Eig
       out = std::make_unique<btSphereShape>(shape.radius);
       break;
     case ShapeType::kMesh: {
-      const std::string path = resolveResource(shape.mesh_resource, options.package_search_roots);
+      // Robot link shapes come resolved from the core model; objects carry only their resource.
+      const std::string path =
+          shape.mesh_path.empty() ? resolveResource(shape.mesh_resource, options.package_search_roots) : shape.mesh_path;
       if (path.empty()) {
         throw std::invalid_argument("mesh '" + shape.mesh_resource + "' not found (package search roots: " +
                                     std::to_string(options.package_search_roots.size()) + ")");

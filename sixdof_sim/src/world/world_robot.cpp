@@ -251,7 +251,7 @@ void World::Impl::addJointConstraints() {
       runtime.friction = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.friction * dt());
       runtime.friction->setVelocityTarget(0.0, 1.0);
     }
-    if (std::isfinite(info.lower) && std::isfinite(info.upper)) {
+    if (info.bounded) {
       auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(multibody.get(), link, info.lower, info.upper);
       world->addMultiBodyConstraint(limit.get());
       robot_constraints.push_back(std::move(limit));

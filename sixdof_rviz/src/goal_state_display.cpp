@@ -199,7 +199,7 @@ void GoalStateDisplay::loadModel() {
     return;
   }
   tip_link_ = group->tip_link;
-  fk_ = std::make_shared<LinkPoses>(model_->urdf());
+  fk_ = std::make_shared<LinkPoses>(model_->robotModel());
   // Like MoveIt, the marker is sized from the end effector so that it is not hidden inside the gripper.
   {
     const LinkPoseMap poses = fk_->compute(JointValues{});

@@ -68,7 +68,12 @@ void PlannedPathDisplay::loadRobot() {
     reportConfigError(this, "Robot", "parameter '" + param + "' holds no valid URDF");
     return;
   }
-  fk_ = std::make_shared<LinkPoses>(urdf_);
+  try {
+    fk_ = std::make_shared<LinkPoses>(loadRobotModel(urdf_xml));
+  } catch (const std::invalid_argument& e) {
+    reportConfigError(this, "Robot", e.what());
+    return;
+  }
   robot_ = std::make_unique<GhostRobot>(scene_node_, context_, "Planned Path", this, *urdf_, fk_);
   applyAppearance(robot_.get());
   robot_->setVisible(false);

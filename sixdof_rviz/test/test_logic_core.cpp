@@ -68,21 +68,21 @@ void expectInvalid(const std::string& srdf, const std::string& fragment) {
 TEST(SemanticModel, RejectsBadSrdfNamingTheProblem) {
   expectInvalid("", "empty semantic description");
   expectInvalid("<robot", "XML error");
-  expectInvalid(R"(<robot name="r"><group name="arm"><chain base_link="base_link" tip_link="nolink"/></group></robot>)",
-                "chain tip link 'nolink'");
-  expectInvalid(R"(<robot name="r"><group name="a"><group name="b"/></group><group name="b"><group name="a"/></group>
+  expectInvalid(R"(<robot name="sixdof"><group name="arm"><chain base_link="base_link" tip_link="nolink"/></group></robot>)",
+                "unknown link 'nolink'");
+  expectInvalid(R"(<robot name="sixdof"><group name="a"><group name="b"/></group><group name="b"><group name="a"/></group>
                    </robot>)",
                 "contains itself");
-  expectInvalid(R"(<robot name="r"><group name="g"><joint name="finger1_joint"/></group>
+  expectInvalid(R"(<robot name="sixdof"><group name="g"><joint name="finger1_joint"/></group>
                    <group_state name="s" group="g"/></robot>)",
                 "misses joint 'finger1_joint'");
-  expectInvalid(R"(<robot name="r"><group_state name="s" group="nogroup"/></robot>)", "unknown group 'nogroup'");
+  expectInvalid(R"(<robot name="sixdof"><group_state name="s" group="nogroup"/></robot>)", "unknown group 'nogroup'");
   EXPECT_THROW(SemanticModel("<robot name='x'/>", srdfXml()), std::invalid_argument);
 }
 
 TEST(LinkPoses, ZeroStateMatchesDesignContract) {
   SemanticModel model(urdfXml(), srdfXml());
-  LinkPoses fk(model.urdf());
+  LinkPoses fk(model.robotModel());
   EXPECT_EQ(fk.rootLink(), "base_link");
   const LinkPoseMap poses = fk.compute({});
   // docs/design.md: at zero the forearm is horizontal along +x; link6 origin at x = 0.12 + 0.18 + 0.08,
@@ -97,7 +97,7 @@ TEST(LinkPoses, ZeroStateMatchesDesignContract) {
 
 TEST(LinkPoses, RevoluteAndMimicJointsMove) {
   SemanticModel model(urdfXml(), srdfXml());
-  LinkPoses fk(model.urdf());
+  LinkPoses fk(model.robotModel());
   const LinkPoseMap poses = fk.compute({{"joint1", M_PI / 2}, {"finger1_joint", 0.03}});
   // joint1 turns the whole arm about z: the flange now lies on +y.
   EXPECT_NEAR(poses.at("link6").translation().x(), 0.0, 1e-9);
@@ -107,6 +107,45 @@ TEST(LinkPoses, RevoluteAndMimicJointsMove) {
   const Eigen::Vector3d f2 = poses.at("palm").inverse() * poses.at("finger2").translation();
   EXPECT_NEAR(f1.y(), 0.03, 1e-9);
   EXPECT_NEAR(f2.y(), -0.03, 1e-9);
+}
+
+// The shared joint-kinds fixture (sixdof_core/test/data): the same limits, groups, order and forward kinematics
+// as sixdof_core's and sixdof_sim's test_joint_kinds.
+std::string fixtureFile(const std::string& name) { return readFile(std::string(SIXDOF_CORE_TEST_DATA_DIR) + "/" + name); }
+
+TEST(JointKinds, LimitsGroupsAndStatesFollowTheCore) {
+  SemanticModel model(fixtureFile("joint_kinds.urdf"), fixtureFile("joint_kinds.srdf"));
+  const ActiveJoint* spin = model.activeJoint("spin");
+  ASSERT_NE(spin, nullptr);
+  EXPECT_FALSE(spin->bounded);
+  EXPECT_DOUBLE_EQ(spin->lower, -M_PI);
+  EXPECT_DOUBLE_EQ(spin->upper, M_PI);
+  const ActiveJoint* lift = model.activeJoint("lift");
+  ASSERT_NE(lift, nullptr);
+  EXPECT_TRUE(lift->bounded);
+  EXPECT_DOUBLE_EQ(lift->upper, 0.3);
+  EXPECT_EQ(model.activeJoint("finger_right"), nullptr);  // mimic
+  EXPECT_EQ(model.activeJoint("sensor_joint"), nullptr);  // fixed
+  ASSERT_NE(model.group("arm"), nullptr);
+  EXPECT_EQ(model.group("arm")->joints, (std::vector<std::string>{"spin", "lift", "tilt"}));
+  EXPECT_EQ(model.group("arm")->tip_link, "head");
+  EXPECT_EQ(model.group("gripper")->joints, std::vector<std::string>{"finger_left"});
+  EXPECT_EQ(model.namedStates("gripper"), (std::vector<std::string>{"open", "close"}));
+  std::vector<std::string> links;
+  for (const auto& link : model.robotModel()->links()) links.push_back(link.name);
+  EXPECT_EQ(links, (std::vector<std::string>{"mount", "base_link", "turntable", "carriage", "head", "sensor_frame",
+                                             "left_finger", "right_finger"}));
+}
+
+TEST(JointKinds, ForwardKinematicsOfEveryKind) {
+  SemanticModel model(fixtureFile("joint_kinds.urdf"), fixtureFile("joint_kinds.srdf"));
+  LinkPoses fk(model.robotModel());
+  EXPECT_EQ(fk.rootLink(), "mount");
+  const LinkPoseMap poses = fk.compute({{"spin", M_PI / 2}, {"lift", 0.2}, {"finger_left", 0.03}, {"other", 1.0}});
+  EXPECT_TRUE(poses.at("carriage").translation().isApprox(Eigen::Vector3d(0.0, 0.1, 0.45), 1e-12));
+  EXPECT_TRUE(poses.at("sensor_frame").translation().isApprox(Eigen::Vector3d(-0.05, 0.1, 0.45), 1e-12));
+  const Eigen::Vector3d right = poses.at("head").inverse() * poses.at("right_finger").translation();
+  EXPECT_TRUE(right.isApprox(Eigen::Vector3d(0.1, -0.04, 0.0), 1e-12));
 }
 
 sixdof_msgs::DisplayTrajectory makeTrajectory(const std::vector<double>& times) {

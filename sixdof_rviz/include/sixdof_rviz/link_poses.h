@@ -1,12 +1,12 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 
 #include <Eigen/Geometry>
-#include <urdf_model/model.h>
-#include <urdf_world/types.h>
 
+#include "sixdof_core/robot_model.h"
 #include "sixdof_rviz/semantic_model.h"
 
 namespace sixdof_rviz {
@@ -14,22 +14,19 @@ namespace sixdof_rviz {
 using LinkPoseMap = std::map<std::string, Eigen::Isometry3d, std::less<std::string>,
                              Eigen::aligned_allocator<std::pair<const std::string, Eigen::Isometry3d>>>;
 
-// Forward kinematics over the URDF tree: the pose of every link relative to the root link.
-// Joints absent from the values are at 0; mimic joints follow their master (multiplier, offset).
+// Forward kinematics of the core robot model (sixdof_core::RobotState): the pose of every link relative to the
+// root link. Active joints absent from the values are at the model's default position (0 when within the
+// limits); mimic joints follow their master; names of other joints are ignored.
 class LinkPoses {
  public:
-  explicit LinkPoses(urdf::ModelInterfaceSharedPtr model);
+  explicit LinkPoses(std::shared_ptr<const sixdof_core::RobotModel> model);
 
+  // Throws std::invalid_argument on a non-finite value.
   LinkPoseMap compute(const JointValues& values) const;
-  const std::string& rootLink() const { return root_link_; }
+  const std::string& rootLink() const { return model_->rootLink(); }
 
  private:
-  void descend(const urdf::Link& link, const Eigen::Isometry3d& pose, const JointValues& values,
-               LinkPoseMap* out) const;
-  double jointValue(const urdf::Joint& joint, const JointValues& values) const;
-
-  urdf::ModelInterfaceSharedPtr model_;
-  std::string root_link_;
+  std::shared_ptr<const sixdof_core::RobotModel> model_;
 };
 
 }  // namespace sixdof_rviz

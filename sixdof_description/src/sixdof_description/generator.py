@@ -23,12 +23,14 @@ PACKAGE = "sixdof_description"
 ARM_JOINTS = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
 GRIPPER_JOINTS = ("finger1_joint", "finger2_joint")
 LINKS = ("base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2")
+ROOT_LINK = "base_link"
 GENERATED_FILES = (
     "urdf/sixdof.urdf",
     "config/sixdof.srdf",
     "config/kinematics.yaml",
     "config/joint_limits.yaml",
     "config/controllers.yaml",
+    "config/setup_answers.yaml",
     *[f"meshes/visual/{name}.stl" for name in LINKS],
     *[f"meshes/collision/{name}.stl" for name in LINKS],
 )
@@ -264,6 +266,16 @@ def render_urdf(robot: Robot) -> str:
         link = robot.links[name]
         i = link.inertia
         mat = _material_name(colours[name])
+        # The root link is fixed to the world: no <inertial> (KDL cannot use one there and warns, as every
+        # robot_state_publisher would), as MoveIt users write their root links.
+        inertial = [] if name == ROOT_LINK else [
+            "    <inertial>",
+            f'      <origin xyz="{vec(link.com)}" rpy="0 0 0"/>',
+            f'      <mass value="{fmt(link.mass)}"/>',
+            f'      <inertia ixx="{fmt(i[0, 0])}" ixy="{fmt(i[0, 1])}" ixz="{fmt(i[0, 2])}" '
+            f'iyy="{fmt(i[1, 1])}" iyz="{fmt(i[1, 2])}" izz="{fmt(i[2, 2])}"/>',
+            "    </inertial>",
+        ]
         out += [
             f'  <link name="{name}">',
             "    <visual>",
@@ -275,12 +287,7 @@ def render_urdf(robot: Robot) -> str:
             '      <origin xyz="0 0 0" rpy="0 0 0"/>',
             f'      <geometry><mesh filename="package://{PACKAGE}/meshes/collision/{name}.stl"/></geometry>',
             "    </collision>",
-            "    <inertial>",
-            f'      <origin xyz="{vec(link.com)}" rpy="0 0 0"/>',
-            f'      <mass value="{fmt(link.mass)}"/>',
-            f'      <inertia ixx="{fmt(i[0, 0])}" ixy="{fmt(i[0, 1])}" ixz="{fmt(i[0, 2])}" '
-            f'iyy="{fmt(i[1, 1])}" iyz="{fmt(i[1, 2])}" izz="{fmt(i[2, 2])}"/>',
-            "    </inertial>",
+            *inertial,
             "  </link>",
         ]
     out.append('  <link name="tcp"/>')
@@ -467,6 +474,28 @@ def render_controllers(robot: Robot) -> str:
     return _yaml(data, CONTROLLERS_NOTE)
 
 
+def render_setup_answers(robot: Robot) -> str:
+    """The setup assistant's answers for this arm: with them, `setup_assistant --urdf urdf/sixdof.urdf` generates
+    the SRDF, kinematics, joint limits and controllers of this package (sixdof_core's test_sixdof_config.py)."""
+    d = robot.design
+    arm_states = {name: {j: float(fmt(v)) for j, v in zip(ARM_JOINTS, q, strict=True)}
+                  for name, q in robot.states.items()}
+    gripper_states = {name: {GRIPPER_JOINTS[0]: float(fmt(value))} for name, value in d["gripper_states"].items()}
+    data = {
+        "density": COLLISION_DENSITY,
+        "arm": {"group": "arm", "tip_link": "link6", "solver": "analytic", "controller": "arm_controller"},
+        "gripper": {"group": "gripper", "joints": list(GRIPPER_JOINTS), "controller": "gripper_controller"},
+        "end_effector": {"name": "hand", "parent_link": "link6"},
+        "named_states": {"arm": arm_states, "gripper": gripper_states},
+        "acceleration_limits": {name: float(robot.joint_params[name]["acceleration"])
+                                for name in (*ARM_JOINTS, *GRIPPER_JOINTS)},
+    }
+    return _yaml(data, "Answers for `rosrun sixdof_core setup_assistant --answers` (docs/your_own_arm.md).")
+
+
+# The collision matrix of the committed SRDF is sampled at MoveIt's low density.
+COLLISION_DENSITY = 1000
+
 CONTROLLERS_NOTE = """\
 ros_control layout. sixdof_sim reads type, joints, constraints, state_publish_rate and gripper_cmd; its joints
 are ideal position servos, so it does not read gains (PID gains for effort-controlled joints: real hardware
@@ -492,6 +521,7 @@ def generate_files(design_path: Path, previous_srdf: str | None) -> dict:
         "config/kinematics.yaml": render_kinematics(robot).encode(),
         "config/joint_limits.yaml": render_joint_limits(robot).encode(),
         "config/controllers.yaml": render_controllers(robot).encode(),
+        "config/setup_answers.yaml": render_setup_answers(robot).encode(),
     }
     for name in LINKS:
         files[f"meshes/visual/{name}.stl"] = stl_bytes(robot.links[name].visual)

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -15,6 +18,8 @@
 #include <tuple>
 
 #include "sixdof_core/collision.h"
+#include "sixdof_core/ik_analytic.h"
+#include "sixdof_core/ik_solver.h"
 
 namespace sixdof_core {
 
@@ -177,7 +182,9 @@ CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model,
   }
   const double n = static_cast<double>(options.density);
   StateSampler sampler(*model, options.seed);
+  const size_t progress_step = std::max<size_t>(1, options.density / 20);
   for (size_t s = 0; s < options.density && !undecided.empty(); ++s) {
+    if (options.progress && s > 0 && s % progress_step == 0) options.progress(s, options.density);
     state.setPositions(sampler.sample());
     result.pair_checks += undecided.size();
     for (const auto& contact : scene.checkCollision(state.linkTransforms(), request).contacts) {
@@ -196,6 +203,7 @@ CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model,
     }
   }
   result.samples = options.density;
+  if (options.progress) options.progress(options.density, options.density);
   for (const auto& p : undecided) {
     const size_t hits = collisions[p];
     if (hits == 0) {
@@ -295,19 +303,175 @@ SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::s
   return result;
 }
 
+namespace {
+
+// A YAML double-quoted scalar: names may hold any character.
+std::string yamlString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof(buffer), "\\x%02x", static_cast<unsigned char>(c));
+      out += buffer;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// Shortest text that reads back as the same double (YAML: .inf / -.inf / .nan).
+std::string yamlNumber(double value) {
+  if (std::isnan(value)) return ".nan";
+  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::ostringstream out;
+    out << std::setprecision(precision) << value;
+    if (std::stod(out.str()) == value) return out.str();
+  }
+  std::ostringstream out;
+  out << std::setprecision(17) << value;
+  return out.str();
+}
+
+std::string yamlVector(const Eigen::Vector3d& v) {
+  return "[" + yamlNumber(v.x()) + ", " + yamlNumber(v.y()) + ", " + yamlNumber(v.z()) + "]";
+}
+
+std::string yamlNames(const std::vector<std::string>& names) {
+  std::string out = "[";
+  for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + yamlString(names[i]);
+  return out + "]";
+}
+
+const char* jointTypeName(JointType type) {
+  switch (type) {
+    case JointType::kFixed:
+      return "fixed";
+    case JointType::kRevolute:
+      return "revolute";
+    case JointType::kContinuous:
+      return "continuous";
+    case JointType::kPrismatic:
+      return "prismatic";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string describeModel(const RobotModel& model, const CollisionMatrixResult* collisions) {
+  std::ostringstream out;
+  out << "robot: " << yamlString(model.name()) << "\n";
+  out << "root_link: " << yamlString(model.rootLink()) << "\n";
+  out << "links:\n";
+  for (const auto& link : model.links()) {
+    out << "- {name: " << yamlString(link.name) << ", parent_joint: "
+        << (link.parent_joint < 0 ? std::string("null") : yamlString(model.joints()[link.parent_joint].name))
+        << ", geometry: " << (link.collision.shapes.empty() ? "false" : "true") << "}\n";
+  }
+  out << "joints:\n";
+  for (const auto& joint : model.joints()) {
+    out << "- name: " << yamlString(joint.name) << "\n";
+    out << "  type: " << jointTypeName(joint.type) << "\n";
+    out << "  parent: " << yamlString(joint.parent_link) << "\n";
+    out << "  child: " << yamlString(joint.child_link) << "\n";
+    out << "  xyz: " << yamlVector(joint.origin.translation()) << "\n";
+    out << "  axis: " << yamlVector(joint.axis) << "\n";
+    out << "  active: " << (joint.isActive() ? "true" : "false") << "\n";
+    if (joint.type != JointType::kFixed) {
+      out << "  bounded: " << (joint.limits.bounded ? "true" : "false") << "\n";
+      out << "  lower: " << yamlNumber(joint.limits.lower) << "\n";
+      out << "  upper: " << yamlNumber(joint.limits.upper) << "\n";
+      out << "  velocity: " << yamlNumber(joint.limits.velocity) << "\n";
+      out << "  effort: " << yamlNumber(joint.limits.effort) << "\n";
+    }
+    if (joint.mimic) {
+      out << "  mimic: {joint: " << yamlString(joint.mimic->joint) << ", multiplier: "
+          << yamlNumber(joint.mimic->multiplier) << ", offset: " << yamlNumber(joint.mimic->offset) << "}\n";
+    }
+  }
+  out << "groups:\n";
+  for (const auto& group : model.groups()) {
+    out << "- name: " << yamlString(group.name) << "\n";
+    out << "  joints: " << yamlNames(group.joints) << "\n";
+    out << "  active_joints: " << yamlNames(group.active_joints) << "\n";
+    out << "  links: " << yamlNames(group.links) << "\n";
+    out << "  chain: " << (group.isChain() ? "true" : "false") << "\n";
+    if (group.isChain()) {
+      out << "  base_link: " << yamlString(group.chain_base) << "\n";
+      out << "  tip_link: " << yamlString(group.chain_tip) << "\n";
+    }
+    // The solver that fits: the closed form where the chain's geometry allows it (what createIkSolver
+    // would build from kinematics.yaml), else the numeric solver; the reason is the analytic solver's own.
+    std::string solver = "none";
+    std::string reason;
+    try {
+      createIkSolver("analytic", model, group.name);
+      solver = "analytic";
+      reason = "6R chain with a spherical wrist: closed-form IK (all solutions)";
+    } catch (const AnalyticIkUnsupported& e) {
+      solver = "numeric";
+      reason = std::string("no closed form: ") + e.what();
+    } catch (const std::exception& e) {
+      reason = std::string("no IK: ") + e.what();
+    }
+    out << "  solver: " << solver << "\n";
+    out << "  solver_reason: " << yamlString(reason) << "\n";
+  }
+  out << "group_states:\n";
+  for (const auto& state : model.groupStates()) {
+    out << "- name: " << yamlString(state.name) << "\n  group: " << yamlString(state.group) << "\n  values: {";
+    bool first = true;
+    for (const auto& [joint, value] : state.values) {
+      out << (first ? "" : ", ") << yamlString(joint) << ": " << yamlNumber(value);
+      first = false;
+    }
+    out << "}\n";
+  }
+  out << "end_effectors:\n";
+  for (const auto& ee : model.endEffectors()) {
+    out << "- {name: " << yamlString(ee.name) << ", parent_link: " << yamlString(ee.parent_link)
+        << ", group: " << yamlString(ee.group) << ", parent_group: " << yamlString(ee.parent_group) << "}\n";
+  }
+  out << "virtual_joints:\n";
+  for (const auto& vj : model.virtualJoints()) {
+    out << "- {name: " << yamlString(vj.name) << ", type: " << yamlString(vj.type)
+        << ", parent_frame: " << yamlString(vj.parent_frame) << ", child_link: " << yamlString(vj.child_link)
+        << "}\n";
+  }
+  if (collisions) {
+    std::map<std::string, size_t> counts;
+    for (const auto& pair : collisions->disabled) ++counts[reasonName(pair.reason)];
+    out << "collisions: {link_pairs: " << collisions->link_pairs << ", samples: " << collisions->samples
+        << ", pair_checks: " << collisions->pair_checks << ", Adjacent: " << counts["Adjacent"]
+        << ", Default: " << counts["Default"] << ", Always: " << counts["Always"] << ", Never: " << counts["Never"]
+        << ", enabled: " << collisions->link_pairs - collisions->disabled.size() << "}\n";
+  }
+  return out.str();
+}
+
 }  // namespace sixdof_core
 
 namespace sixdof_core {
 
 const char* const kSetupAssistantUsage =
-    "usage: setup_assistant --urdf FILE [--srdf-in FILE] --srdf-out FILE [--density N] [--seed S]\n"
-    "                       [--groups-skeleton]\n"
+    "usage: setup_assistant_core --urdf FILE [--srdf-in FILE] (--srdf-out FILE | --describe FILE)\n"
+    "                            [--describe FILE] [--density N] [--seed S] [--groups-skeleton]\n"
+    "  The C++ half of `setup_assistant` (the command users run; it also expands xacro and generates\n"
+    "  config packages). The URDF must be expanded (no xacro).\n"
     "  --urdf FILE         robot description (package:// meshes are found in the folders above the URDF,\n"
     "                      then via ROS_PACKAGE_PATH)\n"
     "  --srdf-in FILE      existing SRDF: groups, states, end effectors, virtual/passive joints and\n"
     "                      disable_collisions entries with other reasons than Adjacent/Default/Always/Never\n"
     "                      are kept\n"
     "  --srdf-out FILE     where to write the SRDF (may be the same file as --srdf-in)\n"
+    "  --describe FILE     write the model (links, joints, limits, groups with the IK solver that fits,\n"
+    "                      states, end effectors, collision counts) as YAML; without --srdf-out: of the\n"
+    "                      URDF (+ --srdf-in) model, without sampling\n"
     "  --density N         random samples for Always/Never (1000 low .. 100000 high; default 10000)\n"
     "  --seed S            random seed (default 0); the same inputs and seed give the same file\n"
     "  --groups-skeleton   when the input has no groups: arm = chain root -> last revolute joint's child,\n"
@@ -336,7 +500,8 @@ SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string
     }
     if (arg == "--groups-skeleton") {
       command.options.groups_skeleton = true;
-    } else if (arg == "--urdf" || arg == "--srdf-in" || arg == "--srdf-out" || arg == "--density" || arg == "--seed") {
+    } else if (arg == "--urdf" || arg == "--srdf-in" || arg == "--srdf-out" || arg == "--density" || arg == "--seed" ||
+               arg == "--describe") {
       if (i + 1 >= args.size()) throw std::invalid_argument(arg + " needs a value");
       values[arg] = args[++i];
     } else {
@@ -344,9 +509,12 @@ SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string
     }
   }
   if (!values.count("--urdf")) throw std::invalid_argument("--urdf is required");
-  if (!values.count("--srdf-out")) throw std::invalid_argument("--srdf-out is required");
+  if (!values.count("--srdf-out") && !values.count("--describe")) {
+    throw std::invalid_argument("--srdf-out or --describe is required");
+  }
   command.urdf_path = values["--urdf"];
   command.srdf_out_path = values["--srdf-out"];
+  command.describe_path = values["--describe"];
   if (values.count("--srdf-in")) command.srdf_in_path = values["--srdf-in"];
   if (values.count("--density")) {
     unsigned long long density = 0;
@@ -386,19 +554,31 @@ SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& comma
     srdf_in = readTextFile(command.srdf_in_path);
     if (srdf_in.empty()) throw RobotModelError("SRDF file '" + command.srdf_in_path + "' is empty");
   }
+  const auto resolver = PackageResolver::fromSearchRoots(roots);
   SetupAssistantResult result;
+  std::string description;
   try {
-    result = runSetupAssistant(urdf, srdf_in, command.options, PackageResolver::fromSearchRoots(roots));
+    if (command.srdf_out_path.empty()) {
+      const std::string srdf = srdf_in.empty() ? emptySrdf(urdfRobotName(urdf)) : srdf_in;
+      description = describeModel(RobotModel(urdf, srdf, resolver));
+    } else {
+      result = runSetupAssistant(urdf, srdf_in, command.options, resolver);
+      if (!command.describe_path.empty()) {
+        description = describeModel(RobotModel(urdf, result.srdf, resolver), &result.collisions);
+      }
+    }
   } catch (const RobotModelError& e) {
     throw RobotModelError(std::string(e.what()) + " (URDF '" + command.urdf_path + "'" +
                           (command.srdf_in_path.empty() ? "" : ", SRDF '" + command.srdf_in_path + "'") + ")");
   } catch (const SrdfError& e) {
     throw SrdfError(std::string(e.what()) + " (SRDF '" + command.srdf_in_path + "')");
   }
-  std::ofstream out(command.srdf_out_path, std::ios::binary | std::ios::trunc);
-  if (!out || !(out << result.srdf) || !out.flush()) {
-    throw RobotModelError("cannot write file '" + command.srdf_out_path + "'");
-  }
+  auto write = [](const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out || !(out << text) || !out.flush()) throw RobotModelError("cannot write file '" + path + "'");
+  };
+  if (!command.srdf_out_path.empty()) write(command.srdf_out_path, result.srdf);
+  if (!command.describe_path.empty()) write(command.describe_path, description);
   return result;
 }
 

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,9 @@ struct CollisionMatrixOptions {
   std::size_t density = 10000;
   std::uint64_t seed = 0;
   double always_fraction = 0.95;
+  // Called while sampling (about every 5% of the samples, and once at the end) with the samples drawn so far
+  // and the density: a long run at a high density shows that it is alive.
+  std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
 struct ComputedPair {
@@ -95,11 +99,20 @@ SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::s
                                        const SetupAssistantOptions& options,
                                        const PackageResolver& resolver = PackageResolver());
 
-// The command line of `rosrun sixdof_core setup_assistant`.
+// What the setup assistant's front end (and a user) needs to know of a model, as YAML, read by the core so
+// that no other code parses URDF/SRDF: the robot name and root link; links in model order (whether they
+// have geometry); joints in model order (type, links, origin, axis, limits, mimic); the SRDF's groups (expanded
+// joints, active joints, chain ends, and the IK solver that fits a chain: `analytic` when the closed form
+// of AnalyticIkSolver applies, else `numeric`, with the reason); group states, end effectors and virtual
+// joints; and, when given, the collision-matrix counts.
+std::string describeModel(const RobotModel& model, const CollisionMatrixResult* collisions = nullptr);
+
+// The command line of `rosrun sixdof_core setup_assistant_core` (the C++ half of `setup_assistant`).
 struct SetupAssistantCommand {
   std::string urdf_path;
   std::string srdf_in_path;  // empty: no input SRDF
-  std::string srdf_out_path;
+  std::string srdf_out_path;  // empty (only with describe_path): describe the model without sampling
+  std::string describe_path;  // empty: no description
   SetupAssistantOptions options;
   bool help = false;
 };
@@ -110,9 +123,10 @@ extern const char* const kSetupAssistantUsage;
 // density not a whole number > 0, seed not a whole number >= 0).
 SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string>& args);
 
-// Reads the files, runs the setup assistant and writes the SRDF. package:// mesh URIs are resolved in the
-// three folders above the URDF first, then in ROS_PACKAGE_PATH. Throws RobotModelError naming a file that
-// cannot be read or written, and whatever runSetupAssistant throws.
+// Reads the files, runs the setup assistant and writes the SRDF (and, with describe_path, the description of
+// the model with the written SRDF). Without srdf_out_path: only describes the URDF (+ input SRDF) model.
+// package:// mesh URIs are resolved in the three folders above the URDF first, then in ROS_PACKAGE_PATH.
+// Throws RobotModelError naming a file that cannot be read or written, and whatever runSetupAssistant throws.
 SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& command);
 
 }  // namespace sixdof_core

@@ -391,6 +391,53 @@ TEST(SetupAssistant, RunsOnFilesAndWritesTheSrdf) {
   EXPECT_THROW(runSetupAssistantOnFiles(command), RobotModelError);
 }
 
+TEST(SetupAssistant, ProgressIsReportedWhileSamplingAndAtTheEnd) {
+  CollisionMatrixOptions collision;
+  collision.density = 400;
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  collision.progress = [&calls](std::size_t done, std::size_t total) { calls.emplace_back(done, total); };
+  computeDisabledCollisions(armModel(), collision);
+  ASSERT_GE(calls.size(), 2u);
+  EXPECT_EQ(calls.back(), std::make_pair(std::size_t{400}, std::size_t{400}));
+  for (size_t i = 1; i < calls.size(); ++i) EXPECT_GT(calls[i].first, calls[i - 1].first);
+}
+
+TEST(SetupAssistant, DescribesTheModelWithTheSolverThatFitsEachChain) {
+  const auto arm = armModel();
+  const std::string description = describeModel(*arm);
+  EXPECT_NE(description.find("robot: \"sixdof\""), std::string::npos);
+  EXPECT_NE(description.find("root_link: \"base_link\""), std::string::npos);
+  EXPECT_NE(description.find("mimic: {joint: \"finger1_joint\", multiplier: 1, offset: 0}"), std::string::npos);
+  EXPECT_NE(description.find("  solver: analytic\n"), std::string::npos);  // the arm: 6R, spherical wrist
+  EXPECT_NE(description.find("  solver: none\n"), std::string::npos);      // the gripper: not a chain
+  EXPECT_EQ(description.find("collisions:"), std::string::npos);
+
+  // The same 6R arm with the wrist moved off the forearm's axis has no closed form: numeric, and why.
+  std::string urdf = readTextFile(kArmUrdf);
+  const std::string joint5 = "<joint name=\"joint5\" type=\"revolute\">";
+  const size_t at = urdf.find("<origin", urdf.find(joint5));
+  urdf.replace(at, urdf.find("/>", at) + 2 - at, "<origin xyz=\"0.18 0.03 0\" rpy=\"0 0 0\"/>");
+  const RobotModel offset(urdf, readTextFile(kArmSrdf), armResolver());
+  const std::string numeric = describeModel(offset);
+  EXPECT_NE(numeric.find("  solver: numeric\n  solver_reason: \"no closed form: "), std::string::npos) << numeric;
+
+  CollisionMatrixResult collisions;
+  collisions.link_pairs = 3;
+  EXPECT_NE(describeModel(*arm, &collisions).find("collisions: {link_pairs: 3,"), std::string::npos);
+}
+
+TEST(SetupAssistant, DescribeOnlyNeedsNoSrdfOut) {
+  const auto command = parseSetupAssistantArguments({"--urdf", "a", "--describe", "d.yaml"});
+  EXPECT_EQ(command.describe_path, "d.yaml");
+  EXPECT_TRUE(command.srdf_out_path.empty());
+  SetupAssistantCommand run;
+  run.urdf_path = kUrUrdf;
+  run.describe_path = testing::TempDir() + "/setup_assistant_describe.yaml";
+  runSetupAssistantOnFiles(run);
+  EXPECT_NE(readTextFile(run.describe_path).find("robot: \"ur_like\""), std::string::npos);
+  std::remove(run.describe_path.c_str());
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();

@@ -110,6 +110,9 @@ def main(argv: list[str] | None = None) -> int:
     except (UsageError, DescriptionError, AnswersError, InferenceError, GenerationError) as error:
         print(f"setup_assistant: {' '.join(str(error).split())}", file=sys.stderr)
         return 2
+    except OSError as error:  # e.g. an output folder without write permission
+        print(f"setup_assistant: {error.filename or ''}: {error.strerror or error}", file=sys.stderr)
+        return 2
     for label, files in (("created", result.created), ("regenerated", result.regenerated),
                          ("kept (edited by hand; delete to regenerate)", result.kept)):
         if files:

@@ -8,6 +8,7 @@
 #include "sixdof_planning/move_action_capability.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/plan_service_capability.h"
+#include "sixdof_planning/query_robot_model_service_capability.h"
 #include "sixdof_planning/retime_trajectory_service_capability.h"
 #include "sixdof_planning/state_validation_service_capability.h"
 #include "sixdof_planning/trajectory_execution.h"
@@ -27,6 +28,7 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   apply_scene_ = std::make_unique<ApplyPlanningSceneService>(context_.get());
   move_group_ = std::make_unique<MoveGroupActionCapability>(context_.get(), executor_.get());
   execute_trajectory_ = std::make_unique<ExecuteTrajectoryActionCapability>(context_.get(), executor_.get());
+  robot_model_ = std::make_unique<QueryRobotModelService>(context_.get());
 }
 
 MoveGroupNode::~MoveGroupNode() = default;

@@ -22,6 +22,7 @@ class GetPlanningSceneService;
 class ApplyPlanningSceneService;
 class MoveGroupActionCapability;
 class ExecuteTrajectoryActionCapability;
+class QueryRobotModelService;
 
 class MoveGroupNode {
  public:
@@ -42,6 +43,7 @@ class MoveGroupNode {
   std::unique_ptr<ApplyPlanningSceneService> apply_scene_;
   std::unique_ptr<MoveGroupActionCapability> move_group_;
   std::unique_ptr<ExecuteTrajectoryActionCapability> execute_trajectory_;
+  std::unique_ptr<QueryRobotModelService> robot_model_;
 };
 
 }  // namespace sixdof_planning

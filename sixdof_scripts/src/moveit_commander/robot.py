@@ -38,7 +38,7 @@ class RobotCommander:
             return 0 if self._joint.type == "fixed" else 1
 
         def bounds(self) -> list[float]:
-            """[min, max] position (radians or metres; infinite for continuous joints)."""
+            """[min, max] position (radians or metres; -pi, pi for continuous joints, as MoveIt's bounds)."""
             return [self._joint.lower, self._joint.upper]
 
         def min_bound(self) -> float:

@@ -10,8 +10,10 @@ import actionlib
 import rospy
 from sensor_msgs.msg import JointState
 
+from sixdof_msgs.srv import GetRobotModel, GetRobotModelRequest
+
 from .exceptions import SixdofCommanderError
-from .robot_model import RobotDescription, SemanticDescription, parse_srdf, parse_urdf
+from .robot_model import RobotDescription, SemanticDescription, model_from_response
 
 
 def resolve(ns: str, name: str) -> str:
@@ -33,27 +35,41 @@ def require_node() -> None:
 
 
 def load_robot_model(
-    ns: str, robot_description: str = "robot_description"
+    ns: str, robot_description: str = "robot_description", timeout: float = 5.0
 ) -> tuple[RobotDescription, SemanticDescription]:
-    """URDF and SRDF from the parameter server (`robot_description` and `robot_description`_semantic).
+    """The robot model, from move_group's `get_robot_model` service (query_robot_model).
 
-    The one place the commander reads the robot model: every class gets its groups, joints, limits and named
-    states from here, so the source (today the parameters, parsed in Python) can be swapped in one place.
+    The one place the commander gets the robot model: every class gets its groups, joints, limits and named
+    states from here. move_group serves the model it loaded from its `robot_description` and
+    `robot_description`_semantic parameters; a client cannot choose other parameters (SixdofCommanderError).
     """
     if not isinstance(robot_description, str) or not robot_description:
         raise SixdofCommanderError(f"robot_description must be a parameter name, got {robot_description!r}")
-    texts = []
-    for name in (robot_description, f"{robot_description}_semantic"):
-        param = resolve(ns, name)
-        try:
-            texts.append(rospy.get_param(param))
-        except KeyError:
-            raise SixdofCommanderError(
-                f"parameter '{rospy.resolve_name(param)}' is not set (load the description first)"
-            ) from None
-        except OSError as err:
-            raise SixdofCommanderError(f"cannot reach the ROS master to read '{param}': {err}") from err
-    return parse_urdf(texts[0]), parse_srdf(texts[1])
+    if robot_description != "robot_description":
+        raise SixdofCommanderError(
+            f"robot_description '{robot_description}': the robot model comes from move_group's get_robot_model "
+            "(the model of move_group's 'robot_description'); other parameters are not supported"
+        )
+    return query_robot_model(ns, timeout)
+
+
+def query_robot_model(ns: str, timeout: float = 5.0) -> tuple[RobotDescription, SemanticDescription]:
+    """The robot model move_group plans with, from its `get_robot_model` service (sixdof_msgs/GetRobotModel).
+
+    move_group's core RobotModel is the project's only URDF/SRDF reader: groups, joint order, limits (continuous
+    joints unbounded), named states and end effectors come from it, as moveit_commander gets them from MoveIt's
+    C++ RobotModel. Waits up to `timeout` wall-clock seconds (0: forever) for the service;
+    SixdofCommanderError names it when move_group is not there.
+    """
+    name = resolve(ns, "get_robot_model")
+    waiter = ServerWaiter(check_timeout(timeout, "timeout"))
+    waiter.service(name)
+    waiter.check("robot model")
+    try:
+        response = call_service(rospy.ServiceProxy(name, GetRobotModel), GetRobotModelRequest(), SERVICE_TIMEOUT)
+    except (rospy.ServiceException, rospy.ROSException) as err:
+        raise SixdofCommanderError(f"robot model: call to '{rospy.resolve_name(name)}' failed: {err}") from err
+    return model_from_response(response)
 
 
 # Hang guard (wall clock) for service calls: a dead node fails at once, this only bounds a node that hangs.

@@ -257,7 +257,8 @@ class GoalBuilder:
             value = check_number(merged[joint.name], f"joint target value of '{joint.name}'")
             # MoveIt accepts values within the goal tolerance of a bound.
             margin = self.goal_joint_tolerance
-            if value < joint.lower - margin or value > joint.upper + margin:
+            # A continuous joint is unbounded: its -pi..pi is nominal (docs/design.md "One robot model").
+            if joint.bounded and (value < joint.lower - margin or value > joint.upper + margin):
                 raise SixdofCommanderError(
                     f"joint target {value:.6g} of '{joint.name}' is outside its limits [{joint.lower:.6g}, "
                     f"{joint.upper:.6g}]"

@@ -28,7 +28,13 @@ class Gripper:
         the action server is lost (its node died), the goal is canceled and SixdofCommanderError raised."""
         require_node()
         self._result_timeout = check_timeout(result_timeout, "result_timeout")
-        urdf, srdf = load_robot_model(ns)
+        self._client = ActionClient(resolve(ns, action_name), GripperCommandAction)
+        waiter = ServerWaiter(wait_for_servers)
+        waiter.action(self._client, resolve(ns, action_name))
+        # The model (the group's joint, limits and named states) comes from move_group.
+        waiter.service(resolve(ns, "get_robot_model"))
+        waiter.check("Gripper")
+        urdf, srdf = load_robot_model(ns, timeout=wait_for_servers)
         group = resolve_group(urdf, srdf, group_name)
         if len(group.joints) != 1:
             raise SixdofCommanderError(
@@ -43,10 +49,6 @@ class Gripper:
                     f"the SRDF has no state '{state}' of group '{group_name}' with joint '{self._joint.name}'"
                 )
             self._positions[state] = group.named_states[state][self._joint.name]
-        self._client = ActionClient(resolve(ns, action_name), GripperCommandAction)
-        waiter = ServerWaiter(wait_for_servers)
-        waiter.action(self._client, resolve(ns, action_name))
-        waiter.check("Gripper")
 
     @property
     def joint_name(self) -> str:

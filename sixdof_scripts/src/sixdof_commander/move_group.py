@@ -52,7 +52,14 @@ from .planning_scene import PlanningScene
 from .robot_model import RobotDescription, SemanticDescription, resolve_group
 from .transforms import rpy_from_quaternion
 
-SERVICES = ("plan_kinematic_path", "compute_fk", "compute_cartesian_path", "get_planning_scene", "apply_planning_scene")
+SERVICES = (
+    "plan_kinematic_path",
+    "compute_fk",
+    "compute_cartesian_path",
+    "get_planning_scene",
+    "apply_planning_scene",
+    "get_robot_model",
+)
 RETIME_ALGORITHMS = ("iterative_time_parameterization", "time_optimal_trajectory_generation")
 
 
@@ -84,12 +91,19 @@ class MoveGroup:
         wait_for_servers: float = 5.0,
         robot_description: str = "robot_description",
     ) -> None:
-        """Reads the robot description (`robot_description` and `robot_description`_semantic) and waits up to
-        wait_for_servers seconds (0: forever) for the move_group node's services and actions;
-        SixdofCommanderError names what is missing."""
+        """Waits up to wait_for_servers seconds (0: forever) for the move_group node's services and actions
+        (SixdofCommanderError names what is missing), then gets the robot model from it (get_robot_model)."""
         require_node()
         self._ns = ns
-        self._urdf, self._srdf = load_robot_model(ns, robot_description)
+        waiter = ServerWaiter(wait_for_servers)
+        self._move_action = ActionClient(resolve(ns, "move_group"), MoveGroupAction)
+        self._execute_action = ActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
+        waiter.action(self._move_action, resolve(ns, "move_group"))
+        waiter.action(self._execute_action, resolve(ns, "execute_trajectory"))
+        for name in SERVICES:
+            waiter.service(resolve(ns, name))
+        waiter.check(f"MoveGroup('{group_name}')")
+        self._urdf, self._srdf = load_robot_model(ns, robot_description, wait_for_servers)
         self._group = resolve_group(self._urdf, self._srdf, group_name)
         self._planning_frame = self._srdf.virtual_joint_parent or self._urdf.root_link
         self._goal = GoalBuilder(self._group, self._planning_frame)
@@ -107,15 +121,6 @@ class MoveGroup:
         self._last_error = error_code(MoveItErrorCodes.SUCCESS, "")
         self._support_surface = ""
 
-        self._move_action = ActionClient(resolve(ns, "move_group"), MoveGroupAction)
-        self._execute_action = ActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
-        waiter = ServerWaiter(wait_for_servers)
-        waiter.action(self._move_action, resolve(ns, "move_group"))
-        waiter.action(self._execute_action, resolve(ns, "execute_trajectory"))
-        for name in SERVICES:
-            waiter.service(resolve(ns, name))
-        waiter.check(f"MoveGroup('{group_name}')")
-
         self._plan_service = rospy.ServiceProxy(resolve(ns, "plan_kinematic_path"), GetMotionPlan)
         self._fk_service = rospy.ServiceProxy(resolve(ns, "compute_fk"), GetPositionFK)
         self._ik_service = rospy.ServiceProxy(resolve(ns, "compute_ik"), GetPositionIK)
@@ -128,12 +133,12 @@ class MoveGroup:
     # Introspection -----------------------------------------------------------------------------------
     @property
     def robot_description(self) -> RobotDescription:
-        """The parsed URDF."""
+        """The robot's kinematic tree (move_group's model)."""
         return self._urdf
 
     @property
     def semantic_description(self) -> SemanticDescription:
-        """The parsed SRDF."""
+        """The robot's groups, named states and end effectors (move_group's model)."""
         return self._srdf
 
     def get_name(self) -> str:

@@ -136,12 +136,12 @@ class PlanningScene:
         synchronous: bool = True,
     ) -> None:
         require_node()
-        self._urdf, self._srdf = load_robot_model(ns, robot_description)
-        self._planning_frame = self._srdf.virtual_joint_parent or self._urdf.root_link
         waiter = ServerWaiter(wait_for_servers)
-        for name in ("apply_planning_scene", "get_planning_scene"):
+        for name in ("apply_planning_scene", "get_planning_scene", "get_robot_model"):
             waiter.service(resolve(ns, name))
         waiter.check("PlanningScene")
+        self._urdf, self._srdf = load_robot_model(ns, robot_description, wait_for_servers)
+        self._planning_frame = self._srdf.virtual_joint_parent or self._urdf.root_link
         self._apply = rospy.ServiceProxy(resolve(ns, "apply_planning_scene"), ApplyPlanningScene)
         self._get = rospy.ServiceProxy(resolve(ns, "get_planning_scene"), GetPlanningScene)
         self.last_error = MoveItErrorCodes()

@@ -1,4 +1,10 @@
-"""The robot's URDF and SRDF, parsed with xml.etree: joints, limits, groups, named states.
+"""The robot model the commander works with: joints, limits, groups, named states.
+
+The model comes from move_group's `get_robot_model` service (`model_from_response`): move_group's C++ core
+RobotModel is the project's only URDF/SRDF reader, so the commander agrees with the planner, the simulator and
+rviz on joint order, limits (a continuous joint: `bounded` False, nominal limits -pi..pi) and groups, as
+moveit_commander gets them from MoveIt's C++ RobotModel. `parse_urdf` / `parse_srdf` read files for offline unit
+tests only, following the same conventions.
 
 Only what the commander needs: which joints a group moves (in order), their limits, the group's tip and
 end-effector links, the named states, and fixed offsets between links (link6 -> tcp).
@@ -13,12 +19,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .exceptions import SixdofCommanderError, UnknownGroupError
-from .transforms import homogeneous, matrix_from_rpy
+from .transforms import homogeneous, matrix_from_quaternion, matrix_from_rpy
 
 
 @dataclass(frozen=True, eq=False)
 class Joint:
-    """One URDF joint (compared by identity). lower/upper are -inf/inf for continuous joints."""
+    """One URDF joint (compared by identity). A continuous joint is unbounded (`bounded` False) with the
+    nominal lower/upper -pi/pi, the core's convention (docs/design.md "One robot model")."""
 
     name: str
     type: str
@@ -31,6 +38,13 @@ class Joint:
     mimic: str | None
     axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
     velocity: float = math.inf  # the URDF's velocity limit (inf when absent)
+    mimic_multiplier: float = 1.0
+    mimic_offset: float = 0.0
+
+    @property
+    def bounded(self) -> bool:
+        """False for continuous joints: no position limit applies (lower/upper are a nominal -pi..pi)."""
+        return self.type != "continuous"
 
     @property
     def is_active(self) -> bool:
@@ -44,8 +58,9 @@ class RobotDescription:
 
     name: str
     root_link: str
-    joints: dict[str, Joint]
+    joints: dict[str, Joint]  # in the model's order (breadth-first from the root link)
     links: frozenset[str]
+    link_order: tuple[str, ...] = ()  # the links in the model's order (empty when read offline)
 
     def parent_joint(self, link: str) -> Joint | None:
         """The joint whose child is `link`, or None for the root."""
@@ -105,6 +120,16 @@ class GroupSpec:
     joints: tuple[str, ...] = ()
     links: tuple[str, ...] = ()
     subgroups: tuple[str, ...] = ()
+    expanded: ExpandedGroup | None = None  # set when the group comes from move_group's model
+
+
+@dataclass(frozen=True)
+class ExpandedGroup:
+    """A group as the core model expands it (chains and subgroups included), in model order."""
+
+    active_joints: tuple[str, ...]
+    joints: tuple[str, ...]
+    links: tuple[str, ...]
 
 
 @dataclass(frozen=True)
@@ -195,7 +220,15 @@ def parse_urdf(text: str) -> RobotDescription:
             if joint_type in ("revolute", "prismatic"):
                 lower = _floats(limit.get("lower"), 1, f"{what} limit lower")[0]
                 upper = _floats(limit.get("upper"), 1, f"{what} limit upper")[0]
+        if joint_type == "continuous":
+            lower, upper = -math.pi, math.pi
         mimic = element.find("mimic")
+        mimic_values = (
+            [_floats(mimic.get(key, default), 1, f"{what} <mimic> {key}")[0] for key, default in
+             (("multiplier", "1"), ("offset", "0"))]
+            if mimic is not None
+            else [1.0, 0.0]
+        )
         axis = element.find("axis")
         joints[name] = Joint(
             name=name,
@@ -209,6 +242,8 @@ def parse_urdf(text: str) -> RobotDescription:
             mimic=_required(mimic, "joint", f"{what} <mimic>") if mimic is not None else None,
             axis=tuple(_floats(axis.get("xyz") if axis is not None else "1 0 0", 3, f"{what} axis")),
             velocity=velocity,
+            mimic_multiplier=mimic_values[0],
+            mimic_offset=mimic_values[1],
         )
     children = {joint.child for joint in joints.values()}
     roots = sorted(links - children)
@@ -301,13 +336,96 @@ def _group_joints_and_links(
     return joints, links, tip or (links[-1] if links else "")
 
 
+def _expanded_tip(srdf: SemanticDescription, name: str, links: list[str]) -> str:
+    """A group's tip: its chain's tip, else its first subgroup's tip that has one, else its last link."""
+    spec = srdf.groups[name]
+    if spec.chains:
+        return spec.chains[-1][1]
+    for subgroup in spec.subgroups:
+        sub = srdf.groups.get(subgroup)
+        if sub is not None and sub.expanded is not None:
+            tip = _expanded_tip(srdf, subgroup, list(sub.expanded.links))
+            if tip:
+                return tip
+    return links[-1] if links else ""
+
+
+def model_from_response(response: object) -> tuple[RobotDescription, SemanticDescription]:
+    """The robot model of a sixdof_msgs/GetRobotModel response (move_group's get_robot_model)."""
+    joints = {}
+    for j in response.joints:
+        position, orientation = j.origin.position, j.origin.orientation
+        joints[j.name] = Joint(
+            name=j.name,
+            type=j.type,
+            parent=j.parent_link,
+            child=j.child_link,
+            origin=homogeneous(
+                (position.x, position.y, position.z),
+                matrix_from_quaternion((orientation.x, orientation.y, orientation.z, orientation.w)),
+            ),
+            lower=j.min_position,
+            upper=j.max_position,
+            effort=j.max_effort,
+            mimic=j.mimic_joint or None,
+            axis=(j.axis.x, j.axis.y, j.axis.z),
+            velocity=j.max_velocity if j.max_velocity > 0.0 else math.inf,
+            mimic_multiplier=j.mimic_multiplier,
+            mimic_offset=j.mimic_offset,
+        )
+    urdf = RobotDescription(
+        name=response.robot_name,
+        root_link=response.root_link,
+        joints=joints,
+        links=frozenset(response.link_names),
+        link_order=tuple(response.link_names),
+    )
+    groups = {
+        g.name: GroupSpec(
+            name=g.name,
+            chains=((g.chain_base_link, g.chain_tip_link),) if g.chain_tip_link else (),
+            joints=tuple(g.joints),
+            links=tuple(g.links),
+            subgroups=tuple(g.subgroups),
+            expanded=ExpandedGroup(
+                active_joints=tuple(g.active_joints), joints=tuple(g.joints), links=tuple(g.links)
+            ),
+        )
+        for g in response.groups
+    }
+    states: dict[str, dict[str, dict[str, float]]] = {}
+    for state in response.group_states:
+        states.setdefault(state.group, {})[state.name] = dict(zip(state.joint_names, state.positions, strict=True))
+    srdf = SemanticDescription(
+        name=response.robot_name,
+        groups=groups,
+        group_states=states,
+        end_effectors=tuple(
+            EndEffector(name=e.name, parent_link=e.parent_link, group=e.group, parent_group=e.parent_group)
+            for e in response.end_effectors
+        ),
+        virtual_joint_parent=response.planning_frame if response.planning_frame != response.root_link else None,
+    )
+    return urdf, srdf
+
+
 def resolve_group(urdf: RobotDescription, srdf: SemanticDescription, name: str) -> Group:
     """The SRDF group `name` with its active joints in order, its links, tip and end-effector link."""
-    joints, links, tip = _group_joints_and_links(urdf, srdf, name, frozenset())
-    active = []
-    for joint in joints:
-        if joint.is_active and joint not in active:
-            active.append(joint)
+    if name not in srdf.groups:
+        raise UnknownGroupError(f"the SRDF has no group '{name}'; groups: {sorted(srdf.groups)}")
+    expanded = srdf.groups[name].expanded
+    if expanded is not None:
+        # move_group's model: its expansion and order, the tip by the same rule as below.
+        joints = [urdf.joints[joint] for joint in expanded.joints]
+        links = list(expanded.links)
+        tip = _expanded_tip(srdf, name, links)
+        active = [urdf.joints[joint] for joint in expanded.active_joints]
+    else:
+        joints, links, tip = _group_joints_and_links(urdf, srdf, name, frozenset())
+        active = []
+        for joint in joints:
+            if joint.is_active and joint not in active:
+                active.append(joint)
     # MoveIt's rule: the group's end effector is one whose parent link belongs to the group.
     eef_link, eef_group = tip, None
     for eef in srdf.end_effectors:

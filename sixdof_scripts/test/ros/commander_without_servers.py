@@ -68,6 +68,7 @@ class CommanderWithoutServers(unittest.TestCase):
             "service '/compute_cartesian_path'",
             "service '/get_planning_scene'",
             "service '/apply_planning_scene'",
+            "service '/get_robot_model'",
         ):
             self.assertIn(name, message)
         self.assertIn("not available after 0.5 s", message)
@@ -88,13 +89,16 @@ class CommanderWithoutServers(unittest.TestCase):
         with self.assertRaisesRegex(SixdofCommanderError, "MoveGroup\\('arm'\\): action '/move_group'"):
             ArmDriver(wait_for_servers=0.2)
 
-    def test_bad_arguments_fail_before_waiting(self):
-        with self.assertRaisesRegex(SixdofCommanderError, "no group 'manipulator'"):
-            MoveGroup("manipulator", wait_for_servers=0.2)
+    def test_bad_arguments_name_the_problem(self):
         with self.assertRaisesRegex(SixdofCommanderError, "wait_for_servers must be a finite number of seconds >= 0"):
             MoveGroup("arm", wait_for_servers=-1.0)
-        with self.assertRaisesRegex(SixdofCommanderError, "parameter '/elsewhere/robot_description' is not set"):
+        # The groups are move_group's (get_robot_model): /stuck has one.
+        with self.assertRaisesRegex(SixdofCommanderError, "no group 'manipulator'"):
+            MoveGroup("manipulator", ns="/stuck", wait_for_servers=60.0)
+        with self.assertRaisesRegex(SixdofCommanderError, "service '/elsewhere/get_robot_model'"):
             MoveGroup("arm", ns="/elsewhere", wait_for_servers=0.2)
+        with self.assertRaisesRegex(SixdofCommanderError, "robot_description 'other_description'.*not supported"):
+            MoveGroup("arm", ns="/stuck", wait_for_servers=60.0, robot_description="other_description")
 
     def test_action_client_keeps_the_first_status_and_feedback_of_a_goal(self):
         # actionlib's own client drops them and logs an error: the race this client fixes.
@@ -124,7 +128,7 @@ class CommanderWithoutServers(unittest.TestCase):
             "/stuck/gripper_controller/gripper_cmd", GripperCommandAction, never_finish, auto_start=False
         )
         server.start()
-        gripper = Gripper(ns="/stuck", wait_for_servers=10.0, result_timeout=0.5)
+        gripper = Gripper(ns="/stuck", wait_for_servers=60.0, result_timeout=0.5)
         with self.assertRaisesRegex(SixdofCommanderError, r"gripper command to 0: no result within 0.5 s .* canceled"):
             gripper.close()
         self.assertTrue(canceled.wait(10.0), "the server never saw the cancel")

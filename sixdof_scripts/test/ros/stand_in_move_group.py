@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """A stand-in for the move_group and simulator nodes that accepts every request and never answers: the
 commander_server_death test kills it by pid mid-request. Each request it receives sets the parameter
-/stand_in/received/<name> to True, so the test knows when the request is in flight."""
+/stand_in/received/<name> to True, so the test knows when the request is in flight. get_robot_model is the one
+it answers: relayed to the real move_group in /model_source (the commander needs the model before any request)."""
 
 import threading
 
@@ -9,7 +10,16 @@ import actionlib
 import rospy
 
 from sixdof_msgs.msg import ExecuteTrajectoryAction, GripperCommandAction, MoveGroupAction
-from sixdof_msgs.srv import ApplyPlanningScene, GetCartesianPath, GetMotionPlan, GetPlanningScene, GetPositionFK
+from sixdof_msgs.srv import (
+    ApplyPlanningScene,
+    GetCartesianPath,
+    GetMotionPlan,
+    GetPlanningScene,
+    GetPositionFK,
+    GetRobotModel,
+)
+
+MODEL_SOURCE = "/model_source/get_robot_model"
 
 
 def hang(name: str):
@@ -42,6 +52,9 @@ def main() -> None:
             ("apply_planning_scene", ApplyPlanningScene),
         )
     ]
+    rospy.wait_for_service(MODEL_SOURCE, timeout=60.0)
+    source = rospy.ServiceProxy(MODEL_SOURCE, GetRobotModel)
+    services.append(rospy.Service("get_robot_model", GetRobotModel, lambda request: source(request)))
     rospy.loginfo("stand_in_move_group: %d actions, %d services up", len(servers), len(services))
     rospy.spin()
 

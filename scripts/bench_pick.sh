@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Randomized pick-and-place benchmark and soak on a headless stack of its own (demo.launch headless:=true on an
+# empty table, sixdof_sim/worlds/table_only.yaml), then the "pick" (or "soak") section of bench/results.md.
+#   scripts/bench_pick.sh                    100 seeded trials (make bench-pick)
+#   scripts/bench_pick.sh --soak             500 trials with every node's RSS sampled (make soak); fails on any
+#                                            failed trial or a node growing by more than 5 MB
+#   scripts/bench_pick.sh [--soak] ARGS...   ARGS go to bench/pick_bench.py (--trials, --seed, --region, ...)
+# Logs in artifacts/bench_pick_logs/.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
+set +u
+# shellcheck disable=SC1091
+. scripts/env.sh
+set -u
+# shellcheck source=scripts/stack_lib.sh
+. scripts/stack_lib.sh
+
+args=(--trials 100)
+if [ "${1:-}" = --soak ]; then
+  shift
+  args=(--trials 500 --rss)
+fi
+stack_init "$repo/artifacts/bench_pick_logs"
+report=$stack_work/report.md
+
+echo "[bench-pick] launching the headless stack (master port $stack_port)"
+stack_start launch roslaunch -p "$stack_port" sixdof_bringup demo.launch headless:=true \
+  world:="$repo/sixdof_sim/worlds/table_only.yaml"
+stack_wait_ready "" "${stack_pids[-1]}" || { echo "[bench-pick] the stack did not come up (see $ROS_LOG_DIR/launch.out)" >&2; exit 1; }
+
+status=0
+python3 bench/pick_bench.py "${args[@]}" "$@" --report "$report" || status=$?
+if [ -s "$report" ]; then
+  python3 scripts/results_section.py bench/results.md "$report"
+  echo "[bench-pick] wrote its section of bench/results.md"
+fi
+exit $status

@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""rostest: the commander's robot model comes from move_group's get_robot_model and agrees, on the shared
+joint-kinds fixture, with what sixdof_core, sixdof_sim and sixdof_rviz test (test_joint_kinds): the link and
+joint order, a continuous joint unbounded with the nominal -pi..pi, prismatic limits, the mimic finger, the fixed
+mount link and the link without geometry or inertia, groups, named states and the end effector."""
+
+import math
+import unittest
+
+import numpy as np
+import rospy
+import rostest
+from sixdof_commander._ros import query_robot_model
+from sixdof_commander.robot_model import resolve_group
+
+LINKS = ["mount", "base_link", "turntable", "carriage", "head", "sensor_frame", "left_finger", "right_finger"]
+
+
+class RobotModelQuery(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.urdf, cls.srdf = query_robot_model("", timeout=60.0)
+
+    def test_order_is_the_core_models(self):
+        self.assertEqual(self.urdf.root_link, "mount")
+        self.assertEqual(list(self.urdf.link_order), LINKS)
+        self.assertEqual([joint.child for joint in self.urdf.joints.values()], LINKS[1:])
+        active = [joint.name for joint in self.urdf.joints.values() if joint.is_active]
+        self.assertEqual(active, ["spin", "lift", "tilt", "finger_left"])
+
+    def test_joint_kinds_and_limits(self):
+        spin = self.urdf.joints["spin"]
+        self.assertEqual(spin.type, "continuous")
+        self.assertFalse(spin.bounded)
+        self.assertEqual((spin.lower, spin.upper), (-math.pi, math.pi))
+        self.assertAlmostEqual(spin.velocity, 2.0)
+        lift = self.urdf.joints["lift"]
+        self.assertEqual(lift.type, "prismatic")
+        self.assertTrue(lift.bounded)
+        self.assertEqual((lift.lower, lift.upper), (0.0, 0.3))
+        right = self.urdf.joints["finger_right"]
+        self.assertEqual(right.mimic, "finger_left")
+        self.assertEqual((right.mimic_multiplier, right.mimic_offset), (1.0, 0.0))
+        self.assertFalse(right.is_active)
+        self.assertEqual(self.urdf.joints["mount_joint"].type, "fixed")
+        self.assertEqual(self.urdf.joints["sensor_joint"].type, "fixed")
+        # The lift's origin as the URDF gives it, in the turntable frame.
+        np.testing.assert_allclose(self.urdf.joints["lift"].origin[:3, 3], [0.1, 0.0, 0.05], atol=1e-12)
+
+    def test_groups_states_and_end_effector(self):
+        arm = resolve_group(self.urdf, self.srdf, "arm")
+        self.assertEqual(arm.joint_names, ["spin", "lift", "tilt"])
+        self.assertEqual(arm.tip_link, "head")
+        self.assertEqual(arm.end_effector_link, "head")
+        self.assertEqual(arm.end_effector_group, "gripper")
+        self.assertEqual(arm.named_states["home"], {"spin": 0.0, "lift": 0.1, "tilt": 0.0})
+        gripper = resolve_group(self.urdf, self.srdf, "gripper")
+        self.assertEqual(gripper.joint_names, ["finger_left"])
+        self.assertEqual([joint.name for joint in gripper.all_joints], ["finger_left", "finger_right"])
+        self.assertEqual(sorted(gripper.named_states), ["close", "open"])
+        self.assertEqual(self.srdf.virtual_joint_parent, "world")
+
+
+if __name__ == "__main__":
+    rospy.init_node("robot_model_query")
+    rostest.rosrun("sixdof_scripts", "robot_model_query", RobotModelQuery)

@@ -44,7 +44,7 @@ from sixdof_bringup.mirror import SceneMirror, SceneSnapshot, SimObjectState, te
 from sixdof_msgs.msg import DetectedObjectArray, PlanningScene
 from sixdof_msgs.srv import ApplyPlanningScene, GetPlanningScene
 from sixdof_perception import world as world_file
-from sixdof_perception.detection import Box, DetectorParams, detect_objects
+from sixdof_perception.detection import Box, Detection, DetectorParams, detect_objects
 from sixdof_perception.ros_conversions import (
     cloud_arrays,
     detected_object,
@@ -188,7 +188,12 @@ class PerceptionNode:
             p = np.asarray(position)[None, :]
             return any(bool(shape.contains(p, self.params.self_padding + 0.01)[0]) for shape in robot)
 
-        identified = self.tracker.update(detections, held, hidden)
+        def touching(det: Detection) -> bool:
+            p = np.asarray(det.position)[None, :]
+            margin = self.params.self_padding + max(det.size) / 2.0 + 0.01
+            return any(bool(shape.contains(p, margin)[0]) for shape in robot)
+
+        identified = self.tracker.update(detections, held, hidden, touching)
         header = Header(stamp=cloud.header.stamp, frame_id=self.planning_frame)
         array = DetectedObjectArray(header=header)
         markers = MarkerArray(markers=[Marker(action=Marker.DELETEALL, ns="detected_objects")])

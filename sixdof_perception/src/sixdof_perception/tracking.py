@@ -43,12 +43,14 @@ class Tracker:
         detections: Sequence[Detection],
         held: Mapping[str, tuple[float, float, float] | None] | None = None,
         hidden: Callable[[tuple[float, float, float]], bool] = lambda _p: False,
+        touching: Callable[[Detection], bool] = lambda _d: False,
     ) -> list[tuple[str, Detection]]:
         """Ids of this frame's detections, in their order. held: ids the planning scene has attached to the
         robot (value None) or has back in its world at a pose the robot put it (value: that position; the
         track moves there so that the object is recognised where it was placed). hidden(position): True
-        where the robot hides a track's last position (it is kept, not aged); a detection there that matches
-        no track is left out (a part of an object the robot is touching is not a new object)."""
+        where the robot hides a track's last position (it is kept, not aged). touching(detection): True when
+        the detected object touches the robot; such a detection that matches no track is left out (an object
+        the robot is handling, or a part of it, becomes a new object only once the robot has left it)."""
         held = held or {}
         for track_id, position in held.items():
             if track_id in self.tracks and position is not None:
@@ -72,7 +74,7 @@ class Tracker:
         out = []
         for i, det in enumerate(detections):
             track_id = assigned.get(i)
-            if track_id is None and hidden(det.position):
+            if track_id is None and touching(det):
                 continue
             if track_id is None:
                 track_id = self._new_id(det.label)

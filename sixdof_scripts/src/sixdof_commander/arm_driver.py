@@ -110,6 +110,12 @@ class ArmDriver:
 
     rad = staticmethod(rad)
 
+    @property
+    def grasp_spec(self) -> GraspSpec:
+        """The gripper's grasp geometry (tcp in the tip link, finger axis, opening) read from the URDF/SRDF,
+        for callers that grasp objects located by other means than the simulator (e.g. a camera)."""
+        return self._spec
+
     def _grasp_spec(self, gripper_group: str) -> GraspSpec:
         urdf, srdf = self.arm.robot_description, self.arm.semantic_description
         tip = self.arm.get_end_effector_link()

@@ -1,6 +1,6 @@
 # Thin entry points; the work is in scripts/. Every target that needs the workspace runs setup first
 # (idempotent: apt packages, venv, build are skipped when already up to date).
-.PHONY: setup build demo test bench bench-build fuzz clean
+.PHONY: setup build demo demo-sort test bench bench-build bench-sort fuzz clean
 
 setup:
 	scripts/setup.sh
@@ -9,6 +9,14 @@ build: setup
 
 demo: setup
 	scripts/demo.sh
+
+# Vision-based sorting, headless: the camera-based planning scene and sort_objects.py (artifacts/sort_*).
+demo-sort: setup
+	scripts/demo_sort.sh
+
+# Seeded random sorting layouts: detection accuracy and sorting success (the "sort" section of bench/results.md).
+bench-sort: setup
+	scripts/bench_sort.sh $(ARGS)
 
 # Tests and benchmarks are built only for these targets (SIXDOF_BUILD_TESTS / SIXDOF_BUILD_BENCHMARKS).
 test:

@@ -30,9 +30,9 @@ from sixdof_commander.transforms import matrix_from_pose
 
 from sixdof_msgs.msg import DetectedObject, DetectedObjectArray, ObjectStates
 
-# Four places per bin, towards its corners (fractions of the inner half size), used in turn: far enough from
-# each other for two 6 cm objects and from the walls for the closed fingers.
-SLOTS = ((-0.35, -0.35), (0.35, 0.35), (-0.35, 0.35), (0.35, -0.35))
+# Places in a bin (fractions of its inner half size): towards the corners, far enough from each other for 6 cm
+# objects and from the walls for the closed fingers, and the centre. The freest one is used.
+SLOTS = ((-0.35, -0.35), (0.35, 0.35), (-0.35, 0.35), (0.35, -0.35), (0.0, 0.0))
 
 
 @dataclass
@@ -53,7 +53,7 @@ class Sorter:
         self.home = home
         self.settle = settle
         self.topic = f"{ns.rstrip('/')}/detected_objects" if ns else "detected_objects"
-        self.used_slots: dict[str, int] = {}
+        self.placed: dict[str, list[tuple[float, float]]] = {}
         self.latest: DetectedObjectArray | None = None
         rospy.Subscriber(self.topic, DetectedObjectArray, self._on_detected, queue_size=1)
 
@@ -79,20 +79,21 @@ class Sorter:
         p = obj.pose.pose.position
         return any(b.contains(p.x, p.y) for b in self.bins)
 
-    def slot(self, target: Bin) -> tuple[float, float, float]:
-        n = self.used_slots.get(target.name, 0)
-        self.used_slots[target.name] = n + 1
+    def slot(self, target: Bin, occupied: list[tuple[float, float]]) -> tuple[float, float, float]:
+        """The place in the bin farthest from the objects seen in it (and from the ones put there since)."""
         hx, hy = target.inner_half()
-        fu, fv = SLOTS[n % len(SLOTS)]
-        x, y = target.to_world(fu * hx, fv * hy)
-        return x, y, target.centre[2]
+        inside = [p for p in occupied + self.placed.get(target.name, []) if target.contains(*p)]
+        candidates = [target.to_world(fu * hx, fv * hy) for fu, fv in SLOTS]
+        best = max(candidates, key=lambda c: min((math.dist(c, p) for p in inside), default=math.inf))
+        self.placed.setdefault(target.name, []).append(best)
+        return best[0], best[1], target.centre[2]
 
     def _fail(self, outcome: Outcome, result: str) -> Outcome:
         outcome.result = result
         outcome.detail = self.driver.last_failure
         return outcome
 
-    def sort_one(self, obj: DetectedObject, target: Bin) -> Outcome:
+    def sort_one(self, obj: DetectedObject, target: Bin, occupied: list[tuple[float, float]]) -> Outcome:
         p = obj.pose.pose.position
         outcome = Outcome(obj.id, obj.label, (p.x, p.y, p.z), target.name, "ok")
         driver, spec = self.driver, self.driver.grasp_spec
@@ -124,7 +125,7 @@ class Sorter:
         lift = raised(matrix_from_pose(driver.arm.get_current_pose().pose), driver.approach_distance)
         if not driver.move_straight(lift, "lift", avoid_collisions=False):
             return self._drop(obj.id, self._fail(outcome, "lift_failed"))
-        x, y, z = self.slot(target)
+        x, y, z = self.slot(target, occupied)
         height = geometry.height
         place_tip = tip_pose(place_tcp_pose(np.array([x, y, z + height / 2.0]), object_in_tcp, spec.clearance), spec)
         if not driver.moveto_pose(pose_from_matrix(raised(place_tip, driver.approach_distance))):
@@ -133,7 +134,11 @@ class Sorter:
             return self._drop(obj.id, self._fail(outcome, "place_blocked"))
         # In a bin the opening fingers may stop at a wall: released is when they are clear of the object.
         opened = driver.gripper.open()
-        if 2.0 * opened.position < width + 0.008:
+        if not opened.reached_goal:
+            # Fingers held back while the grasp fix still held the object: once it lets go they open further.
+            rospy.sleep(0.5)
+            opened = driver.gripper.open()
+        if 2.0 * opened.position < width + 0.002:
             outcome.detail = f"the gripper opened to {2.0 * opened.position:.3f} m only, the object is {width:.3f} m"
             self._drop(obj.id, outcome)
             outcome.result = "release_failed"
@@ -258,7 +263,8 @@ def main() -> int:
                 attempts.append((where, args.max_attempts))
             else:
                 t0 = time.monotonic()
-                outcome = sorter.sort_one(chosen, target)
+                occupied = [(o.pose.pose.position.x, o.pose.pose.position.y) for o in seen if o.id != chosen.id]
+                outcome = sorter.sort_one(chosen, target, occupied)
                 outcome.seconds = time.monotonic() - t0
                 if outcome.result != "ok":
                     attempts.append((where, 1))

@@ -113,13 +113,19 @@ rosrun sixdof_bringup plot_joint_states.py "$artifacts/demo.bag" "$artifacts/dem
 
 stage "6/6 rviz screenshot of the result (virtual X display)"
 # rviz and the marker node on their own display; the screenshot waits until the rviz window is mapped and
-# has had a few seconds to draw.
+# has had a few seconds to draw. It is of rviz's main window, whose size the rviz config sets: the virtual
+# screen around it (no window manager) would show as a black band.
 start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
   roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
   pid=$!
-  for _ in $(seq 150); do xwininfo -root -tree 2>/dev/null | grep -qi "rviz" && break; sleep 0.2; done
+  window=""
+  for _ in $(seq 150); do
+    window=$(xwininfo -root -children 2>/dev/null | awk "/ - RViz\":/ {print \$1; exit}")
+    [ -n "$window" ] && break
+    sleep 0.2
+  done
   sleep 8
-  import -window root "$2"
+  import -window "${window:-root}" "$2"
   status=$?
   kill -INT $pid
   wait $pid

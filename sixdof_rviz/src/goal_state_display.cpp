@@ -102,6 +102,14 @@ bool extendByVisuals(const urdf::Link& link, const Eigen::Isometry3d& tip_from_r
   return true;
 }
 
+// The group the marker serves when none is configured: the SRDF's first chain group (the marker needs a tip link).
+std::string defaultChainGroup(const SemanticModel& model) {
+  for (const PlanningGroup& group : model.groups()) {
+    if (!group.tip_link.empty()) return group.name;
+  }
+  return "";
+}
+
 sensor_msgs::JointState toJointState(const JointValues& values) {
   sensor_msgs::JointState msg;
   for (const auto& [name, value] : values) {
@@ -119,9 +127,10 @@ GoalStateDisplay::GoalStateDisplay() {
   semantic_description_property_ =
       new rviz::StringProperty("Semantic Description", "robot_description_semantic",
                                "Parameter holding the SRDF (planning groups).", this, SLOT(loadModel()));
-  group_property_ = new rviz::StringProperty("Planning Group", "arm",
-                                             "SRDF chain group whose tip link carries the marker.", this,
-                                             SLOT(loadModel()));
+  group_property_ = new rviz::StringProperty(
+      "Planning Group", "",
+      "SRDF chain group whose tip link carries the marker; empty: the SRDF's first chain group.",
+      this, SLOT(loadModel()));
   joint_state_topic_property_ = new rviz::RosTopicProperty(
       "Joint State Topic", "joint_states", "sensor_msgs/JointState",
       "Current robot state: the start of dragging and the IK seed.", this, SLOT(updateJointStateTopic()));
@@ -190,7 +199,7 @@ void GoalStateDisplay::loadModel() {
     reportConfigError(this, "Robot", e.what());
     return;
   }
-  group_ = group_property_->getStdString();
+  group_ = group_property_->getStdString().empty() ? defaultChainGroup(*model_) : group_property_->getStdString();
   const PlanningGroup* group = model_->group(group_);
   if (group == nullptr || group->tip_link.empty()) {
     reportConfigError(this, "Robot",
@@ -225,20 +234,29 @@ void GoalStateDisplay::loadModel() {
     if (joint->type != urdf::Joint::FIXED) goal_[name] = 0.0;
   }
   marker_on_current_state_ = false;
-  marker_ = std::make_unique<rviz::InteractiveMarker>(scene_node_, context_);
-  connect(marker_.get(), &rviz::InteractiveMarker::userFeedback, this, &GoalStateDisplay::processFeedback);
-  if (latest_joint_state_) {
-    startFromCurrentState(*latest_joint_state_);
-  } else {
-    placeMarker();
-    reachable_ = true;
-    robot_->setState(goal_);
-    updateAppearance();
-    setStatusStd(rviz::StatusProperty::Warn, "Goal", "waiting for the current state on joint_states");
-  }
+  reachable_ = true;
+  robot_->setState(goal_);
+  updateAppearance();
   robot_->setVisible(isEnabled());
+  if (isEnabled()) createMarker();
   updateJointStateTopic();
   updateGoalPoseTopic();
+}
+
+void GoalStateDisplay::createMarker() {
+  // The marker (and its drag sphere, which is always visible) exists only while the display is enabled: hiding the
+  // display's scene node does not hide controls created after it was hidden.
+  marker_ = std::make_unique<rviz::InteractiveMarker>(scene_node_, context_);
+  connect(marker_.get(), &rviz::InteractiveMarker::userFeedback, this, &GoalStateDisplay::processFeedback);
+  if (!marker_on_current_state_ && latest_joint_state_) {
+    startFromCurrentState(*latest_joint_state_);
+    return;
+  }
+  placeMarker();
+  robot_->setState(goal_);
+  if (!marker_on_current_state_) {
+    setStatusStd(rviz::StatusProperty::Warn, "Goal", "waiting for the current state on joint_states");
+  }
 }
 
 void GoalStateDisplay::startFromCurrentState(const sensor_msgs::JointState& state) {
@@ -349,8 +367,10 @@ void GoalStateDisplay::updateJointStateTopic() {
 }
 
 void GoalStateDisplay::onEnable() {
-  if (robot_) robot_->setVisible(true);
-  if (marker_) placeMarker();
+  if (robot_) {
+    robot_->setVisible(true);
+    if (!marker_) createMarker();
+  }
   updateJointStateTopic();
   updateGoalPoseTopic();
 }
@@ -359,7 +379,7 @@ void GoalStateDisplay::onDisable() {
   joint_state_sub_.shutdown();
   goal_pose_sub_.shutdown();
   if (robot_) robot_->setVisible(false);
-  if (marker_) marker_->processMessage(visualization_msgs::InteractiveMarker{});
+  marker_.reset();
 }
 
 void GoalStateDisplay::reset() {

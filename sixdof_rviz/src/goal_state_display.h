@@ -66,6 +66,7 @@ class GoalStateDisplay : public rviz::Display {
     std::string message;
   };
 
+  void createMarker();
   void startFromCurrentState(const sensor_msgs::JointState& state);
   void goalPoseCallback(const geometry_msgs::PoseStamped::ConstPtr& msg);
   void requestIk(const geometry_msgs::PoseStamped& pose);

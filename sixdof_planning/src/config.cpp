@@ -1,5 +1,6 @@
 #include "sixdof_planning/config.h"
 
+#include <cmath>
 #include <set>
 
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -144,6 +145,64 @@ void loadControllers(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   }
 }
 
+void loadOccupancyMap(const ros::NodeHandle& private_nh, OccupancyMapConfig* config) {
+  if (private_nh.hasParam("octomap_frame") && !private_nh.getParam("octomap_frame", config->octomap_frame)) {
+    throw ConfigError("parameter " + fullName(private_nh, "octomap_frame") + " is not a string");
+  }
+  config->octomap_resolution = positiveParam(private_nh, "octomap_resolution", config->octomap_resolution, false);
+  config->max_range = positiveParam(private_nh, "max_range", config->max_range, false);
+  XmlRpc::XmlRpcValue list;
+  if (!private_nh.getParam("sensors", list)) return;
+  const std::string name = fullName(private_nh, "sensors");
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("parameter " + name + " must be a list");
+  for (int i = 0; i < list.size(); ++i) {
+    const std::string prefix = name + "[" + std::to_string(i) + "]";
+    auto& entry = list[i];
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw ConfigError(prefix + " must be a dictionary");
+    OctomapSensorConfig sensor;
+    sensor.max_range = config->max_range;
+    auto number = [&](const std::string& key, bool allow_zero) {
+      const double v = toDouble(entry[key], prefix + "/" + key);
+      if (!std::isfinite(v) || v < 0.0 || (!allow_zero && v == 0.0)) {
+        throw ConfigError("parameter " + prefix + "/" + key + " must be " + (allow_zero ? ">= 0" : "> 0") + ", got " +
+                          std::to_string(v));
+      }
+      return v;
+    };
+    for (auto& field : entry) {
+      const std::string& key = field.first;
+      if (key == "sensor_plugin") {
+        sensor.sensor_plugin = toString(field.second, prefix + "/" + key);
+      } else if (key == "point_cloud_topic") {
+        sensor.point_cloud_topic = toString(field.second, prefix + "/" + key);
+      } else if (key == "filtered_cloud_topic") {
+        sensor.filtered_cloud_topic = toString(field.second, prefix + "/" + key);
+      } else if (key == "max_range") {
+        sensor.max_range = number(key, false);
+      } else if (key == "padding_offset") {
+        sensor.padding_offset = number(key, true);
+      } else if (key == "padding_scale") {
+        sensor.padding_scale = number(key, false);
+      } else if (key == "max_update_rate") {
+        sensor.max_update_rate = number(key, true);
+      } else if (key == "point_subsample") {
+        const double v = number(key, false);
+        if (v != std::floor(v)) throw ConfigError("parameter " + prefix + "/" + key + " must be an integer >= 1");
+        sensor.point_subsample = static_cast<int>(v);
+      } else {
+        throw ConfigError("unknown parameter " + prefix + "/" + key);
+      }
+    }
+    if (sensor.sensor_plugin.empty()) throw ConfigError("missing parameter " + prefix + "/sensor_plugin");
+    if (sensor.sensor_plugin != "occupancy_map_monitor/PointCloudOctomapUpdater") {
+      throw ConfigError("parameter " + prefix + "/sensor_plugin '" + sensor.sensor_plugin +
+                        "' is not supported (occupancy_map_monitor/PointCloudOctomapUpdater is)");
+    }
+    if (sensor.point_cloud_topic.empty()) throw ConfigError("missing parameter " + prefix + "/point_cloud_topic");
+    config->sensors.push_back(sensor);
+  }
+}
+
 }  // namespace
 
 MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) {
@@ -182,6 +241,7 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
       !private_nh.getParam("simplify_solutions", config.simplify_solutions)) {
     throw ConfigError("parameter " + fullName(private_nh, "simplify_solutions") + " is not a bool");
   }
+  loadOccupancyMap(private_nh, &config.occupancy_map);
   return config;
 }
 

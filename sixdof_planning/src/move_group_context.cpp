@@ -174,6 +174,14 @@ ErrorCode MoveGroupContext::applyScene(const sixdof_msgs::PlanningScene& msg, co
   return makeSuccess(source);
 }
 
+void MoveGroupContext::setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map,
+                                       const Eigen::Isometry3d& map_pose) {
+  std::lock_guard<std::mutex> lock(scene_mutex_);
+  auto copy = std::make_shared<SceneStore>(*scene_);
+  copy->setOccupancyMap(std::move(map), map_pose);
+  scene_ = copy;
+}
+
 ErrorCode MoveGroupContext::linkInTip(const std::string& group, const std::string& link, const std::string& source,
                                       Eigen::Isometry3d* link_in_tip) const {
   const auto solver = ikSolver(group);

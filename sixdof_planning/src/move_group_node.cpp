@@ -7,6 +7,7 @@
 #include "sixdof_planning/kinematics_service_capability.h"
 #include "sixdof_planning/move_action_capability.h"
 #include "sixdof_planning/move_group_context.h"
+#include "sixdof_planning/occupancy_map_monitor.h"
 #include "sixdof_planning/plan_service_capability.h"
 #include "sixdof_planning/query_robot_model_service_capability.h"
 #include "sixdof_planning/retime_trajectory_service_capability.h"
@@ -18,6 +19,7 @@ namespace sixdof_planning {
 MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   context_ = std::make_unique<MoveGroupContext>(nh, loadConfig(nh, private_nh));
   executor_ = std::make_unique<TrajectoryExecutor>(context_.get());
+  occupancy_map_ = std::make_unique<OccupancyMapMonitor>(context_.get());
   fk_ = std::make_unique<ForwardKinematicsService>(context_.get());
   ik_ = std::make_unique<InverseKinematicsService>(context_.get());
   plan_ = std::make_unique<MotionPlanService>(context_.get());

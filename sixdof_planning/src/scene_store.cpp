@@ -114,6 +114,11 @@ SceneStore::SceneStore(const SceneStore& other)
       world_(other.world_),
       attached_(other.attached_) {}
 
+void SceneStore::setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map,
+                                 const Eigen::Isometry3d& map_pose) {
+  collision_->setOccupancyMap(std::move(map), map_pose);
+}
+
 ErrorCode SceneStore::frameTransform(const sixdof_core::RobotState& state, const std::string& frame,
                                      const std::string& source, Eigen::Isometry3d* frame_pose) {
   const auto& model = state.model();

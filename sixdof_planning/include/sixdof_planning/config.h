@@ -42,6 +42,26 @@ struct ControllerConfig {
   std::string actionName() const { return action_ns.empty() ? name : name + "/" + action_ns; }
 };
 
+// One entry of ~sensors (MoveIt's sensors_3d.yaml); only occupancy_map_monitor/PointCloudOctomapUpdater.
+struct OctomapSensorConfig {
+  std::string sensor_plugin;
+  std::string point_cloud_topic;
+  double max_range = 5.0;         // m; the monitor's ~max_range unless the entry sets it
+  int point_subsample = 1;        // use every n-th point
+  double padding_offset = 0.03;   // m the self filter grows the robot's and known objects' shapes by
+  double padding_scale = 1.0;     // and scales them by (before the offset)
+  double max_update_rate = 0.0;   // Hz; 0: every cloud
+  std::string filtered_cloud_topic;  // the cloud without masked points, in the sensor frame; empty: none
+};
+
+// The occupancy map monitor (MoveIt's occupancy_map_monitor parameters, private to move_group).
+struct OccupancyMapConfig {
+  std::string octomap_frame;        // ~octomap_frame; empty: the planning frame
+  double octomap_resolution = 0.1;  // ~octomap_resolution, m
+  double max_range = 5.0;           // ~max_range, m
+  std::vector<OctomapSensorConfig> sensors;  // ~sensors; none: the map stays empty
+};
+
 struct MoveGroupConfig {
   std::string urdf;
   std::string srdf;
@@ -69,6 +89,7 @@ struct MoveGroupConfig {
   // joint space's maximum extent, in (0, 1].
   double longest_valid_segment_fraction = 0.005;
   bool simplify_solutions = true;  // ~simplify_solutions: OMPL path simplification of every plan
+  OccupancyMapConfig occupancy_map;
 };
 
 // Reads every parameter the node needs from `nh` (its namespace) and `private_nh`. Throws ConfigError.

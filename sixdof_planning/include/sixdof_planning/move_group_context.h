@@ -58,6 +58,9 @@ class MoveGroupContext {
   // Applies a scene message to the persistent scene (all or nothing) and publishes the markers.
   ErrorCode applyScene(const sixdof_msgs::PlanningScene& msg, const std::string& source);
 
+  // Swaps in a scene whose collision checks include `map` (a snapshot nobody changes), placed by map_pose.
+  void setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map, const Eigen::Isometry3d& map_pose);
+
   // The pose of `link` in the frame of the group's IK tip link, for a link rigidly fixed to the tip (the tip
   // itself, or e.g. a tcp link); INVALID_LINK_NAME otherwise. An empty link means the tip.
   ErrorCode linkInTip(const std::string& group, const std::string& link, const std::string& source,

@@ -12,6 +12,7 @@ namespace sixdof_planning {
 
 class MoveGroupContext;
 class TrajectoryExecutor;
+class OccupancyMapMonitor;
 class ForwardKinematicsService;
 class InverseKinematicsService;
 class MotionPlanService;
@@ -33,6 +34,7 @@ class MoveGroupNode {
  private:
   std::unique_ptr<MoveGroupContext> context_;
   std::unique_ptr<TrajectoryExecutor> executor_;
+  std::unique_ptr<OccupancyMapMonitor> occupancy_map_;
   std::unique_ptr<ForwardKinematicsService> fk_;
   std::unique_ptr<InverseKinematicsService> ik_;
   std::unique_ptr<MotionPlanService> plan_;

@@ -9,6 +9,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <sixdof_core/collision.h>
+#include <sixdof_core/occupancy_map.h>
 #include <sixdof_core/robot_model.h>
 #include <sixdof_msgs/AttachedCollisionObject.h>
 #include <sixdof_msgs/CollisionObject.h>
@@ -44,6 +45,10 @@ class SceneStore {
                                  const std::string& source);
   ErrorCode applyAttachedObject(const sixdof_msgs::AttachedCollisionObject& attached,
                                 const sixdof_core::RobotState& state, const std::string& source);
+
+  // The occupancy map robot links and attached objects collide against (see CollisionScene::setOccupancyMap);
+  // copies of the store share it.
+  void setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map, const Eigen::Isometry3d& map_pose);
 
   // World and attached objects as messages (ADD operations).
   std::vector<sixdof_msgs::CollisionObject> worldObjects() const;

@@ -123,3 +123,20 @@ def test_place_pose_puts_the_held_object_on_target():
     tcp = place_tcp_pose(target, object_in_tcp, clearance=0.005)
     np.testing.assert_allclose((tcp @ object_in_tcp)[:3], target + [0.0, 0.0, 0.005], atol=1e-12)
     np.testing.assert_allclose(tcp[:3, 2], [0.0, 0.0, -1.0], atol=1e-12)
+
+
+def test_low_object_grasp_keeps_the_fingertips_above_the_support():
+    # Fingertips 15 mm beyond the tcp: a 3 cm cube is gripped 10 mm deep, fingertips 5 mm above the table.
+    spec = GraspSpec(tcp_in_tip=SPEC.tcp_in_tip, finger_axis=SPEC.finger_axis, max_width=0.08, reach=0.015)
+    tcp, _ = grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.015), shape(SolidPrimitive.BOX, 0.03, 0.03, 0.03)), spec)
+    assert tcp[2, 3] == pytest.approx(0.02)
+    assert tcp[2, 3] - spec.reach == pytest.approx(spec.clearance)
+    # A 6 cm cube is gripped as deep as the spec allows.
+    tcp, _ = grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.03), shape(SolidPrimitive.BOX, 0.06, 0.06, 0.06)), spec)
+    assert tcp[2, 3] == pytest.approx(0.06 - spec.max_grasp_depth)
+
+
+def test_object_lower_than_the_fingertips_allow_is_refused():
+    spec = GraspSpec(tcp_in_tip=SPEC.tcp_in_tip, finger_axis=SPEC.finger_axis, max_width=0.08, reach=0.03)
+    with pytest.raises(SixdofCommanderError, match="too low for a top-down grasp"):
+        grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.015), shape(SolidPrimitive.BOX, 0.03, 0.03, 0.03)), spec)

@@ -26,8 +26,9 @@ from .grasping import (
     tip_pose,
 )
 from .gripper import Gripper
+from .gripper_reach import gripper_reach
 from .move_group import MoveGroup
-from .planning_scene import PlanningScene
+from .planning_scene import PlanningScene, resolve_resource
 from .robot_model import resolve_group
 from .transforms import matrix_from_pose, quaternion_from_matrix
 
@@ -125,7 +126,14 @@ class ArmDriver:
         tcp_in_tip = urdf.fixed_transform(tip, "tcp") if "tcp" in urdf.links else np.eye(4)
         finger_frame = urdf.chain_transform(tip, finger.child)
         axis = finger_frame[:3, :3] @ np.asarray(finger.axis, dtype=float)
-        return GraspSpec(tcp_in_tip=tcp_in_tip, finger_axis=axis, max_width=2.0 * self.gripper.open_position)
+        # The fingertips' reach beyond the tcp, from the gripper's collision geometry in the URDF.
+        param = resolve(self._ns, "robot_description")
+        if not rospy.has_param(param):
+            raise SixdofCommanderError(f"parameter {param} (the URDF) is not set: the gripper's reach is unknown")
+        reach = gripper_reach(rospy.get_param(param), urdf, tip, tcp_in_tip, resolve_resource)
+        return GraspSpec(
+            tcp_in_tip=tcp_in_tip, finger_axis=axis, max_width=2.0 * self.gripper.open_position, reach=reach
+        )
 
     def _fail(self, what: str, code: MoveItErrorCodes | None = None) -> bool:
         self.last_failure = f"{what}: {describe_error(code)}" if code is not None else what

@@ -19,13 +19,17 @@ from .transforms import homogeneous, matrix_from_quaternion, matrix_from_rpy
 @dataclass(frozen=True)
 class GraspSpec:
     """What a grasp needs from the robot. tcp_in_tip: 4x4 pose of the grasp centre in the arm's tip link;
-    finger_axis: the fingers' closing direction in the tip link; max_width: widest graspable object."""
+    finger_axis: the fingers' closing direction in the tip link; max_width: widest graspable object;
+    reach: how far the gripper extends beyond the tcp along the tool axis (its fingertips), which must stay
+    `clearance` above the surface the object stands on."""
 
     tcp_in_tip: np.ndarray
     finger_axis: np.ndarray
     max_width: float
     clearance: float = 0.005
     max_grasp_depth: float = 0.03
+    reach: float = 0.0
+    min_grasp_depth: float = 0.005
 
 
 @dataclass(frozen=True)
@@ -123,11 +127,18 @@ def grasp_yaw(geometry: ObjectGeometry, spec: GraspSpec) -> tuple[float, float]:
 
 
 def grasp_tcp_pose(geometry: ObjectGeometry, spec: GraspSpec) -> tuple[np.ndarray, float]:
-    """(tcp pose, width squeezed): the tool's grasp centre inside the object's top part, tool z down."""
+    """(tcp pose, width squeezed): the tool's grasp centre inside the object's top part, tool z down, no
+    deeper than keeps the fingertips `clearance` above the object's bottom (the surface it stands on)."""
     yaw, width = grasp_yaw(geometry, spec)
     centre = geometry.pose[:3, 3]
     top = centre[2] + geometry.height / 2.0
-    depth = min(geometry.height / 2.0, spec.max_grasp_depth)
+    depth = min(geometry.height / 2.0, spec.max_grasp_depth, geometry.height - spec.reach - spec.clearance)
+    if depth < spec.min_grasp_depth:
+        raise SixdofCommanderError(
+            f"object height {geometry.height:.3f} m is too low for a top-down grasp: the fingers reach "
+            f"{spec.reach:.3f} m beyond the tcp and must stay {spec.clearance:.3f} m above the support, leaving "
+            f"{max(depth, 0.0) * 1000:.1f} mm of grip (at least {spec.min_grasp_depth * 1000:.1f} mm needed)"
+        )
     return homogeneous([centre[0], centre[1], top - depth], top_down_rotation(yaw)), width
 
 

@@ -643,9 +643,18 @@ class MoveGroup:
         return [positions[n] for n in self._group.joint_names]
 
     def get_current_state(self) -> RobotState:
-        """The current joint positions of the whole robot, as a RobotState."""
+        """The current joint positions of the whole robot, as a RobotState. A mimic joint's value is computed
+        from its source joint, as MoveIt's RobotState does: joint_states reports what a physical mimic coupling
+        measures, which may lag its source (a parallel gripper squeezing an object)."""
+        measured = self._joint_states.joint_state()
+        values = dict(zip(measured.name, measured.position, strict=True))
         state = RobotState()
-        state.joint_state = self._joint_states.joint_state()
+        for name, position in values.items():
+            joint = self._urdf.joints.get(name)
+            if joint is not None and joint.mimic is not None and joint.mimic in values:
+                position = joint.mimic_multiplier * values[joint.mimic] + joint.mimic_offset
+            state.joint_state.name.append(name)
+            state.joint_state.position.append(position)
         return state
 
     def get_current_state_bounded(self) -> RobotState:

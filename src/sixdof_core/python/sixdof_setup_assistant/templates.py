@@ -221,9 +221,23 @@ def move_group_launch(name: str, plan: Plan) -> str:
 """
 
 
+def extent(report: dict[str, Any]) -> tuple[list[float], list[float]]:
+    """Lower and upper corners of the joint origins at zero, summing offsets along the tree (rotations ignored:
+    enough to aim a camera)."""
+    position = {report["root_link"]: [0.0, 0.0, 0.0]}
+    for joint in report["joints"]:  # model order: parents first
+        base = position.get(joint["parent"], [0.0, 0.0, 0.0])
+        position[joint["child"]] = [b + d for b, d in zip(base, joint["xyz"], strict=True)]
+    points = list(position.values())
+    return [min(p[i] for p in points) for i in range(3)], [max(p[i] for p in points) for i in range(3)]
+
+
 def rviz_config(plan: Plan, report: dict[str, Any]) -> str:
     home = next((s[0] for s in plan.states if s[1] == plan.arm.name), "")
-    distance = round(max(1.5, 2.2 * min(reach(report), 2.0)), 2)
+    low, high = extent(report)
+    focus = [round((a + b) / 2, 3) for a, b in zip(low, high, strict=True)]
+    size = math.dist(low, high)
+    distance = round(min(max(1.5, 2.0 * size), 5.0), 2)
     return f"""# {HEADER}: the robot, the simulator's objects, the sixdof_rviz Motion Planning panel and
 # Planned Path display; Goal State and Planning Scene displays configured (enable them in the Displays panel).
 Panels:
@@ -338,9 +352,9 @@ Visualization Manager:
       Class: rviz/Orbit
       Distance: {distance}
       Focal Point:
-        X: 0.15
-        Y: 0
-        Z: 0.2
+        X: {focus[0]}
+        Y: {focus[1]}
+        Z: {focus[2]}
       Focal Shape Fixed Size: true
       Focal Shape Size: 0.05
       Invert Z Axis: false
@@ -354,7 +368,7 @@ Visualization Manager:
 Window Geometry:
   Displays:
     collapsed: false
-  Height: 1000
+  Height: 1024
   Hide Left Dock: false
   Hide Right Dock: true
   Width: 1280

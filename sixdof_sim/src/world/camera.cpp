@@ -3,7 +3,6 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <embree3/rtcore.h>
-#include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
@@ -18,6 +17,7 @@
 #include <thread>
 
 #include "mesh_loader.h"
+#include "sixdof_core/robot_model.h"
 
 namespace sixdof_sim {
 namespace {
@@ -289,7 +289,7 @@ struct CameraRenderer::Impl {
         *unit_to_shape = scaling(Eigen::Vector3d::Constant(shape.radius));
         return unitShape("sphere");
       case ShapeType::kMesh: {
-        const std::string path = resolveResource(shape.mesh_resource, roots);
+        const std::string path = shape.mesh_path.empty() ? resolveResource(shape.mesh_resource, roots) : shape.mesh_path;
         if (path.empty()) throw WorldError("mesh '" + shape.mesh_resource + "' not found");
         *unit_to_shape = scaling(shape.mesh_scale);
         return unitShape(path);
@@ -324,66 +324,36 @@ struct CameraRenderer::Impl {
     s.rgb[2] = static_cast<float>(color.b);
   }
 
+  // The robot's visuals (their collision shapes for links without any) from the core robot model, the project's
+  // only URDF reader.
   void addRobot(const std::string& urdf_xml) {
-    const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf_xml);
-    if (!model) throw WorldError("camera renderer: the URDF cannot be parsed");
-    for (const auto& entry : model->links_) {
-      const urdf::Link& link = *entry.second;
-      auto add = [&](const urdf::GeometrySharedPtr& geometry, const urdf::Pose& origin, const Color& color) {
-        if (!geometry) return;
-        Shape shape;
-        switch (geometry->type) {
-          case urdf::Geometry::BOX: {
-            const urdf::Vector3& d = static_cast<const urdf::Box&>(*geometry).dim;
-            shape.type = ShapeType::kBox;
-            shape.box_size = Eigen::Vector3d(d.x, d.y, d.z);
-            break;
-          }
-          case urdf::Geometry::CYLINDER: {
-            const auto& c = static_cast<const urdf::Cylinder&>(*geometry);
-            shape.type = ShapeType::kCylinder;
-            shape.radius = c.radius;
-            shape.length = c.length;
-            break;
-          }
-          case urdf::Geometry::SPHERE:
-            shape.type = ShapeType::kSphere;
-            shape.radius = static_cast<const urdf::Sphere&>(*geometry).radius;
-            break;
-          case urdf::Geometry::MESH: {
-            const auto& m = static_cast<const urdf::Mesh&>(*geometry);
-            shape.type = ShapeType::kMesh;
-            shape.mesh_resource = m.filename;
-            shape.mesh_scale = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
-            break;
-          }
-          default:
-            return;  // nothing else exists in URDF
-        }
+    std::shared_ptr<const sixdof_core::RobotModel> model;
+    try {
+      model = std::make_shared<const sixdof_core::RobotModel>(urdf_xml, "",
+                                                              sixdof_core::PackageResolver::fromSearchRoots(roots));
+    } catch (const sixdof_core::RobotModelError& e) {
+      throw WorldError(std::string("camera renderer: ") + e.what());
+    }
+    for (const sixdof_core::LinkModel& link : model->links()) {
+      auto add = [&](const sixdof_core::PlacedShape& placed, const Color& color) {
         Eigen::Affine3d unit_to_shape;
         LinkVisual visual;
         try {
-          visual.instance = addInstance(shapeScene(shape, &unit_to_shape));
+          visual.instance = addInstance(shapeScene(placed.shape, &unit_to_shape));
         } catch (const WorldError& e) {
           throw WorldError("camera renderer: URDF link '" + link.name + "': " + e.what());
         }
-        Eigen::Affine3d in_link = Eigen::Affine3d::Identity();
-        in_link.translation() = Eigen::Vector3d(origin.position.x, origin.position.y, origin.position.z);
-        in_link.linear() = Eigen::Quaterniond(origin.rotation.w, origin.rotation.x, origin.rotation.y,
-                                              origin.rotation.z).normalized().toRotationMatrix();
         visual.link = link.name;
-        visual.in_link = in_link * unit_to_shape;
+        visual.in_link = Eigen::Affine3d(placed.origin.matrix()) * unit_to_shape;
         visual.color = color;
         links.push_back(visual);
       };
-      if (!link.visual_array.empty()) {
-        for (const urdf::VisualSharedPtr& v : link.visual_array) {
-          Color color = kDefaultLinkColor;
-          if (v->material) color = Color{v->material->color.r, v->material->color.g, v->material->color.b, 1.0};
-          add(v->geometry, v->origin, color);
+      if (!link.visuals.empty()) {
+        for (const sixdof_core::LinkVisual& v : link.visuals) {
+          add(v.placed, v.rgba ? Color{(*v.rgba)[0], (*v.rgba)[1], (*v.rgba)[2], 1.0} : kDefaultLinkColor);
         }
       } else {
-        for (const urdf::CollisionSharedPtr& c : link.collision_array) add(c->geometry, c->origin, kDefaultLinkColor);
+        for (const sixdof_core::PlacedShape& c : link.collision.shapes) add(c, kDefaultLinkColor);
       }
     }
   }

@@ -49,6 +49,38 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
   return t;
 }
 
+// A URDF geometry as a Shape; a mesh keeps its URI in mesh_resource (mesh_path is resolved by the caller).
+Shape toShape(const urdf::Geometry& geometry) {
+  Shape shape;
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(geometry);
+      shape.type = Shape::Type::kBox;
+      shape.box_size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
+      break;
+    }
+    case urdf::Geometry::SPHERE:
+      shape.type = Shape::Type::kSphere;
+      shape.radius = static_cast<const urdf::Sphere&>(geometry).radius;
+      break;
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+      shape.type = Shape::Type::kCylinder;
+      shape.radius = cylinder.radius;
+      shape.length = cylinder.length;
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
+      shape.type = Shape::Type::kMesh;
+      shape.mesh_resource = mesh.filename;
+      shape.mesh_scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+      break;
+    }
+  }
+  return shape;
+}
+
 // The order in which <joint> elements appear in the URDF: urdfdom keeps joints in a map, and the
 // document order is the natural variable order (joint1..joint6 before the gripper).
 std::map<std::string, int> urdfJointDocumentOrder(const std::string& urdf_xml) {
@@ -222,41 +254,31 @@ void RobotModel::parseUrdf(const std::string& urdf_xml, const PackageResolver& r
     link.collision.link_name = ulink->name;
     for (const auto& collision : ulink->collision_array) {
       if (!collision || !collision->geometry) continue;
-      PlacedShape placed;
-      placed.origin = toIsometry(collision->origin);
-      const auto& geometry = *collision->geometry;
-      switch (geometry.type) {
-        case urdf::Geometry::BOX: {
-          const auto& box = static_cast<const urdf::Box&>(geometry);
-          placed.shape.type = Shape::Type::kBox;
-          placed.shape.box_size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
-          break;
-        }
-        case urdf::Geometry::SPHERE:
-          placed.shape.type = Shape::Type::kSphere;
-          placed.shape.radius = static_cast<const urdf::Sphere&>(geometry).radius;
-          break;
-        case urdf::Geometry::CYLINDER: {
-          const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
-          placed.shape.type = Shape::Type::kCylinder;
-          placed.shape.radius = cylinder.radius;
-          placed.shape.length = cylinder.length;
-          break;
-        }
-        case urdf::Geometry::MESH: {
-          const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
-          placed.shape.type = Shape::Type::kMesh;
-          placed.shape.mesh_resource = mesh.filename;
-          try {
-            placed.shape.mesh_path = resolver.resolve(mesh.filename);
-          } catch (const RobotModelError& e) {
-            throw RobotModelError("URDF: collision mesh of link '" + ulink->name + "': " + e.what());
-          }
-          placed.shape.mesh_scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-          break;
+      PlacedShape placed{toShape(*collision->geometry), toIsometry(collision->origin)};
+      if (placed.shape.type == Shape::Type::kMesh) {
+        try {
+          placed.shape.mesh_path = resolver.resolve(placed.shape.mesh_resource);
+        } catch (const RobotModelError& e) {
+          throw RobotModelError("URDF: collision mesh of link '" + ulink->name + "': " + e.what());
         }
       }
       link.collision.shapes.push_back(placed);
+    }
+    for (const auto& visual : ulink->visual_array) {
+      if (!visual || !visual->geometry) continue;
+      LinkVisual out{PlacedShape{toShape(*visual->geometry), toIsometry(visual->origin)}, std::nullopt};
+      if (out.placed.shape.type == Shape::Type::kMesh) {
+        // Planning needs no visuals: an unresolvable visual mesh leaves mesh_path empty for its user to report.
+        try {
+          out.placed.shape.mesh_path = resolver.resolve(out.placed.shape.mesh_resource);
+        } catch (const RobotModelError&) {
+        }
+      }
+      if (visual->material) {
+        const auto& c = visual->material->color;
+        out.rgba = Eigen::Vector4d(c.r, c.g, c.b, c.a);
+      }
+      link.visuals.push_back(out);
     }
     if (ulink->inertial) {
       const urdf::Inertial& in = *ulink->inertial;

@@ -73,6 +73,12 @@ TEST(JointKinds, LinksWithoutGeometryOrInertia) {
   EXPECT_FALSE(model->link("mount").inertial.has_value());
   EXPECT_TRUE(model->link("sensor_frame").collision.shapes.empty());
   EXPECT_FALSE(model->link("sensor_frame").inertial.has_value());
+  EXPECT_TRUE(model->link("mount").visuals.empty());
+  // Visuals with their material colour (a named material of the robot); links without visuals have none.
+  ASSERT_EQ(model->link("base_link").visuals.size(), 1u);
+  ASSERT_TRUE(model->link("base_link").visuals[0].rgba.has_value());
+  EXPECT_TRUE(model->link("base_link").visuals[0].rgba->isApprox(Eigen::Vector4d(0, 0, 1, 1)));
+  EXPECT_TRUE(model->link("head").visuals.empty());
   ASSERT_TRUE(model->link("head").inertial.has_value());
   EXPECT_DOUBLE_EQ(model->link("head").inertial->mass, 0.3);
   EXPECT_TRUE(model->link("head").inertial->origin.translation().isApprox(Eigen::Vector3d(0.05, 0, 0)));

@@ -64,6 +64,13 @@ struct LinkInertial {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         // about the centre of mass, inertial-frame axes
 };
 
+// A URDF <visual>: its shape in the link frame and its material colour when it has one. A visual mesh that
+// cannot be resolved keeps an empty mesh_path (planning needs no visuals; a renderer reports it).
+struct LinkVisual {
+  PlacedShape placed;
+  std::optional<Eigen::Vector4d> rgba;
+};
+
 struct LinkModel {
   std::string name;
   int parent_joint = -1;  // index into RobotModel::joints(); -1 for the root link
@@ -71,6 +78,7 @@ struct LinkModel {
   std::vector<int> child_joints;
   LinkGeometry collision;  // shapes in the link frame; empty for links without collision geometry
   std::optional<LinkInertial> inertial;  // absent for links without <inertial>
+  std::vector<LinkVisual> visuals;       // in URDF order; empty for links without <visual>
 };
 
 // An SRDF planning group. joints/links are the fully expanded contents (chains and subgroups included),

@@ -114,7 +114,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"setup_assistant: {error.filename or ''}: {error.strerror or error}", file=sys.stderr)
         return 2
     for label, files in (("created", result.created), ("regenerated", result.regenerated),
-                         ("kept (edited by hand; delete to regenerate)", result.kept)):
+                         ("kept (edited by hand; delete to regenerate)", result.kept),
+                         ("removed (no longer generated)", result.removed)):
         if files:
             print(f"{label}: {', '.join(files)}")
     if result.srdf_hand_edits_kept:

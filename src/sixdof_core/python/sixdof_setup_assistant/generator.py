@@ -100,6 +100,7 @@ class Result:
     created: list[str] = field(default_factory=list)
     regenerated: list[str] = field(default_factory=list)
     kept: list[str] = field(default_factory=list)  # edited by hand since generated: left as they are
+    removed: list[str] = field(default_factory=list)  # generated before, not any more, not edited
     srdf_hand_edits_kept: bool = False
     report: dict[str, Any] = field(default_factory=dict)
 
@@ -213,15 +214,23 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
     }
     staged = os.path.join(staging_root, name)
     os.makedirs(staged)
-    # Whatever the user added to the package is carried over untouched.
+    # Whatever the user added to the package is carried over untouched; a file generated before that is no
+    # longer generated (e.g. another robot name) goes unless it was edited.
+    new_hashes: dict[str, str] = {}
     if os.path.isdir(target):
         for dirpath, _dirnames, filenames in os.walk(target):
             for filename in filenames:
                 rel = os.path.relpath(os.path.join(dirpath, filename), target)
-                if rel != MANIFEST and rel not in files:
-                    os.makedirs(os.path.join(staged, os.path.dirname(rel)), exist_ok=True)
-                    shutil.copy2(os.path.join(target, rel), os.path.join(staged, rel))
-    new_hashes: dict[str, str] = {}
+                if rel == MANIFEST or rel in files:
+                    continue
+                if rel in hashes and not edited(rel):
+                    result.removed.append(rel)
+                    continue
+                if rel in hashes:
+                    new_hashes[rel] = hashes[rel]
+                    result.kept.append(rel)
+                os.makedirs(os.path.join(staged, os.path.dirname(rel)), exist_ok=True)
+                shutil.copy2(os.path.join(target, rel), os.path.join(staged, rel))
     for rel, text in files.items():
         existing = os.path.join(target, rel)
         if rel != srdf_rel and edited(rel):

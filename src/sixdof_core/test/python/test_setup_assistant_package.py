@@ -224,6 +224,18 @@ def test_rerun_keeps_hand_edits_and_lists_what_it_regenerates(tmp_path: Path) ->
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".setup_assistant")]
 
 
+def test_files_no_longer_generated_go_unless_edited(tmp_path: Path) -> None:
+    run("--urdf", FIXTURES["mounted"], "--package-out", tmp_path, "--name", "arm_config", "--density", "100",
+        check=True)
+    package = tmp_path / "arm_config"
+    (package / "config/mounted.srdf").write_text((package / "config/mounted.srdf").read_text() + "<!-- mine -->\n")
+    result = run("--urdf", FIXTURES["ur_like"], "--package-out", tmp_path, "--name", "arm_config", "--density",
+                 "100", check=True)
+    assert "removed (no longer generated): urdf/mounted.urdf" in result.stdout, result.stdout
+    assert not (package / "urdf/mounted.urdf").exists() and (package / "urdf/ur_like.urdf").is_file()
+    assert (package / "config/mounted.srdf").read_text().endswith("<!-- mine -->\n")  # edited: kept
+
+
 def test_a_folder_not_made_by_the_setup_assistant_is_refused(tmp_path: Path) -> None:
     (tmp_path / "mounted_sixdof_config").mkdir()
     (tmp_path / "mounted_sixdof_config/notes.txt").write_text("mine")

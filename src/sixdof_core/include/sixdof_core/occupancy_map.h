@@ -66,8 +66,8 @@ class OccupancyMap {
 
 // Padded solids whose points a depth sensor must not mark occupied (MoveIt's point containment ShapeMask): the
 // robot's links, attached objects and known world objects. Each shape grows by `scale` about its origin, then
-// by `padding` (m). Boxes, spheres and cylinders are exact; a convex mesh is its padded hull and any other mesh
-// its padded bounding box (a little more than the mesh, never less).
+// by `padding` (m). Boxes, spheres and cylinders are exact; a mesh is the oriented bounding box of its padded
+// vertices (a little more than the mesh's hull, which MoveIt masks, never less).
 class ShapeMask {
  public:
   // Throws std::invalid_argument unless scale > 0 and padding >= 0 (both finite).

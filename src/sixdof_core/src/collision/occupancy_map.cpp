@@ -1,10 +1,7 @@
 #include "sixdof_core/occupancy_map.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <fcl/geometry/shape/convex.h>
 
 #include "fcl_geometry.h"
 #include "occupancy_map_impl.h"
@@ -122,7 +119,7 @@ bool OccupancyMap::occupiedBounds(Eigen::Vector3d* min, Eigen::Vector3d* max) co
 namespace {
 
 struct MaskShape {
-  enum class Kind { kBox, kSphere, kCylinder, kConvex, kBoundingBox };
+  enum class Kind { kBox, kSphere, kCylinder, kBoundingBox };
   Kind kind = Kind::kBox;
   Eigen::Isometry3d world_to_shape = Eigen::Isometry3d::Identity();
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // bounding sphere, in the mask's frame
@@ -131,7 +128,6 @@ struct MaskShape {
   double radius = 0.0;                               // sphere, cylinder
   Eigen::Vector3d box_center = Eigen::Vector3d::Zero();
   Eigen::Matrix3d box_axes = Eigen::Matrix3d::Identity();
-  std::vector<Eigen::Vector4d> planes;               // convex: outward normal, offset
 
   bool contains(const Eigen::Vector3d& point) const {
     if ((point - center).squaredNorm() > bound_sq) return false;
@@ -143,11 +139,6 @@ struct MaskShape {
         return p.squaredNorm() <= radius * radius;
       case Kind::kCylinder:
         return std::abs(p.z()) <= half.z() && p.head<2>().squaredNorm() <= radius * radius;
-      case Kind::kConvex:
-        for (const auto& plane : planes) {
-          if (plane.head<3>().dot(p) > plane.w()) return false;
-        }
-        return true;
       case Kind::kBoundingBox:
         return ((box_axes.transpose() * (p - box_center)).cwiseAbs().array() <= half.array()).all();
     }
@@ -203,32 +194,18 @@ SceneStatus ShapeMask::addShape(const Shape& shape, const Eigen::Isometry3d& pos
       mask.half = Eigen::Vector3d(mask.radius, mask.radius, 0.5 * shape.length * impl_->scale + impl_->padding);
       bound = mask.half.norm();
       break;
-    case Shape::Type::kMesh:
-      if (geometry->getNodeType() == fcl::GEOM_CONVEX) {
-        const auto& convex = static_cast<const fcl::Convexd&>(*geometry);
-        const auto& vertices = convex.getVertices();
-        const auto& faces = convex.getFaces();
-        for (std::size_t i = 0; i < faces.size(); i += faces[i] + 1) {
-          const Eigen::Vector3d& a = vertices[faces[i + 1]];
-          Eigen::Vector3d n = (vertices[faces[i + 2]] - a).cross(vertices[faces[i + 3]] - a);
-          if (n.norm() < 1e-12) continue;
-          n.normalize();
-          mask.planes.emplace_back(n.x(), n.y(), n.z(), n.dot(a) + 1e-9);
-        }
-        mask.kind = MaskShape::Kind::kConvex;
-        for (const auto& v : vertices) local_center += v;
-        local_center /= static_cast<double>(vertices.size());
-        for (const auto& v : vertices) bound = std::max(bound, (v - local_center).norm());
-      } else {
-        const detail::Obb obb = detail::geometryObb(*geometry);
-        mask.kind = MaskShape::Kind::kBoundingBox;
-        mask.box_center = obb.center;
-        mask.box_axes = obb.axes;
-        mask.half = obb.half;
-        local_center = obb.center;
-        bound = obb.half.norm();
-      }
+    case Shape::Type::kMesh: {
+      // The padded mesh's oriented bounding box: a superset of its hull (MoveIt masks the hull). A mesh's
+      // triangles need not cover its hull (the convexity test looks at the vertices), so no face-plane test.
+      const detail::Obb obb = detail::geometryObb(*geometry);
+      mask.kind = MaskShape::Kind::kBoundingBox;
+      mask.box_center = obb.center;
+      mask.box_axes = obb.axes;
+      mask.half = obb.half;
+      local_center = obb.center;
+      bound = obb.half.norm();
       break;
+    }
   }
   mask.center = pose * local_center;
   mask.bound_sq = bound * bound;

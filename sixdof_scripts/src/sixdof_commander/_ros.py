@@ -5,9 +5,12 @@ from __future__ import annotations
 import math
 import threading
 import time
+import xmlrpc.client
 
 import actionlib
+import rosgraph
 import rospy
+from actionlib_msgs.msg import GoalStatusArray
 from sensor_msgs.msg import JointState
 
 from sixdof_msgs.srv import GetRobotModel, GetRobotModelRequest
@@ -32,6 +35,14 @@ def require_node() -> None:
     """The API needs rospy.init_node first (clients, subscribers and the clock need a node)."""
     if not rospy.core.is_initialized():
         raise SixdofCommanderError("rospy.init_node() must be called before using sixdof_commander")
+    # rospy's rosout handler reads this parameter from the master, with no timeout, on the first message it logs
+    # (on every message while the parameter is unset: robot_host.launch sets it). Read now, while the master
+    # answers, so that an error logged during a network outage (the commander reporting that move_group stopped
+    # answering) does not block on the unreachable master.
+    try:
+        rospy.get_param_cached("/rosout_disable_topics_generation", False)
+    except (OSError, rospy.ROSException):
+        pass
 
 
 def load_robot_model(
@@ -115,6 +126,32 @@ def server_connected(client: actionlib.SimpleActionClient) -> bool:
 # How long (wall clock) an action server may stay disconnected before a waiting call gives up on it: long enough
 # to ride out a reconnect, short enough that a dead node is noticed within a few seconds.
 SERVER_LOST_AFTER = 2.0
+# A network outage closes no connection: the server's status messages (actionlib publishes them at 5 Hz) just
+# stop. After this long without one (wall clock) the server's node is asked for its pid; one that does not
+# answer within PING_TIMEOUT is unreachable. A node that answers is waited for: with a stopped /clock (a paused
+# or dead simulator) its status stops too, and move_group's execution watchdog ends the motion instead.
+SERVER_SILENT_AFTER = 2.0
+PING_TIMEOUT = 1.0
+
+
+class _TimeoutTransport(xmlrpc.client.Transport):
+    def __init__(self, timeout: float) -> None:
+        super().__init__()
+        self._timeout = timeout
+
+    def make_connection(self, host):  # noqa: ANN001, ANN201 (xmlrpc.client's signature)
+        connection = super().make_connection(host)
+        connection.timeout = self._timeout
+        return connection
+
+
+def node_answers(uri: str, timeout: float = PING_TIMEOUT) -> bool:
+    """True if the node at XML-RPC uri answers getPid within timeout (wall clock)."""
+    try:
+        xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout)).getPid(rospy.get_name())
+        return True
+    except (OSError, xmlrpc.client.Error):
+        return False
 
 
 def wait_for_done(client: actionlib.SimpleActionClient, done: threading.Event, timeout: float = 0.0) -> str:
@@ -122,6 +159,7 @@ def wait_for_done(client: actionlib.SimpleActionClient, done: threading.Event, t
     (disconnected for SERVER_LOST_AFTER s), `timeout` wall-clock seconds passed (0: no limit), or ROS shut down."""
     start = time.monotonic()
     lost_since = None
+    last_ping = 0.0
     while not done.wait(0.05):
         now = time.monotonic()
         if rospy.is_shutdown():
@@ -132,6 +170,14 @@ def wait_for_done(client: actionlib.SimpleActionClient, done: threading.Event, t
             lost_since = now
         elif now - lost_since >= SERVER_LOST_AFTER:
             return f"the action server was lost (disconnected for {SERVER_LOST_AFTER:g} s: did its node die?)"
+        silent = client.silent_for(now) if isinstance(client, ActionClient) else 0.0
+        if silent >= SERVER_SILENT_AFTER and now - last_ping >= PING_TIMEOUT:
+            last_ping = now
+            if client.server_uri and not node_answers(client.server_uri):
+                return (
+                    f"the action server stopped answering (no status for {silent:.1f} s and its node did not "
+                    f"answer within {PING_TIMEOUT:g} s: is the network to it down?)"
+                )
         if timeout and now - start >= timeout:
             return f"no result within {timeout:g} s"
     return ""
@@ -150,6 +196,26 @@ class ActionClient(actionlib.SimpleActionClient):
     def __init__(self, ns: str, action_spec: type) -> None:
         super().__init__(ns, action_spec)
         self._sending = threading.Lock()
+        # The server's heartbeat: when its last status arrived, and its node's XML-RPC URI (looked up once, while
+        # the master is reachable) to ask whether it is still there when the status stops.
+        self._last_status: float | None = None
+        self.server_uri = ""
+        self._heartbeat = rospy.Subscriber(
+            rospy.remap_name(ns) + "/status", GoalStatusArray, self._on_status, queue_size=1
+        )
+
+    def _on_status(self, msg: GoalStatusArray) -> None:
+        self._last_status = time.monotonic()
+        if not self.server_uri:
+            caller = (getattr(msg, "_connection_header", None) or {}).get("callerid", "")
+            try:
+                self.server_uri = rosgraph.Master(rospy.get_name()).lookupNode(caller) if caller else ""
+            except (OSError, rosgraph.MasterException):
+                pass
+
+    def silent_for(self, now: float) -> float:
+        """Wall seconds since the server's last status message (0 before the first)."""
+        return now - self._last_status if self._last_status is not None else 0.0
 
     def send_goal(self, goal, done_cb=None, active_cb=None, feedback_cb=None) -> None:
         with self._sending:

@@ -106,12 +106,8 @@ class RobotCommander:
         return self._urdf.root_link
 
     def _ordered_links(self) -> list[str]:
-        order, pending = [], [self._urdf.root_link]
-        while pending:
-            link = pending.pop(0)
-            order.append(link)
-            pending[:0] = [j.child for j in self._urdf.joints.values() if j.parent == link]
-        return order
+        # move_group's model order: breadth-first from the root link, siblings in URDF order (every package's).
+        return list(self._urdf.link_order)
 
     def _group(self, name: str) -> Group:
         return resolve_group(self._urdf, self._srdf, name)
@@ -129,7 +125,7 @@ class RobotCommander:
         return [j.name for j in self._urdf.joints.values() if j.is_active]
 
     def get_link_names(self, group: str | None = None) -> list[str]:
-        """The group's links; with no group, every link of the robot (root first, depth first)."""
+        """The group's links; with no group, every link of the robot (the model's order: root first, breadth first)."""
         if group is not None:
             return list(self._group(group).links)
         return self._ordered_links()

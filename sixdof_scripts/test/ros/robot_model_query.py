@@ -10,6 +10,7 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+from moveit_commander import RobotCommander
 from sixdof_commander._ros import query_robot_model
 from sixdof_commander.robot_model import resolve_group
 
@@ -27,6 +28,10 @@ class RobotModelQuery(unittest.TestCase):
         self.assertEqual([joint.child for joint in self.urdf.joints.values()], LINKS[1:])
         active = [joint.name for joint in self.urdf.joints.values() if joint.is_active]
         self.assertEqual(active, ["spin", "lift", "tilt", "finger_left"])
+        robot = RobotCommander()
+        self.assertEqual(robot.get_link_names(), LINKS)
+        self.assertEqual(robot.get_active_joint_names(), ["spin", "lift", "tilt", "finger_left"])
+        self.assertEqual(robot.get_joint("spin").bounds(), [-math.pi, math.pi])
 
     def test_joint_kinds_and_limits(self):
         spin = self.urdf.joints["spin"]

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The perception node in the headless stack (sorting world): every object of a fixed layout is found near its
 simulated pose with its colour class and keeps its id over frames, move_group's planning scene holds what is
-seen (and drops what is gone), and sort_objects.py sorts a small layout into the bins (exit 0)."""
+seen (and drops what is gone), and sort_objects.py sorts a small layout into the bins (exit 0), reports and skips
+an object out of reach (exit 1) and finds nothing to sort once every object is in its bin (exit 0)."""
 
 import math
 import subprocess
@@ -11,10 +12,12 @@ import unittest
 
 import rospy
 import rostest
+from shape_msgs.msg import SolidPrimitive
 from sixdof_commander.sorting import color_class
+from std_msgs.msg import ColorRGBA
 
-from sixdof_msgs.msg import DetectedObjectArray, ObjectStates
-from sixdof_msgs.srv import DeleteObject, GetObjectState, GetPlanningScene
+from sixdof_msgs.msg import DetectedObjectArray, ObjectStates, SimObject
+from sixdof_msgs.srv import DeleteObject, GetObjectState, GetPlanningScene, SpawnObject
 
 # Hang guards only: the tests assert outcomes, never durations.
 STARTUP_TIMEOUT = 240.0
@@ -105,6 +108,32 @@ class PerceptionInTheStack(unittest.TestCase):
         self.assertTrue(set(kept) <= set(ids), f"ids changed when other objects went: {kept} vs {ids}")
         self.wait_scene(kept, absent=sorted(set(ids) - set(kept)))
 
+        result = self.sort()
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIn("3/3 objects in their bins", result.stdout)
+
+        # An object out of the arm's reach (the table's far corner) is reported and skipped: exit 1.
+        far = SimObject(
+            name="far_cube",
+            shape=SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.04] * 3),
+            mass=0.1,
+            friction=0.8,
+            color=ColorRGBA(0.9, 0.1, 0.1, 1.0),
+        )
+        far.pose.position.x, far.pose.position.y, far.pose.position.z = 0.66, 0.30, 0.02
+        far.pose.orientation.w = 1.0
+        self.assertTrue(rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)(far).success)
+        result = self.sort()
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("FAILED (unreachable", result.stdout)
+        self.assertIn("far_cube", result.stdout)  # the final check names the object left out
+        # Once it is gone, everything left is in its bin: nothing to sort, exit 0.
+        self.assertTrue(delete("far_cube").success)
+        result = self.sort()
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIn("nothing to sort", result.stdout)
+
+    def sort(self) -> subprocess.CompletedProcess:
         result = subprocess.run(
             ["rosrun", "sixdof_scripts", "sort_objects.py", "--world", self.world],
             capture_output=True,
@@ -113,8 +142,7 @@ class PerceptionInTheStack(unittest.TestCase):
             check=False,
         )
         print(result.stdout, result.stderr)
-        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
-        self.assertIn("3/3 objects in their bins", result.stdout)
+        return result
 
 
 if __name__ == "__main__":

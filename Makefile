@@ -1,6 +1,6 @@
 # Thin entry points; the work is in scripts/. Every target that needs the workspace runs setup first
 # (idempotent: apt packages, venv, build are skipped when already up to date).
-.PHONY: setup build demo demo-sort test bench bench-build bench-sort fuzz clean
+.PHONY: setup build demo demo-sort test bench bench-build bench-pick bench-sort fuzz soak clean
 
 setup:
 	scripts/setup.sh
@@ -31,6 +31,16 @@ bench:
 fuzz:
 	SIXDOF_BUILD_TESTS=ON scripts/setup.sh
 	scripts/fuzz.sh
+
+# Randomized pick and place on a headless stack: 100 seeded trials, failures classified (the "pick" section of
+# bench/results.md); ARGS go to bench/pick_bench.py (e.g. ARGS="--trials 20 --seed 7").
+bench-pick: setup
+	scripts/bench_pick.sh $(ARGS)
+
+# Soak, not part of `make test`: 500 pick-and-place cycles with every node's RSS sampled; fails on any failed
+# cycle or a node growing by more than 5 MB (the "soak" section of bench/results.md).
+soak: setup
+	scripts/bench_pick.sh --soak $(ARGS)
 
 # Build cost of a fresh clone (cold, against the previous defaults); add ARGS=--apt for the Debian packages.
 bench-build: setup

@@ -33,6 +33,14 @@ class Gripper:
         waiter.action(self._client, resolve(ns, action_name))
         # The model (the group's joint, limits and named states) comes from move_group.
         waiter.service(resolve(ns, "get_robot_model"))
+        if waiter.missing and not any("get_robot_model" in m for m in waiter.missing):
+            # move_group answers: a robot without that group has no gripper, which says more than the missing action.
+            _, srdf = load_robot_model(ns, timeout=wait_for_servers)
+            if group_name not in srdf.groups:
+                raise SixdofCommanderError(
+                    f"Gripper: the robot has no gripper: its SRDF has no group '{group_name}' (groups: "
+                    f"{sorted(srdf.groups)}) and {', '.join(waiter.missing)} is not served"
+                )
         waiter.check("Gripper")
         urdf, srdf = load_robot_model(ns, timeout=wait_for_servers)
         group = resolve_group(urdf, srdf, group_name)

@@ -65,7 +65,15 @@ sixdof_core::IkOptions MoveGroupContext::ikOptions(const std::string& group) con
   return options;
 }
 
+void MoveGroupContext::waitForCurrentState() const {
+  // The current state is the robot's at the time of the request: wait (up to 1 s of wall time, MoveIt's bound) for
+  // joint_states stamped at or after now. On timeout the last state is used; its staleness is judged as before.
+  const ros::Time now = ros::Time::now();
+  if (!now.isZero()) state_monitor_->waitForStateNewerThan(now, 1.0);
+}
+
 ErrorCode MoveGroupContext::currentState(const std::string& source, sixdof_core::RobotState* state) const {
+  waitForCurrentState();
   std::vector<std::string> missing;
   if (!state_monitor_->currentState(config_.joint_state_timeout, state, &missing)) {
     return makeError(ErrorCode::ROBOT_STATE_STALE, "no joint_states received for joints " + joinNames(missing),
@@ -88,6 +96,7 @@ ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg
   size_t active_given = 0;
   for (const auto& name : joint_state.name) active_given += model_->joint(name).isActive() ? 1 : 0;
   if (active_given < model_->variableCount()) {
+    waitForCurrentState();
     std::vector<std::string> missing;
     if (!state_monitor_->currentState(config_.joint_state_timeout, state, &missing)) {
       std::vector<std::string> needed;

@@ -48,6 +48,7 @@ void CurrentStateMonitor::update(const sensor_msgs::JointState& msg) {
   if (ours) {
     received_ = true;
     last_update_ = Clock::now();
+    last_stamp_ = msg.header.stamp;
   }
   changed_.notify_all();
 }
@@ -98,6 +99,16 @@ bool CurrentStateMonitor::currentState(double timeout, sixdof_core::RobotState* 
   if (!absent.empty()) {
     if (missing) *missing = absent;
     return false;
+  }
+  return true;
+}
+
+bool CurrentStateMonitor::waitForStateNewerThan(const ros::Time& time, double timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout);
+  while (last_stamp_ < time) {
+    if (!received_ || last_stamp_.isZero()) return false;  // nothing yet, or unstamped messages
+    if (changed_.wait_until(lock, deadline) == std::cv_status::timeout) return last_stamp_ >= time;
   }
   return true;
 }

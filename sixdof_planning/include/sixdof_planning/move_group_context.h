@@ -76,6 +76,7 @@ class MoveGroupContext {
 
  private:
   void warnIfStale(const std::string& source) const;
+  void waitForCurrentState() const;
 
   ros::NodeHandle nh_;
   MoveGroupConfig config_;

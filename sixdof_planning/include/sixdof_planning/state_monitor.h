@@ -37,6 +37,11 @@ class CurrentStateMonitor {
   // received are set on *state all the same. The state may be old: see liveness().
   bool currentState(double timeout, sixdof_core::RobotState* state, std::vector<std::string>* missing) const;
 
+  // Waits (wall clock, at most timeout s) until a joint_states message stamped at or after `time` has been applied,
+  // as MoveIt's waitForCurrentState does before planning from the current state: under load the subscriber may still
+  // be working through older messages. False on timeout, and at once when the publisher does not stamp its messages.
+  bool waitForStateNewerThan(const ros::Time& time, double timeout) const;
+
   StateLiveness liveness() const;
 
   // Applies a message; exposed so tests and callers can feed states directly.
@@ -55,6 +60,7 @@ class CurrentStateMonitor {
   std::map<std::string, double> positions_;  // active joints only
   bool received_ = false;
   Clock::time_point last_update_;
+  ros::Time last_stamp_;  // of the last joint_states message with our joints
   bool clock_received_ = false;
   ros::Time last_clock_;
   Clock::time_point last_clock_advance_;

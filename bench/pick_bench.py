@@ -28,6 +28,7 @@ import argparse
 import math
 import random
 import statistics
+import subprocess
 import sys
 import time
 import xmlrpc.client
@@ -282,9 +283,11 @@ def report(
     failures = Counter(t.outcome for t in trials if t.outcome != "ok")
     rate = 100.0 * len(ok) / len(trials) if trials else 0.0
     title = "soak" if args.rss else "pick"
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     lines = [
         f"## {title} (scripts/bench_pick.sh)",
         "",
+        f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}.",
         f"{len(trials)} randomized pick-and-place trials, seed {args.seed}, headless (simulator as fast as possible),",
         f"velocity scaling {args.velocity_scaling:g}; objects: cube, upright cylinder, sphere, 3-6 cm wide, random",
         "position and yaw in x [{:g}, {:g}] m, y [{:g}, {:g}] m;".format(*args.region),

@@ -170,7 +170,8 @@ def wait_for_done(client: actionlib.SimpleActionClient, done: threading.Event, t
             lost_since = now
         elif now - lost_since >= SERVER_LOST_AFTER:
             return f"the action server was lost (disconnected for {SERVER_LOST_AFTER:g} s: did its node die?)"
-        silent = client.silent_for(now) if isinstance(client, ActionClient) else 0.0
+        # Still connected but silent: a network outage (a dead node's connections close, handled above).
+        silent = client.silent_for(now) if isinstance(client, ActionClient) and lost_since is None else 0.0
         if silent >= SERVER_SILENT_AFTER and now - last_ping >= PING_TIMEOUT:
             last_ping = now
             if client.server_uri and not node_answers(client.server_uri):

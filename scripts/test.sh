@@ -34,8 +34,15 @@ catkin_lint -W1 --strict --ignore missing_directory --ignore unknown_package . |
 
 rm -rf build/*/test_results
 # Each rostest starts its own master on a random port; one package at a time keeps the 2 cores sane.
+# colcon keeps only the last --ctest-args: --output-on-failure joins the caller's (e.g. --ctest-args -R name).
+test_args=("$@")
+if printf '%s\n' "$@" | grep -qx -- --ctest-args; then
+  test_args+=(--output-on-failure)
+else
+  test_args+=(--ctest-args --output-on-failure)
+fi
 colcon test --merge-install --event-handlers console_direct- console_cohesion+ summary+ \
-  --executor sequential "$@" --ctest-args --output-on-failure || status=1
+  --executor sequential "${test_args[@]}" || status=1
 
 echo "== results"
 python3 scripts/junit_summary.py build || status=1

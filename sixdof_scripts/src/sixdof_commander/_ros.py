@@ -171,7 +171,7 @@ def wait_for_done(client: actionlib.SimpleActionClient, done: threading.Event, t
         elif now - lost_since >= SERVER_LOST_AFTER:
             return f"the action server was lost (disconnected for {SERVER_LOST_AFTER:g} s: did its node die?)"
         # Still connected but silent: a network outage (a dead node's connections close, handled above).
-        silent = client.silent_for(now) if isinstance(client, ActionClient) and lost_since is None else 0.0
+        silent = client.silent_for(now, start) if isinstance(client, ActionClient) and lost_since is None else 0.0
         if silent >= SERVER_SILENT_AFTER and now - last_ping >= PING_TIMEOUT:
             last_ping = now
             if client.server_uri and not node_answers(client.server_uri):
@@ -214,9 +214,10 @@ class ActionClient(actionlib.SimpleActionClient):
             except (OSError, rosgraph.MasterException):
                 pass
 
-    def silent_for(self, now: float) -> float:
-        """Wall seconds since the server's last status message (0 before the first)."""
-        return now - self._last_status if self._last_status is not None else 0.0
+    def silent_for(self, now: float, since: float) -> float:
+        """Wall seconds without a status message from the server, counted from `since` (the start of the wait) at
+        the earliest: a call gets its own grace after an outage (0 before the first status)."""
+        return now - max(self._last_status, since) if self._last_status is not None else 0.0
 
     def send_goal(self, goal, done_cb=None, active_cb=None, feedback_cb=None) -> None:
         with self._sending:

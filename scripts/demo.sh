@@ -29,71 +29,27 @@ done
 
 artifacts=$repo/artifacts
 mkdir -p "$artifacts"
-work=$(mktemp -d)
-export ROS_HOME=$work/ros
-export ROS_LOG_DIR=$artifacts/demo_logs
-rm -rf "$ROS_LOG_DIR"
-mkdir -p "$ROS_HOME" "$ROS_LOG_DIR"
-# A master of our own on a free port: other ROS graphs on this machine are left alone.
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI=http://127.0.0.1:$port
+# A master of our own on a free port (other ROS graphs on this machine are left alone); background jobs in their
+# own process groups, stopped on exit (scripts/stack_lib.sh).
+# shellcheck source=scripts/stack_lib.sh
+. scripts/stack_lib.sh
+stack_init "$artifacts/demo_logs"
+work=$stack_work
+port=$stack_port
 
 stage() { printf '\n\033[1m[demo] %s\033[0m\n' "$*"; }
 fail() { printf '\033[1;31m[demo] FAILED: %s\033[0m\n' "$*" >&2; exit 1; }
-
-pids=()
-cleanup() {
-  local status=$?
-  trap - EXIT INT TERM
-  # Each background job runs in its own process group (setsid): stop the whole group, gently first.
-  for pid in "${pids[@]}"; do kill -INT -- "-$pid" 2>/dev/null || true; done
-  for _ in $(seq 50); do
-    local alive=0
-    for pid in "${pids[@]}"; do kill -0 -- "-$pid" 2>/dev/null && alive=1; done
-    [ $alive = 0 ] && break
-    sleep 0.2
-  done
-  for pid in "${pids[@]}"; do kill -KILL -- "-$pid" 2>/dev/null || true; done
-  rm -rf "$work"
-  exit $status
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
-
-start() {  # start <log name> <command...>: in the background, in a new process group
-  setsid "${@:2}" >"$ROS_LOG_DIR/$1.out" 2>&1 &
-  pids+=($!)
-}
 
 stage "1/6 launching the simulator (real time), move_group and the scene mirror (master port $port)"
 # Real time, as the end-to-end tests run: a free-running simulator (headless:=true) can outrun its consumers
 # on a loaded 2-core machine (robot_state_publisher drops states, sim-time timeouts shrink to fractions of a
 # wall second).
-start demo_launch roslaunch -p "$port" sixdof_bringup demo.launch rviz:=false
-python3 - "$object" <<'EOF' || fail "the stack did not come up (see $ROS_LOG_DIR/demo_launch.out)"
-# Ready = move_group answers and the scene mirror has put the object into the planning scene.
-import sys
-import time
-
-import rospy
-from sixdof_msgs.srv import GetPlanningScene
-
-rospy.init_node("demo_wait", anonymous=True, disable_signals=True)
-deadline = time.monotonic() + 180.0
-rospy.wait_for_service("get_planning_scene", timeout=180.0)
-scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
-while time.monotonic() < deadline:
-    names = [o.id for o in scene().scene.world.collision_objects]
-    if sys.argv[1] in names:
-        print(f"planning scene mirrors the simulator: {', '.join(sorted(names))}")
-        sys.exit(0)
-    time.sleep(0.2)
-sys.exit(f"'{sys.argv[1]}' never appeared in the planning scene")
-EOF
+stack_start demo_launch roslaunch -p "$port" sixdof_bringup demo.launch rviz:=false
+stack_wait_ready "$object" "${stack_pids[-1]}" || fail "the stack did not come up (see $ROS_LOG_DIR/demo_launch.out)"
 
 stage "2/6 recording /joint_states, /grasp_events and object states"
-start rosbag rosbag record -O "$work/demo.bag" /joint_states /grasp_events /sixdof_sim/object_states
-bag_pid=${pids[-1]}
+stack_start rosbag rosbag record -O "$work/demo.bag" /joint_states /grasp_events /sixdof_sim/object_states
+bag_pid=${stack_pids[-1]}
 
 stage "3/6 pick and place: '$object' -> ($place_x, $place_y)"
 pick_status=0
@@ -115,7 +71,7 @@ stage "6/6 rviz screenshot of the result (virtual X display)"
 # rviz and the marker node on their own display; the screenshot waits until the rviz window is mapped and
 # has had a few seconds to draw. It is of rviz's main window, whose size the rviz config sets: the virtual
 # screen around it (no window manager) would show as a black band.
-start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
+stack_start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
   roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
   pid=$!
   window=""
@@ -131,7 +87,7 @@ start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
   wait $pid
   exit $status
 ' _ "$ROS_LOG_DIR" "$artifacts/demo_result.png"
-wait "${pids[-1]}" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
+wait "${stack_pids[-1]}" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
 
 echo
 echo "[demo] artifacts:"

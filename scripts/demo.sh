@@ -68,26 +68,7 @@ rosrun sixdof_bringup plot_joint_states.py "$artifacts/demo.bag" "$artifacts/dem
   || fail "plotting the joint trajectories"
 
 stage "6/6 rviz screenshot of the result (virtual X display)"
-# rviz and the marker node on their own display; the screenshot waits until the rviz window is mapped and
-# has had a few seconds to draw. It is of rviz's main window, whose size the rviz config sets: the virtual
-# screen around it (no window manager) would show as a black band.
-stack_start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
-  roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
-  pid=$!
-  window=""
-  for _ in $(seq 150); do
-    window=$(xwininfo -root -children 2>/dev/null | awk "/ - RViz\":/ {print \$1; exit}")
-    [ -n "$window" ] && break
-    sleep 0.2
-  done
-  sleep 8
-  import -window "${window:-root}" "$2"
-  status=$?
-  kill -INT $pid
-  wait $pid
-  exit $status
-' _ "$ROS_LOG_DIR" "$artifacts/demo_result.png"
-wait "${stack_pids[-1]}" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
+stack_rviz_screenshot "$artifacts/demo_result.png" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
 
 echo
 echo "[demo] artifacts:"

@@ -43,18 +43,7 @@ sort_status=0
 rosrun sixdof_scripts sort_objects.py --world "$world" --json "$artifacts/sort_result.json" || sort_status=$?
 
 stage "4/4 rviz screenshot of the result (virtual X display)"
-stack_start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
-  roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
-  pid=$!
-  for _ in $(seq 150); do xwininfo -root -tree 2>/dev/null | grep -qi "rviz" && break; sleep 0.2; done
-  sleep 8
-  import -window root "$2"
-  status=$?
-  kill -INT $pid
-  wait $pid
-  exit $status
-' _ "$ROS_LOG_DIR" "$artifacts/sort_result.png"
-wait "${stack_pids[-1]}" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
+stack_rviz_screenshot "$artifacts/sort_result.png" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"
 
 echo
 echo "[demo-sort] artifacts:"

@@ -4,6 +4,7 @@
 #   . scripts/stack_lib.sh
 #   stack_init "$log_dir"              ROS_HOME in a temp dir, ROS_LOG_DIR=$log_dir, ROS_MASTER_URI on a free port
 #   stack_start <log name> <cmd...>    in the background, in a new process group; output in $ROS_LOG_DIR/<name>.out
+#   stack_rviz_screenshot <png>        rviz (sixdof_bringup rviz.launch.xml) on a virtual display, a shot of its window
 #   stack_wait_ready [object [pid]]    wait until move_group answers (and the object is in the planning scene);
 #                                      fails at once when process group pid (the launch) has ended
 # The caller's EXIT trap must call stack_cleanup (stack_init installs one that does).
@@ -82,4 +83,27 @@ while time.monotonic() < deadline:
     time.sleep(0.2)
 sys.exit(f"'{sys.argv[1]}' never appeared in the planning scene")
 PYEOF
+}
+
+stack_rviz_screenshot() {
+  # rviz and the marker node on their own display; the screenshot waits until the rviz window is mapped and has
+  # had a few seconds to draw. It is of rviz's main window, whose size the rviz config sets: the virtual screen
+  # around it (no window manager) would show as a black band. rviz's output goes to $ROS_LOG_DIR/rviz.out.
+  stack_start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
+    roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
+    pid=$!
+    window=""
+    for _ in $(seq 150); do
+      window=$(xwininfo -root -children 2>/dev/null | awk "/ - RViz\":/ {print \$1; exit}")
+      [ -n "$window" ] && break
+      sleep 0.2
+    done
+    sleep 8
+    import -window "${window:-root}" "$2"
+    status=$?
+    kill -INT $pid
+    wait $pid
+    exit $status
+  ' _ "$ROS_LOG_DIR" "$1"
+  wait "${stack_pids[-1]}"
 }

@@ -1,5 +1,7 @@
 """The gripper's reach beyond the tcp, from the URDF's collision geometry."""
 
+from xml.etree import ElementTree
+
 import numpy as np
 import pytest
 from sixdof_commander import SixdofCommanderError
@@ -30,15 +32,15 @@ def test_reach_is_the_fingertip_beyond_the_tcp():
 
 
 def test_collision_points_bound_primitives():
-    points = collision_points(URDF, "finger", lambda f: f)
+    points = collision_points(ElementTree.fromstring(URDF), "finger", lambda f: f)
     assert points[:, 2].min() == pytest.approx(0.0)
     assert points[:, 2].max() == pytest.approx(0.06)
-    assert len(collision_points(URDF, "tcp", lambda f: f)) == 0
+    assert len(collision_points(ElementTree.fromstring(URDF), "tcp", lambda f: f)) == 0
 
 
 def test_unknown_link_and_bad_geometry_are_named():
     with pytest.raises(SixdofCommanderError, match="link 'nope'"):
-        collision_points(URDF, "nope", lambda f: f)
+        collision_points(ElementTree.fromstring(URDF), "nope", lambda f: f)
     bad = URDF.replace('size="0.01 0.02 0.06"', 'size="0.01 x 0.06"')
     with pytest.raises(SixdofCommanderError, match="finger.*box size"):
-        collision_points(bad, "finger", lambda f: f)
+        collision_points(ElementTree.fromstring(bad), "finger", lambda f: f)

@@ -30,11 +30,10 @@ def _corners(half: Iterable[float]) -> np.ndarray:
     return np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
 
 
-def collision_points(urdf_xml: str, link: str, resolve: Callable[[str], str]) -> np.ndarray:
-    """Points (N x 3, link frame) whose convex hull bounds the link's collision geometry: the corners of
-    boxes and of the boxes around cylinders and spheres, and the vertices of STL meshes."""
-    root = ElementTree.fromstring(urdf_xml)
-    element = next((e for e in root.findall("link") if e.get("name") == link), None)
+def collision_points(urdf: ElementTree.Element, link: str, resolve: Callable[[str], str]) -> np.ndarray:
+    """Points (N x 3, link frame) whose convex hull bounds the link's collision geometry in the parsed URDF: the
+    corners of boxes and of the boxes around cylinders and spheres, and the vertices of STL meshes."""
+    element = next((e for e in urdf.findall("link") if e.get("name") == link), None)
     if element is None:
         raise SixdofCommanderError(f"link '{link}' is not in the URDF")
     points = []
@@ -77,9 +76,10 @@ def gripper_reach(
 ) -> float:
     """How far the links below tip_link (fingers at zero) reach beyond the tcp along the tool z axis (m, >= 0)."""
     tip_in_tcp = np.linalg.inv(tcp_in_tip)
+    urdf = ElementTree.fromstring(urdf_xml)
     reach = 0.0
     for link in description.descendant_links(tip_link):
-        points = collision_points(urdf_xml, link, resolve)
+        points = collision_points(urdf, link, resolve)
         if not len(points):
             continue
         link_in_tcp = tip_in_tcp @ description.chain_transform(tip_link, link)

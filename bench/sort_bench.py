@@ -10,7 +10,8 @@ moves the arm to its home pose and then:
   sorting    sort_objects.py runs on the layout; an object succeeds when it rests in its colour's bin. Each
              failure is classified by the script's outcome for that object (unreachable, grasp_missed, ...) or
              as 'not_attempted' (never picked) or 'dropped' (the script reported ok, the object is not in the bin).
-The report is the "## sort" section of bench/results.md.
+The report is the "## sort" section of bench/results.md ("## sort with depth noise" when the camera's depth is
+noisy: scripts/bench_sort.sh --depth-noise SIGMA gives the world's cameras that noise and passes it on here).
 
     bench/sort_bench.py --world sixdof_sim/worlds/sorting.yaml --layouts 10 --seed 1 --report report.md
 """
@@ -241,13 +242,19 @@ class Bench:
 
     def report(self) -> str:
         errors = self.errors_mm
+        noise = self.args.depth_noise
+        depth = (
+            f"the camera's depth with Gaussian noise of {noise * 1000.0:g} mm (standard deviation)"
+            if noise > 0.0
+            else "noise-free depth"
+        )
         lines = [
-            "## sort (scripts/bench_sort.sh)",
+            "## sort with depth noise (scripts/bench_sort.sh)" if noise > 0.0 else "## sort (scripts/bench_sort.sh)",
             "",
             f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, seed {self.args.seed}: "
             f"{self.layouts_done} random layouts of 3-6 objects (of {self.args.layouts} asked; the run stops after "
-            f"{self.args.max_minutes:g} minutes), sixdof_sim/worlds/sorting.yaml, headless stack with the "
-            "perception node (no ground truth in the planning scene).",
+            f"{self.args.max_minutes:g} minutes), sixdof_sim/worlds/sorting.yaml with {depth}, headless stack "
+            "with the perception node (no ground truth in the planning scene).",
             "",
             "| figure | value |",
             "| --- | --- |",
@@ -286,9 +293,17 @@ def main() -> int:
     parser.add_argument("--home", default="home pose")
     parser.add_argument("--sort-timeout", type=float, default=900.0, help="wall seconds per sort_objects.py run")
     parser.add_argument("--report", default="", help="write the report section (markdown) to this file")
+    parser.add_argument(
+        "--depth-noise",
+        type=float,
+        default=0.0,
+        help="m: the depth noise the world's camera was given (scripts/bench_sort.sh sets it); only reported",
+    )
     args = parser.parse_args(rospy.myargv(sys.argv)[1:])
     if args.layouts < 1:
         parser.error("--layouts must be >= 1")
+    if not (math.isfinite(args.depth_noise) and args.depth_noise >= 0.0):
+        parser.error(f"--depth-noise must be >= 0 (m), got {args.depth_noise}")
     rospy.init_node("sort_bench", anonymous=True)
     bench = Bench(args)
     try:

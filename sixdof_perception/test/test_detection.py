@@ -13,6 +13,7 @@ from sixdof_perception.detection import (
     Support,
     color_class,
     detect_objects,
+    estimate_noise,
     label_components,
 )
 from sixdof_perception.tracking import Tracker
@@ -20,7 +21,10 @@ from sixdof_perception.tracking import Tracker
 TABLE = Support(0.0, (0.2, 0.0), (0.5, 0.6))
 
 
-def camera_rays(width=320, height=240, fov_deg=60.0, position=(0.95, 0.0, 0.8), target=(0.38, 0.0, 0.0)):
+CAMERA_POSITION, CAMERA_TARGET = (0.95, 0.0, 0.8), (0.38, 0.0, 0.0)
+
+
+def camera_rays(width=320, height=240, fov_deg=60.0, position=CAMERA_POSITION, target=CAMERA_TARGET):
     """Ray origins and unit directions (HxWx3) of a pinhole camera at position looking at target."""
     forward = np.subtract(target, position)
     forward /= np.linalg.norm(forward)
@@ -69,8 +73,9 @@ def hit_cylinder(o, d, centre, r, length):
     return np.minimum(side, cap)
 
 
-def render(objects, **camera):
-    """objects: (kind, centre, params, rgb). Returns points, colours (table brown) like the simulator's cloud."""
+def render(objects, depth_noise=0.0, seed=0, **camera):
+    """objects: (kind, centre, params, rgb). Returns points, colours (table brown) like the simulator's cloud;
+    depth_noise (m) is Gaussian noise on the depth (along the optical axis), as the simulator's camera adds it."""
     o, d = camera_rays(**camera)
     t_best = np.where(d[..., 2] < 0, -o[..., 2] / d[..., 2], np.inf)
     colors = np.broadcast_to(np.array([0.55, 0.4, 0.25]), d.shape).copy()
@@ -86,6 +91,10 @@ def render(objects, **camera):
         t_best = np.where(closer, t, t_best)
         # Lambert-like darkening keeps the hue.
         colors[closer] = np.asarray(rgb) * 0.8
+    if depth_noise > 0.0:
+        forward = np.subtract(camera.get("target", CAMERA_TARGET), camera.get("position", CAMERA_POSITION))
+        cosine = d @ (forward / np.linalg.norm(forward))
+        t_best = t_best + np.random.default_rng(seed).normal(0.0, depth_noise, t_best.shape) / cosine
     points = o + d * t_best[..., None]
     points[~np.isfinite(t_best)] = np.nan
     return points, colors
@@ -144,6 +153,22 @@ def test_layout_found_with_right_shapes_colours_and_positions():
             assert sorted(nearest.size[:2]) == pytest.approx(sorted(params["size"][:2]), abs=0.006)
             turn = (nearest.yaw - params["yaw"]) % (math.pi / 2)
             assert min(turn, math.pi / 2 - turn) < math.radians(5)
+
+
+@pytest.mark.parametrize("sigma", [0.001, 0.002])
+def test_depth_noise_measured_on_the_table_and_tolerated(sigma):
+    """Realistic depth noise (1-2 mm at about 1 m): every object found with its shape and colour, its centre
+    within 3 mm (the highest points of a noisy cluster are not its top, the extremes not its footprint)."""
+    points, colors = render(LAYOUT, depth_noise=sigma, seed=7, width=640, height=480)
+    # The vertical part of noise along rays that look down at 35-70 degrees.
+    assert 0.5 * sigma < estimate_noise(points, [TABLE], DetectorParams()) < sigma
+    found = detect_objects(points, colors, [TABLE])
+    assert len(found) == len(LAYOUT), [(d.label, d.position) for d in found]
+    for kind, centre, _params, rgb in LAYOUT:
+        nearest = min(found, key=lambda d: math.dist(d.position, centre))
+        assert math.dist(nearest.position, centre) < 0.003, (kind, centre, nearest)
+        assert (nearest.shape, nearest.color) == (kind, color_class(*rgb)), (kind, centre, nearest)
+    assert estimate_noise(*render(LAYOUT, width=320, height=240)[:1], [TABLE], DetectorParams()) == 0.0
 
 
 def test_masks_and_self_filter_remove_points():

@@ -5,6 +5,10 @@ plane, so no plane fit is needed and none can tilt) and outside the masked volum
 walls) -> connected components on the image grid (neighbouring pixels closer than a gap in 3-D) -> per
 cluster a colour class from the mean colour's hue and a shape fit: sphere (least squares with the centre a
 radius above the support), else box or upright cylinder told apart by the corners of the top face.
+
+Depth noise: its vertical spread is measured on the support itself (the table points around its known height,
+estimate_noise), and the fits widen their tolerances by it and take robust statistics (the top face's median
+height, percentiles instead of extremes), so that noise does not raise every object or blow up its size.
 """
 
 from __future__ import annotations
@@ -146,6 +150,39 @@ def foreground_mask(
     return mask, support_z
 
 
+def estimate_noise(points: np.ndarray, supports: Sequence[Support], params: DetectorParams) -> float:
+    """Vertical depth noise (m, a standard deviation): the robust spread (1.4826 * median absolute deviation)
+    of the heights of the points on the supports, i.e. within min_height of a support's top. 0 when no support
+    point is seen or the spread is below 0.1 mm (a noise-free camera's float rounding)."""
+    valid = np.all(np.isfinite(points), axis=-1)
+    residuals = []
+    for support in supports:
+        height = points[..., 2] - support.z
+        near = valid & (np.abs(height) < params.min_height)
+        near &= support.contains(points[..., :2])
+        residuals.append(height[near])
+    heights = np.concatenate(residuals) if residuals else np.empty(0)
+    if len(heights) < params.min_points:
+        return 0.0
+    spread = float(1.4826 * np.median(np.abs(heights - np.median(heights))))
+    return spread if spread >= 1e-4 else 0.0
+
+
+def _top_height(z: np.ndarray, tolerance: float, noise: float) -> float:
+    """Height of a cluster's top face: without noise its highest point; with noise the median of the points
+    around the top (a band of 2.5 sigma, re-centred a few times), since the highest points are the noisiest."""
+    if noise <= 0.0:
+        return float(z.max())
+    top = float(np.percentile(z, 99.0))
+    band = max(tolerance / 2.0, 2.5 * noise)
+    for _ in range(4):
+        near = z[np.abs(z - top) <= band]
+        if len(near) == 0:
+            break
+        top = float(np.median(near))
+    return top
+
+
 def label_components(mask: np.ndarray, points: np.ndarray, gap: float) -> np.ndarray:
     """Connected components of the mask on the 4-neighbour grid, neighbours joined when their points are
     closer than gap. Returns per pixel a component label (-1 outside the mask); labels are arbitrary ints.
@@ -204,23 +241,42 @@ def _fit_sphere_on_support(points: np.ndarray, support_z: float) -> tuple[np.nda
     design = np.stack([2.0 * rel[:, 0], 2.0 * rel[:, 1], 2.0 * rel[:, 2], np.ones(len(rel))], axis=1)
     rhs = np.sum(rel**2, axis=1)
     (cx, cy, r, _k), *_ = np.linalg.lstsq(design, rhs, rcond=None)
+    # The algebraic fit is biased by noise (it weighs errors by the radius): a few Gauss-Newton steps on
+    # the geometric distances |p - c| - r, with c = (cx, cy, z0 + r).
+    for _ in range(5):
+        offset = rel - np.array([cx, cy, r])
+        dist = np.maximum(np.linalg.norm(offset, axis=1), 1e-9)
+        residual = dist - r
+        jacobian = np.stack([-offset[:, 0] / dist, -offset[:, 1] / dist, -offset[:, 2] / dist - 1.0], axis=1)
+        step, *_ = np.linalg.lstsq(jacobian, -residual, rcond=None)
+        if not np.all(np.isfinite(step)):
+            break
+        cx, cy, r = cx + step[0], cy + step[1], r + step[2]
+        if np.max(np.abs(step)) < 1e-7:
+            break
     centre = np.array([cx, cy, support_z + r])
     errors = np.linalg.norm(points - centre, axis=1) - r
     return centre, float(r), float(np.sqrt(np.mean(errors**2)))
 
 
-def fit_cluster(points: np.ndarray, colors: np.ndarray, support_z: float, params: DetectorParams) -> Detection:
-    """Colour class and shape fit of one cluster (points Nx3 in a z-up frame, colours Nx3 in [0, 1])."""
+def fit_cluster(
+    points: np.ndarray, colors: np.ndarray, support_z: float, params: DetectorParams, noise: float = 0.0
+) -> Detection:
+    """Colour class and shape fit of one cluster (points Nx3 in a z-up frame, colours Nx3 in [0, 1]); noise is
+    the depth noise's vertical standard deviation (estimate_noise, m)."""
     mean = colors.mean(axis=0)
     rgb = (float(mean[0]), float(mean[1]), float(mean[2]))
     color = color_class(*rgb)
-    height = float(points[:, 2].max() - support_z)
+    height = _top_height(points[:, 2], params.top_tolerance, noise) - support_z
     centre, radius, rms = _fit_sphere_on_support(points, support_z)
-    if rms <= params.sphere_rms and radius > 0.0 and abs(2.0 * radius - height) <= 0.25 * height:
-        score = float(np.mean(np.abs(np.linalg.norm(points - centre, axis=1) - radius) < 0.003))
+    # Noise along the rays spreads a surface by about the vertical noise (the camera looks down steeply).
+    sphere_rms = math.hypot(params.sphere_rms, 1.5 * noise)
+    slack = 0.003 + 2.0 * noise
+    if rms <= sphere_rms and radius > 0.0 and abs(2.0 * radius - height) <= 0.25 * height + 2.0 * noise:
+        score = float(np.mean(np.abs(np.linalg.norm(points - centre, axis=1) - radius) < slack))
         d = 2.0 * radius
         return Detection(color, rgb, "sphere", (d, d, d), tuple(float(v) for v in centre), 0.0, score, len(points))
-    top = points[points[:, 2] > support_z + height - params.top_tolerance]
+    top = points[points[:, 2] > support_z + height - max(params.top_tolerance, 2.5 * noise)]
     xy = points[:, :2]
     top_xy = top[:, :2] if len(top) >= 3 else xy
     yaw = _min_area_yaw(top_xy)
@@ -233,12 +289,14 @@ def fit_cluster(points: np.ndarray, colors: np.ndarray, support_z: float, params
     if np.mean(corners) >= params.corner_fraction:
         # Every visible point (top face and the sides facing the camera) lies inside the footprint.
         all_uv = _rotate(xy, yaw)
-        low, high = all_uv.min(axis=0), all_uv.max(axis=0)
+        # With noise the extremes are outliers: the footprint from percentiles instead.
+        edge = 0.0 if noise <= 0.0 else 1.0
+        low, high = np.percentile(all_uv, edge, axis=0), np.percentile(all_uv, 100.0 - edge, axis=0)
         mid_uv = (low + high) / 2.0
         c, s = math.cos(yaw), math.sin(yaw)
         cx, cy = mid_uv[0] * c - mid_uv[1] * s, mid_uv[0] * s + mid_uv[1] * c
         size = (float(high[0] - low[0]), float(high[1] - low[1]), height)
-        inside = np.all(np.abs(all_uv - mid_uv) <= (high - low) / 2.0 + 0.003, axis=1)
+        inside = np.all(np.abs(all_uv - mid_uv) <= (high - low) / 2.0 + slack, axis=1)
         # Canonical yaw in [-45, 45) degrees: a box turned by 90 degrees is the same box with x and y swapped.
         if yaw >= math.pi / 4.0:
             yaw -= math.pi / 2.0
@@ -247,8 +305,8 @@ def fit_cluster(points: np.ndarray, colors: np.ndarray, support_z: float, params
     # Upright cylinder: the top disc's centroid is the axis; the radius from every point's distance to it.
     axis = top_xy.mean(axis=0)
     radial = np.linalg.norm(xy - axis, axis=1)
-    radius = float(np.percentile(radial, 98))
-    score = float(np.mean(radial <= radius + 0.003))
+    radius = float(np.percentile(radial, 98 if noise <= 0.0 else 95))
+    score = float(np.mean(radial <= radius + slack))
     d = 2.0 * radius
     return Detection(
         color, rgb, "cylinder", (d, d, height), (float(axis[0]), float(axis[1]), z), 0.0, score, len(points)
@@ -269,6 +327,7 @@ def detect_objects(
     if points.ndim != 3 or points.shape[-1] != 3 or colors.shape != points.shape:
         raise ValueError(f"points and colors must both be HxWx3, got {points.shape} and {colors.shape}")
     mask, support_z = foreground_mask(points, supports, masked_boxes, self_filter, params)
+    noise = estimate_noise(points, supports, params)
     labels = label_components(mask, points, params.cluster_gap)
     flat = labels.ravel()
     chosen = flat >= 0
@@ -285,6 +344,6 @@ def detect_objects(
         if counts[k] < params.min_points:
             continue
         members = order[bounds[k] : bounds[k + 1]]
-        detections.append(fit_cluster(pts[members], cols[members], float(np.nanmax(zs[members])), params))
+        detections.append(fit_cluster(pts[members], cols[members], float(np.nanmax(zs[members])), params, noise))
     detections.sort(key=lambda d: (round(d.position[0], 3), round(d.position[1], 3)))
     return detections

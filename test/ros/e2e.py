@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import math
 import time
+import unittest
 
 import numpy as np
 import rospy
@@ -49,6 +50,28 @@ def object_state(name: str):
     response = rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)(name)
     assert response.success, response.status_message
     return response
+
+
+# The default world's collision objects (sixdof_sim worlds/default.yaml), which scene_mirror puts into the scene.
+MIRRORED_OBJECTS = ("table", "red_cube", "blue_cylinder", "yellow_sphere", "green_block")
+
+
+def assert_scene_mirrors_simulator(test: unittest.TestCase, support_clearance: float) -> tuple[dict, dict]:
+    """Each of MIRRORED_OBJECTS is in the planning scene within 2 mm of the simulator's pose (the mirror sends MOVE
+    only for changes above 1 mm; static objects, the table the robot stands on, support_clearance lower), and the
+    visual-only place_marker is not. Returns the scene's objects and the simulator's states, by name."""
+    world = {o.id: o for o in planning_scene().world.collision_objects}
+    states = {}
+    for name in MIRRORED_OBJECTS:
+        with case(object=name):
+            test.assertIn(name, world)
+            sim = states[name] = object_state(name).object
+            drop = support_clearance if sim.is_static else 0.0
+            expected = (sim.pose.position.x, sim.pose.position.y, sim.pose.position.z - drop)
+            mirrored = world[name].pose.position
+            test.assertLess(math.dist(expected, (mirrored.x, mirrored.y, mirrored.z)), 0.002)
+    test.assertNotIn("place_marker", world, "a visual-only marker is not an obstacle")
+    return world, states
 
 
 def settled_joint_state(velocity_limit: float = 1e-3, sim_timeout: float = 5.0) -> JointState:

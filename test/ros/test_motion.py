@@ -12,9 +12,8 @@ import rospy
 import rostest
 from e2e import (
     TfPoses,
+    assert_scene_mirrors_simulator,
     case,
-    object_state,
-    planning_scene,
     rotation_angle,
     rpy_matrix,
     settled_joint_state,
@@ -94,18 +93,7 @@ class EndToEndMotion(unittest.TestCase):
         self.assertTrue(self.driver.moveto_xyzrpy(PAPER_POSES["home"][0] + rad(PAPER_POSES["home"][1])))
 
     def test_simulator_objects_are_mirrored_into_the_planning_scene(self):
-        world = {o.id: o for o in planning_scene().world.collision_objects}
-        for name in ("table", "red_cube", "blue_cylinder", "yellow_sphere", "green_block"):
-            with case(object=name):
-                self.assertIn(name, world)
-                state = object_state(name).object
-                sim = state.pose.position
-                # Static objects (the table the robot stands on) are mirrored support_clearance lower.
-                drop = rospy.get_param("scene_mirror/support_clearance", 0.002) if state.is_static else 0.0
-                mirrored = world[name].pose.position
-                # The mirror sends MOVE only for changes above 1 mm: within 2 mm of the simulator's pose.
-                self.assertLess(math.dist((sim.x, sim.y, sim.z - drop), (mirrored.x, mirrored.y, mirrored.z)), 0.002)
-        self.assertNotIn("place_marker", world, "a visual-only marker is not an obstacle")
+        assert_scene_mirrors_simulator(self, rospy.get_param("scene_mirror/support_clearance", 0.002))
 
 
 if __name__ == "__main__":

@@ -1,10 +1,8 @@
 // SemanticModel, LinkPoses and TrajectoryAnimation against the project's URDF and the test SRDF (no ROS master).
 #include <cmath>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <sixdof_core/robot_model.h>
 
 #include "sixdof_rviz/link_poses.h"
 #include "sixdof_rviz/semantic_model.h"
@@ -13,16 +11,8 @@
 namespace sixdof_rviz {
 namespace {
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-std::string urdfXml() { return readFile(SIXDOF_URDF_FILE); }
-std::string srdfXml() { return readFile(SIXDOF_TEST_SRDF_FILE); }
+std::string urdfXml() { return sixdof_core::readTextFile(SIXDOF_URDF_FILE); }
+std::string srdfXml() { return sixdof_core::readTextFile(SIXDOF_TEST_SRDF_FILE); }
 
 TEST(SemanticModel, ResolvesChainJointsAndSubgroups) {
   SemanticModel model(urdfXml(), srdfXml());
@@ -111,7 +101,9 @@ TEST(LinkPoses, RevoluteAndMimicJointsMove) {
 
 // The shared joint-kinds fixture (sixdof_core/test/data): the same limits, groups, order and forward kinematics
 // as sixdof_core's and sixdof_sim's test_joint_kinds.
-std::string fixtureFile(const std::string& name) { return readFile(std::string(SIXDOF_CORE_TEST_DATA_DIR) + "/" + name); }
+std::string fixtureFile(const std::string& name) {
+  return sixdof_core::readTextFile(std::string(SIXDOF_CORE_TEST_DATA_DIR) + "/" + name);
+}
 
 TEST(JointKinds, LimitsGroupsAndStatesFollowTheCore) {
   SemanticModel model(fixtureFile("joint_kinds.urdf"), fixtureFile("joint_kinds.srdf"));

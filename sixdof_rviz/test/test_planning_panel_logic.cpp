@@ -1,29 +1,19 @@
 // PlanningPanelLogic: request building, goal resolution and status texts (rostest: needs a master, no GUI).
 // move_group is deliberately absent: the unavailable-planner paths are part of the behaviour under test.
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
-
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sixdof_core/robot_model.h>
 
 #include "sixdof_rviz/planning_panel_logic.h"
 
 namespace sixdof_rviz {
 namespace {
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 class PlanningPanelLogicTest : public ::testing::Test {
  protected:
   PlanningPanelLogicTest()
-      : model_(std::make_shared<SemanticModel>(readFile(SIXDOF_URDF_FILE), readFile(SIXDOF_TEST_SRDF_FILE))),
+      : model_(std::make_shared<SemanticModel>(sixdof_core::readTextFile(SIXDOF_URDF_FILE),
+                                               sixdof_core::readTextFile(SIXDOF_TEST_SRDF_FILE))),
         logic_(nh_, model_, [this](const PanelStatus& s) { statuses_.push_back(s); }) {}
 
   JointValues namedGoal(const std::string& group, const std::string& name) {

@@ -57,13 +57,9 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
                             nonNegative(request.revolute_jump_threshold, "revolute_jump_threshold")}) {
     if (!isSuccess(check)) return check;
   }
-  double velocity_scaling = 1.0;
-  double acceleration_scaling = 1.0;
-  code = validateScalingFactor(request.max_velocity_scaling_factor, "max_velocity_scaling_factor", kCartesianSource,
-                               &velocity_scaling);
-  if (!isSuccess(code)) return code;
-  code = validateScalingFactor(request.max_acceleration_scaling_factor, "max_acceleration_scaling_factor",
-                               kCartesianSource, &acceleration_scaling);
+  ScalingFactors scaling;
+  code = validateScalingFactors(request.max_velocity_scaling_factor, request.max_acceleration_scaling_factor, "max_",
+                                kCartesianSource, &scaling);
   if (!isSuccess(code)) return code;
   Eigen::Isometry3d link_in_tip;
   code = context_->linkInTip(request.group_name, request.link_name, kCartesianSource, &link_in_tip);
@@ -113,7 +109,7 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
   const auto& joints = model.findGroup(request.group_name)->active_joints;
   sixdof_core::Trajectory trajectory;
   if (result.path.size() >= 2) {
-    code = context_->timeParameterize(joints, result.path, velocity_scaling, acceleration_scaling, kCartesianSource,
+    code = context_->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, kCartesianSource,
                                       &trajectory);
     if (!isSuccess(code)) return code;
   } else {

@@ -211,13 +211,9 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   ErrorCode& code = response->error_code;
   code = validateGroup(model, request.group_name, source);
   if (!isSuccess(code)) return;
-  double velocity_scaling = 1.0;
-  double acceleration_scaling = 1.0;
-  code = validateScalingFactor(request.max_velocity_scaling_factor, "max_velocity_scaling_factor", source,
-                               &velocity_scaling);
-  if (!isSuccess(code)) return;
-  code = validateScalingFactor(request.max_acceleration_scaling_factor, "max_acceleration_scaling_factor", source,
-                               &acceleration_scaling);
+  ScalingFactors scaling;
+  code = validateScalingFactors(request.max_velocity_scaling_factor, request.max_acceleration_scaling_factor, "max_",
+                                source, &scaling);
   if (!isSuccess(code)) return;
   if (!std::isfinite(request.allowed_planning_time) || request.allowed_planning_time < 0.0) {
     code = makeError(ErrorCode::INVALID_REQUEST,
@@ -282,7 +278,7 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   if (!isSuccess(code)) return;
   sixdof_core::Trajectory trajectory;
   const auto& joints = model.findGroup(request.group_name)->active_joints;
-  code = context_->timeParameterize(joints, result.path, velocity_scaling, acceleration_scaling, source, &trajectory);
+  code = context_->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, source, &trajectory);
   if (!isSuccess(code)) return;
   response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();

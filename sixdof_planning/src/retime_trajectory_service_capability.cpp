@@ -53,20 +53,16 @@ bool RetimeTrajectoryService::handle(sixdof_msgs::RetimeTrajectoryRequest& reque
   const auto& path = request.trajectory.joint_trajectory;
   code = validatePath(*context_->model(), path);
   if (!isSuccess(code)) return true;
-  double velocity_scaling = 1.0;
-  double acceleration_scaling = 1.0;
-  code = validateScalingFactor(request.velocity_scaling_factor, "velocity_scaling_factor", kRetimeSource,
-                               &velocity_scaling);
-  if (!isSuccess(code)) return true;
-  code = validateScalingFactor(request.acceleration_scaling_factor, "acceleration_scaling_factor", kRetimeSource,
-                               &acceleration_scaling);
+  ScalingFactors scaling;
+  code = validateScalingFactors(request.velocity_scaling_factor, request.acceleration_scaling_factor, "", kRetimeSource,
+                                &scaling);
   if (!isSuccess(code)) return true;
   std::vector<Eigen::VectorXd> waypoints;
   for (const auto& point : path.points) {
     waypoints.push_back(Eigen::Map<const Eigen::VectorXd>(point.positions.data(), point.positions.size()));
   }
   sixdof_core::Trajectory trajectory;
-  code = context_->timeParameterize(path.joint_names, waypoints, velocity_scaling, acceleration_scaling, kRetimeSource,
+  code = context_->timeParameterize(path.joint_names, waypoints, scaling.velocity, scaling.acceleration, kRetimeSource,
                                     &trajectory);
   if (!isSuccess(code)) return true;
   response.trajectory.joint_trajectory = toJointTrajectory(trajectory);

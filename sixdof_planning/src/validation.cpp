@@ -62,6 +62,14 @@ ErrorCode validateScalingFactor(double value, const std::string& what, const std
   return makeSuccess(source);
 }
 
+ErrorCode validateScalingFactors(double velocity, double acceleration, const std::string& prefix,
+                                 const std::string& source, ScalingFactors* effective) {
+  const ErrorCode code =
+      validateScalingFactor(velocity, prefix + "velocity_scaling_factor", source, &effective->velocity);
+  if (!isSuccess(code)) return code;
+  return validateScalingFactor(acceleration, prefix + "acceleration_scaling_factor", source, &effective->acceleration);
+}
+
 ErrorCode validateGroup(const sixdof_core::RobotModel& model, const std::string& group, const std::string& source) {
   if (model.findGroup(group)) return makeSuccess(source);
   std::vector<std::string> known;

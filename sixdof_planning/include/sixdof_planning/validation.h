@@ -24,6 +24,14 @@ ErrorCode validateFinite(double value, const std::string& what, const std::strin
 ErrorCode validatePose(const geometry_msgs::Pose& pose, const std::string& what, const std::string& source);
 // MoveIt's scaling factors: 0 means "not set" (1.0); otherwise (0, 1]. *effective gets the value to use.
 ErrorCode validateScalingFactor(double value, const std::string& what, const std::string& source, double* effective);
+// A request's velocity and acceleration scaling factors, each as validateScalingFactor; their fields are named
+// <prefix>velocity_scaling_factor and <prefix>acceleration_scaling_factor.
+struct ScalingFactors {
+  double velocity = 1.0;
+  double acceleration = 1.0;
+};
+ErrorCode validateScalingFactors(double velocity, double acceleration, const std::string& prefix,
+                                 const std::string& source, ScalingFactors* effective);
 
 ErrorCode validateGroup(const sixdof_core::RobotModel& model, const std::string& group, const std::string& source);
 ErrorCode validateLink(const sixdof_core::RobotModel& model, const std::string& link, const std::string& source);

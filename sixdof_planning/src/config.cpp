@@ -47,6 +47,19 @@ double positiveParam(const ros::NodeHandle& nh, const std::string& key, double d
   return value;
 }
 
+// Calls visit(prefix, entry) for each entry of the list parameter `name`, prefix naming it ("<name>[<i>]"): the
+// parameter must be a list of dictionaries.
+template <class Visit>
+void forEachDictionary(XmlRpc::XmlRpcValue& list, const std::string& name, Visit visit) {
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("parameter " + name + " must be a list");
+  for (int i = 0; i < list.size(); ++i) {
+    const std::string prefix = name + "[" + std::to_string(i) + "]";
+    auto& entry = list[i];
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw ConfigError(prefix + " must be a dictionary");
+    visit(prefix, entry);
+  }
+}
+
 void loadKinematics(const ros::NodeHandle& nh, MoveGroupConfig* config) {
   const std::string root = "robot_description_kinematics";
   XmlRpc::XmlRpcValue groups;
@@ -121,11 +134,7 @@ void loadControllers(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     throw ConfigError("missing parameter controller_list (looked for " + fullName(private_nh, "controller_list") +
                       " and " + fullName(nh, "controller_list") + ")");
   }
-  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("parameter " + name + " must be a list");
-  for (int i = 0; i < list.size(); ++i) {
-    const std::string prefix = name + "[" + std::to_string(i) + "]";
-    auto& entry = list[i];
-    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw ConfigError(prefix + " must be a dictionary");
+  forEachDictionary(list, name, [&](const std::string& prefix, XmlRpc::XmlRpcValue& entry) {
     ControllerConfig controller;
     if (!entry.hasMember("name")) throw ConfigError(prefix + " has no name");
     controller.name = toString(entry["name"], prefix + "/name");
@@ -142,7 +151,7 @@ void loadControllers(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
       controller.joints.push_back(toString(entry["joints"][j], prefix + "/joints[" + std::to_string(j) + "]"));
     }
     config->controllers.push_back(controller);
-  }
+  });
 }
 
 void loadOccupancyMap(const ros::NodeHandle& private_nh, OccupancyMapConfig* config) {
@@ -154,11 +163,7 @@ void loadOccupancyMap(const ros::NodeHandle& private_nh, OccupancyMapConfig* con
   XmlRpc::XmlRpcValue list;
   if (!private_nh.getParam("sensors", list)) return;
   const std::string name = fullName(private_nh, "sensors");
-  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) throw ConfigError("parameter " + name + " must be a list");
-  for (int i = 0; i < list.size(); ++i) {
-    const std::string prefix = name + "[" + std::to_string(i) + "]";
-    auto& entry = list[i];
-    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw ConfigError(prefix + " must be a dictionary");
+  forEachDictionary(list, name, [&](const std::string& prefix, XmlRpc::XmlRpcValue& entry) {
     OctomapSensorConfig sensor;
     sensor.max_range = config->max_range;
     auto number = [&](const std::string& key, bool allow_zero) {
@@ -200,7 +205,7 @@ void loadOccupancyMap(const ros::NodeHandle& private_nh, OccupancyMapConfig* con
     }
     if (sensor.point_cloud_topic.empty()) throw ConfigError("missing parameter " + prefix + "/point_cloud_topic");
     config->sensors.push_back(sensor);
-  }
+  });
 }
 
 }  // namespace

@@ -2,23 +2,18 @@
 
 #include <sixdof_msgs/ApplyPlanningScene.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/move_group_context.h"
 
 namespace sixdof_planning {
 
-namespace {
-const char* const kApplySource = "apply_planning_scene";
-}  // namespace
-
-ApplyPlanningSceneService::ApplyPlanningSceneService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("apply_planning_scene", &ApplyPlanningSceneService::handle, this);
-}
-
 bool ApplyPlanningSceneService::handle(sixdof_msgs::ApplyPlanningSceneRequest& request,
                                        sixdof_msgs::ApplyPlanningSceneResponse& response) {
-  response.error_code = context_->applyScene(request.scene, kApplySource);
+  response.error_code = context_->applyScene(request.scene, service_);
   response.success = isSuccess(response.error_code);
   return true;
 }
+
+template class ServiceCapability<ApplyPlanningSceneService>;
 
 }  // namespace sixdof_planning

@@ -7,6 +7,7 @@
 #include <sixdof_core/planning_context.h>
 #include <sixdof_msgs/GetCartesianPath.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
@@ -24,22 +25,11 @@ ErrorCode nonNegative(double value, const std::string& what) {
   }
   return makeSuccess(kCartesianSource);
 }
-}  // namespace
 
-CartesianPathService::CartesianPathService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("compute_cartesian_path", &CartesianPathService::handle, this);
-}
-
-bool CartesianPathService::handle(sixdof_msgs::GetCartesianPathRequest& request,
-                                  sixdof_msgs::GetCartesianPathResponse& response) {
-  response.fraction = 0.0;
-  response.error_code = compute(request, &response);
-  return true;
-}
-
-ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathRequest& request,
-                                        sixdof_msgs::GetCartesianPathResponse* response) const {
-  const auto& model = *context_->model();
+// The whole request; the response gets everything but the error code.
+ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesianPathRequest& request,
+                      sixdof_msgs::GetCartesianPathResponse* response) {
+  const auto& model = *context->model();
   ErrorCode code = validateGroup(model, request.group_name, kCartesianSource);
   if (!isSuccess(code)) return code;
   if (request.waypoints.empty()) return makeError(ErrorCode::INVALID_REQUEST, "waypoints is empty", kCartesianSource);
@@ -62,18 +52,18 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
                                 kCartesianSource, &scaling);
   if (!isSuccess(code)) return code;
   Eigen::Isometry3d link_in_tip;
-  code = context_->linkInTip(request.group_name, request.link_name, kCartesianSource, &link_in_tip);
+  code = context->linkInTip(request.group_name, request.link_name, kCartesianSource, &link_in_tip);
   if (!isSuccess(code)) return code;
 
-  sixdof_core::RobotState start(context_->model());
+  sixdof_core::RobotState start(context->model());
   std::shared_ptr<const SceneStore> scene;
-  code = context_->resolveRobotState(request.start_state, "start_state", kCartesianSource, &start, &scene);
+  code = context->resolveRobotState(request.start_state, "start_state", kCartesianSource, &start, &scene);
   if (!isSuccess(code)) return code;
   response->start_state.joint_state = toJointState(start);
   Eigen::Isometry3d frame;
   code = SceneStore::frameTransform(start, request.header.frame_id, kCartesianSource, &frame);
   if (!isSuccess(code)) return code;
-  const auto solver = context_->ikSolver(request.group_name);
+  const auto solver = context->ikSolver(request.group_name);
   const Eigen::Isometry3d base = start.linkTransform(solver->chain().baseLink());
   std::vector<Eigen::Isometry3d> waypoints;
   for (const auto& pose : request.waypoints) {
@@ -86,7 +76,7 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
 
   std::unique_ptr<sixdof_core::PlanningContext> planning;
   try {
-    planning = std::make_unique<sixdof_core::PlanningContext>(context_->model(), scene->collision(),
+    planning = std::make_unique<sixdof_core::PlanningContext>(context->model(), scene->collision(),
                                                               request.group_name, solver);
   } catch (const std::exception& e) {
     return makeError(ErrorCode::INVALID_GROUP_NAME, e.what(), kCartesianSource);
@@ -94,7 +84,7 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
   // The tip moves by at most max_step between points, so a link fixed to it does as well when the
   // rotation is small; MoveIt interpolates the requested link the same way.
   const auto result = planning->cartesianPath(start, waypoints, request.max_step, jump, request.avoid_collisions,
-                                              context_->ikOptions(request.group_name));
+                                              context->ikOptions(request.group_name));
   using S = sixdof_core::CartesianStatus;
   if (result.status == S::kInvalidRequest) {
     return makeError(ErrorCode::INVALID_REQUEST, result.message, kCartesianSource);
@@ -109,8 +99,8 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
   const auto& joints = model.findGroup(request.group_name)->active_joints;
   sixdof_core::Trajectory trajectory;
   if (result.path.size() >= 2) {
-    code = context_->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, kCartesianSource,
-                                      &trajectory);
+    code = context->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, kCartesianSource,
+                                     &trajectory);
     if (!isSuccess(code)) return code;
   } else {
     // Nothing achieved: the path is the start state alone.
@@ -120,13 +110,23 @@ ErrorCode CartesianPathService::compute(const sixdof_msgs::GetCartesianPathReque
     trajectory.points.push_back(point);
   }
   response->solution.joint_trajectory = toJointTrajectory(trajectory);
-  response->solution.joint_trajectory.header.frame_id = context_->planningFrame();
-  if (trajectory.points.size() > 1) context_->publishDisplayTrajectory(start, response->solution.joint_trajectory);
+  response->solution.joint_trajectory.header.frame_id = context->planningFrame();
+  if (trajectory.points.size() > 1) context->publishDisplayTrajectory(start, response->solution.joint_trajectory);
   // As in MoveIt, a partial path is a successful call; the fraction and message say how far it got.
   std::ostringstream message;
   message << "fraction " << result.fraction;
   if (result.status != S::kSuccess) message << ": " << sixdof_core::toString(result.status) << ": " << result.message;
   return makeSuccess(kCartesianSource, message.str());
 }
+}  // namespace
+
+bool CartesianPathService::handle(sixdof_msgs::GetCartesianPathRequest& request,
+                                  sixdof_msgs::GetCartesianPathResponse& response) {
+  response.fraction = 0.0;
+  response.error_code = computePath(context_, request, &response);
+  return true;
+}
+
+template class ServiceCapability<CartesianPathService>;
 
 }  // namespace sixdof_planning

@@ -2,14 +2,12 @@
 
 #include <sixdof_msgs/GetPlanningScene.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/move_group_context.h"
 
 namespace sixdof_planning {
 
-GetPlanningSceneService::GetPlanningSceneService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("get_planning_scene", &GetPlanningSceneService::handle, this);
-}
 
 bool GetPlanningSceneService::handle(sixdof_msgs::GetPlanningSceneRequest&,
                                      sixdof_msgs::GetPlanningSceneResponse& response) {
@@ -19,12 +17,14 @@ bool GetPlanningSceneService::handle(sixdof_msgs::GetPlanningSceneRequest&,
   response.scene.is_diff = false;
   sixdof_core::RobotState state(context_->model());
   // The scene has objects even before joint_states arrive; the joint values are then left empty.
-  if (isSuccess(context_->currentState("get_planning_scene", &state))) {
+  if (isSuccess(context_->currentState(service_, &state))) {
     response.scene.robot_state.joint_state = toJointState(state);
   }
   response.scene.robot_state.attached_collision_objects = scene->attachedObjects();
   response.scene.world.collision_objects = scene->worldObjects();
   return true;
 }
+
+template class ServiceCapability<GetPlanningSceneService>;
 
 }  // namespace sixdof_planning

@@ -1,10 +1,11 @@
 #include "sixdof_planning/move_action_capability.h"
 
-#include <actionlib/server/simple_action_server.h>
 #include <sixdof_msgs/MotionPlanResponse.h>
 #include <sixdof_msgs/MoveGroupAction.h>
 
 #include "action_feedback.h"
+#include "move_group_capability_impl.h"
+#include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/trajectory_execution.h"
 
@@ -18,17 +19,6 @@ bool isEmptyDiff(const sixdof_msgs::PlanningScene& diff) {
          diff.robot_state.joint_state.name.empty();
 }
 }  // namespace
-
-MoveGroupActionCapability::MoveGroupActionCapability(MoveGroupContext* context, TrajectoryExecutor* executor)
-    : context_(context),
-      executor_(executor),
-      planner_(context),
-      server_(std::make_unique<actionlib::SimpleActionServer<sixdof_msgs::MoveGroupAction>>(
-          context->nodeHandle(), "move_group", [this](const auto& goal) { execute(goal); }, false)) {
-  server_->start();
-}
-
-MoveGroupActionCapability::~MoveGroupActionCapability() = default;
 
 void MoveGroupActionCapability::execute(const sixdof_msgs::MoveGroupGoalConstPtr& goal) {
   sixdof_msgs::MoveGroupResult result;
@@ -50,7 +40,7 @@ void MoveGroupActionCapability::execute(const sixdof_msgs::MoveGroupGoalConstPtr
     scene = copy;
   }
   sixdof_msgs::MotionPlanResponse plan;
-  planner_.plan(goal->request, kMoveGroupSource, &plan, scene);
+  MotionPlanner(context_).plan(goal->request, kMoveGroupSource, &plan, scene);
   result.error_code = plan.error_code;
   result.trajectory_start = plan.trajectory_start;
   result.planned_trajectory = plan.trajectory;
@@ -66,5 +56,7 @@ void MoveGroupActionCapability::execute(const sixdof_msgs::MoveGroupGoalConstPtr
   if (isSuccess(result.error_code)) result.executed_trajectory = plan.trajectory;
   finish();
 }
+
+template class ActionCapability<MoveGroupActionCapability, sixdof_msgs::MoveGroupAction>;
 
 }  // namespace sixdof_planning

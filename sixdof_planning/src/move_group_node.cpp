@@ -20,16 +20,18 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   context_ = std::make_unique<MoveGroupContext>(nh, loadConfig(nh, private_nh));
   executor_ = std::make_unique<TrajectoryExecutor>(context_.get());
   occupancy_map_ = std::make_unique<OccupancyMapMonitor>(context_.get());
+  // Services and actions under MoveIt's names, relative to the node handle's namespace.
   fk_ = std::make_unique<ForwardKinematicsService>(context_.get());
   ik_ = std::make_unique<InverseKinematicsService>(context_.get());
-  plan_ = std::make_unique<MotionPlanService>(context_.get());
-  cartesian_ = std::make_unique<CartesianPathService>(context_.get());
-  validity_ = std::make_unique<StateValidityService>(context_.get());
-  retime_ = std::make_unique<RetimeTrajectoryService>(context_.get());
-  get_scene_ = std::make_unique<GetPlanningSceneService>(context_.get());
-  apply_scene_ = std::make_unique<ApplyPlanningSceneService>(context_.get());
-  move_group_ = std::make_unique<MoveGroupActionCapability>(context_.get(), executor_.get());
-  execute_trajectory_ = std::make_unique<ExecuteTrajectoryActionCapability>(context_.get(), executor_.get());
+  plan_ = std::make_unique<MotionPlanService>(context_.get(), "plan_kinematic_path");
+  cartesian_ = std::make_unique<CartesianPathService>(context_.get(), "compute_cartesian_path");
+  validity_ = std::make_unique<StateValidityService>(context_.get(), "check_state_validity");
+  retime_ = std::make_unique<RetimeTrajectoryService>(context_.get(), "retime_trajectory");
+  get_scene_ = std::make_unique<GetPlanningSceneService>(context_.get(), "get_planning_scene");
+  apply_scene_ = std::make_unique<ApplyPlanningSceneService>(context_.get(), "apply_planning_scene");
+  move_group_ = std::make_unique<MoveGroupActionCapability>(context_.get(), executor_.get(), "move_group");
+  execute_trajectory_ = std::make_unique<ExecuteTrajectoryActionCapability>(context_.get(), executor_.get(),
+                                                                            "execute_trajectory");
   robot_model_ = std::make_unique<QueryRobotModelService>(context_.get());
 }
 

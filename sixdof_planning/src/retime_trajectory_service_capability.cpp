@@ -5,6 +5,7 @@
 #include <sixdof_core/trajectory.h>
 #include <sixdof_msgs/RetimeTrajectory.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
@@ -43,10 +44,6 @@ ErrorCode validatePath(const sixdof_core::RobotModel& model, const trajectory_ms
 }
 }  // namespace
 
-RetimeTrajectoryService::RetimeTrajectoryService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("retime_trajectory", &RetimeTrajectoryService::handle, this);
-}
-
 bool RetimeTrajectoryService::handle(sixdof_msgs::RetimeTrajectoryRequest& request,
                                      sixdof_msgs::RetimeTrajectoryResponse& response) {
   ErrorCode& code = response.error_code;
@@ -71,5 +68,7 @@ bool RetimeTrajectoryService::handle(sixdof_msgs::RetimeTrajectoryRequest& reque
                                         formatNumber(trajectory.duration()) + " s");
   return true;
 }
+
+template class ServiceCapability<RetimeTrajectoryService>;
 
 }  // namespace sixdof_planning

@@ -3,6 +3,7 @@
 #include <sixdof_msgs/GetStateValidity.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
@@ -10,8 +11,6 @@
 namespace sixdof_planning {
 
 namespace {
-const char* const kValiditySource = "check_state_validity";
-
 uint32_t bodyType(sixdof_core::BodyType type) {
   switch (type) {
     case sixdof_core::BodyType::kRobotLink:
@@ -25,21 +24,17 @@ uint32_t bodyType(sixdof_core::BodyType type) {
 }
 }  // namespace
 
-StateValidityService::StateValidityService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("check_state_validity", &StateValidityService::handle, this);
-}
-
 bool StateValidityService::handle(sixdof_msgs::GetStateValidityRequest& request,
                                   sixdof_msgs::GetStateValidityResponse& response) {
   ErrorCode& code = response.error_code;
   response.valid = false;
   if (!request.group_name.empty()) {
-    code = validateGroup(*context_->model(), request.group_name, kValiditySource);
+    code = validateGroup(*context_->model(), request.group_name, service_);
     if (!isSuccess(code)) return true;
   }
   sixdof_core::RobotState state(context_->model());
   std::shared_ptr<const SceneStore> scene;
-  code = context_->resolveRobotState(request.robot_state, "robot_state", kValiditySource, &state, &scene);
+  code = context_->resolveRobotState(request.robot_state, "robot_state", service_, &state, &scene);
   if (!isSuccess(code)) return true;
   const auto report = checkStateCollision(state, *scene->collision());
   for (const auto& contact : report.contacts) {
@@ -63,8 +58,10 @@ bool StateValidityService::handle(sixdof_msgs::GetStateValidityRequest& request,
     message = std::to_string(report.contacts.size()) + " contact(s), e.g. " + describeContact(report.contacts.front());
   }
   if (!bounds.empty()) message = (report.colliding ? message + "; " : "") + bounds;
-  code = makeSuccess(kValiditySource, message);
+  code = makeSuccess(service_, message);
   return true;
 }
+
+template class ServiceCapability<StateValidityService>;
 
 }  // namespace sixdof_planning

@@ -1,22 +1,14 @@
 #pragma once
 // apply_planning_scene (MoveIt's apply_planning_scene_service_capability): a scene diff, all or nothing.
 
-#include <memory>
-
-#include <ros/service_server.h>
-
-#include "sixdof_planning/fwd.h"
+#include "sixdof_planning/move_group_capability.h"
 
 namespace sixdof_planning {
 
-class ApplyPlanningSceneService {  // apply_planning_scene
+class ApplyPlanningSceneService : public ServiceCapability<ApplyPlanningSceneService> {
  public:
-  explicit ApplyPlanningSceneService(MoveGroupContext* context);
+  using ServiceCapability::ServiceCapability;
   bool handle(sixdof_msgs::ApplyPlanningSceneRequest& request, sixdof_msgs::ApplyPlanningSceneResponse& response);
-
- private:
-  MoveGroupContext* context_;
-  ros::ServiceServer server_;
 };
 
 }  // namespace sixdof_planning

@@ -2,25 +2,17 @@
 // The execute_trajectory action (MoveIt's execute_trajectory_action_capability): runs a planned trajectory
 // through the TrajectoryExecutor.
 
-#include <memory>
-
 #include <boost/shared_ptr.hpp>
 
-#include "sixdof_planning/fwd.h"
+#include "sixdof_planning/move_group_capability.h"
 
 namespace sixdof_planning {
 
-class ExecuteTrajectoryActionCapability {  // action execute_trajectory
+class ExecuteTrajectoryActionCapability
+    : public ActionCapability<ExecuteTrajectoryActionCapability, sixdof_msgs::ExecuteTrajectoryAction> {
  public:
-  ExecuteTrajectoryActionCapability(MoveGroupContext* context, TrajectoryExecutor* executor);
-  ~ExecuteTrajectoryActionCapability();
-
- private:
+  using ActionCapability::ActionCapability;
   void execute(const boost::shared_ptr<const sixdof_msgs::ExecuteTrajectoryGoal>& goal);
-
-  MoveGroupContext* context_;
-  TrajectoryExecutor* executor_;
-  std::unique_ptr<actionlib::SimpleActionServer<sixdof_msgs::ExecuteTrajectoryAction>> server_;
 };
 
 }  // namespace sixdof_planning

@@ -1,22 +1,14 @@
 #pragma once
 // get_planning_scene (MoveIt's get_planning_scene_service_capability): the whole current scene.
 
-#include <memory>
-
-#include <ros/service_server.h>
-
-#include "sixdof_planning/fwd.h"
+#include "sixdof_planning/move_group_capability.h"
 
 namespace sixdof_planning {
 
-class GetPlanningSceneService {  // get_planning_scene
+class GetPlanningSceneService : public ServiceCapability<GetPlanningSceneService> {
  public:
-  explicit GetPlanningSceneService(MoveGroupContext* context);
+  using ServiceCapability::ServiceCapability;
   bool handle(sixdof_msgs::GetPlanningSceneRequest& request, sixdof_msgs::GetPlanningSceneResponse& response);
-
- private:
-  MoveGroupContext* context_;
-  ros::ServiceServer server_;
 };
 
 }  // namespace sixdof_planning

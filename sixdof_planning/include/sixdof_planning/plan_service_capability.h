@@ -1,24 +1,14 @@
 #pragma once
 // plan_kinematic_path (MoveIt's plan_service_capability): one MotionPlanRequest through MotionPlanner.
 
-#include <memory>
-
-#include <ros/service_server.h>
-
-#include "sixdof_planning/fwd.h"
-#include "sixdof_planning/motion_planner.h"
+#include "sixdof_planning/move_group_capability.h"
 
 namespace sixdof_planning {
 
-class MotionPlanService {  // plan_kinematic_path
+class MotionPlanService : public ServiceCapability<MotionPlanService> {
  public:
-  explicit MotionPlanService(MoveGroupContext* context);
+  using ServiceCapability::ServiceCapability;
   bool handle(sixdof_msgs::GetMotionPlanRequest& request, sixdof_msgs::GetMotionPlanResponse& response);
-
- private:
-  MoveGroupContext* context_;
-  MotionPlanner planner_;
-  ros::ServiceServer server_;
 };
 
 }  // namespace sixdof_planning

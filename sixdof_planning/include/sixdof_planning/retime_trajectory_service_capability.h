@@ -2,20 +2,14 @@
 // retime_trajectory: time-optimal parameterization of a given joint path (what moveit_commander's
 // retime_trajectory does in-process with MoveIt's TimeOptimalTrajectoryGeneration).
 
-#include <ros/service_server.h>
-
-#include "sixdof_planning/fwd.h"
+#include "sixdof_planning/move_group_capability.h"
 
 namespace sixdof_planning {
 
-class RetimeTrajectoryService {  // retime_trajectory
+class RetimeTrajectoryService : public ServiceCapability<RetimeTrajectoryService> {
  public:
-  explicit RetimeTrajectoryService(MoveGroupContext* context);
+  using ServiceCapability::ServiceCapability;
   bool handle(sixdof_msgs::RetimeTrajectoryRequest& request, sixdof_msgs::RetimeTrajectoryResponse& response);
-
- private:
-  MoveGroupContext* context_;
-  ros::ServiceServer server_;
 };
 
 }  // namespace sixdof_planning

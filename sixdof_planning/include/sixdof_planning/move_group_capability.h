@@ -1,0 +1,56 @@
+#pragma once
+// What the capabilities share (MoveIt's MoveGroupCapability): the context they work in and their one server.
+// A capability derives as `class X : public ServiceCapability<X>` (or ActionCapability<X, Action>), inherits the
+// constructor and declares `bool handle(Request&, Response&)` (or `void execute(const GoalConstPtr&)`). Its source
+// includes "move_group_capability_impl.h" and instantiates the base there (`template class
+// ServiceCapability<X>;`), where the messages are complete: this header names them only through fwd.h.
+// Requests and goals are served by the node's spinner, which starts once the whole node is built, so a
+// capability's own members are ready for them.
+
+#include <memory>
+#include <string>
+
+#include <ros/forwards.h>
+#include <ros/service_server.h>
+
+#include "sixdof_planning/fwd.h"
+
+namespace sixdof_planning {
+
+template <class Capability>
+class ServiceCapability {
+ public:
+  // Advertises `service` in the context's namespace, answered by Capability::handle.
+  ServiceCapability(MoveGroupContext* context, const std::string& service);
+  ServiceCapability(const ServiceCapability&) = delete;
+  ServiceCapability& operator=(const ServiceCapability&) = delete;
+
+ protected:
+  MoveGroupContext* const context_;
+  const std::string service_;  // also the source its error codes name
+
+ private:
+  template <class Request, class Response>
+  ros::ServiceServer advertise(ros::NodeHandle& nh, const std::string& service,
+                               bool (Capability::*handle)(Request&, Response&));
+
+  ros::ServiceServer server_;
+};
+
+template <class Capability, class Action>
+class ActionCapability {
+ public:
+  // Starts the action server `action` in the context's namespace; Capability::execute runs its goals, through
+  // `executor` when they move the robot.
+  ActionCapability(MoveGroupContext* context, TrajectoryExecutor* executor, const std::string& action);
+  ~ActionCapability();
+  ActionCapability(const ActionCapability&) = delete;
+  ActionCapability& operator=(const ActionCapability&) = delete;
+
+ protected:
+  MoveGroupContext* const context_;
+  TrajectoryExecutor* const executor_;
+  std::unique_ptr<actionlib::SimpleActionServer<Action>> server_;
+};
+
+}  // namespace sixdof_planning

@@ -132,24 +132,18 @@ class MoveGroupTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls) -> None:
         rospy.init_node("test_move_group")
-        names = [
-            "compute_fk",
-            "compute_ik",
-            "plan_kinematic_path",
-            "compute_cartesian_path",
-            "check_state_validity",
-            "get_planning_scene",
-            "apply_planning_scene",
-        ]
-        for name in names:
+        services = {
+            "fk": ("compute_fk", GetPositionFK),
+            "ik": ("compute_ik", GetPositionIK),
+            "plan": ("plan_kinematic_path", GetMotionPlan),
+            "cartesian": ("compute_cartesian_path", GetCartesianPath),
+            "validity": ("check_state_validity", GetStateValidity),
+            "get_scene": ("get_planning_scene", GetPlanningScene),
+            "apply_scene": ("apply_planning_scene", ApplyPlanningScene),
+        }
+        for attribute, (name, service_type) in services.items():
             rospy.wait_for_service(name, timeout=60.0)
-        cls.fk = rospy.ServiceProxy("compute_fk", GetPositionFK)
-        cls.ik = rospy.ServiceProxy("compute_ik", GetPositionIK)
-        cls.plan = rospy.ServiceProxy("plan_kinematic_path", GetMotionPlan)
-        cls.cartesian = rospy.ServiceProxy("compute_cartesian_path", GetCartesianPath)
-        cls.validity = rospy.ServiceProxy("check_state_validity", GetStateValidity)
-        cls.get_scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
-        cls.apply_scene = rospy.ServiceProxy("apply_planning_scene", ApplyPlanningScene)
+            setattr(cls, attribute, rospy.ServiceProxy(name, service_type))
         cls.execute = actionlib.SimpleActionClient("execute_trajectory", ExecuteTrajectoryAction)
         cls.move_group = actionlib.SimpleActionClient("move_group", MoveGroupAction)
         assert cls.execute.wait_for_server(rospy.Duration(60.0))
@@ -192,6 +186,11 @@ class MoveGroupTest(unittest.TestCase):
         self.execute.send_goal(goal)
         self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
         return self.execute.get_result().error_code
+
+    def move_group_result(self, goal: MoveGroupGoal) -> object:
+        self.move_group.send_goal(goal)
+        self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
+        return self.move_group.get_result()
 
     def move_to(self, values: dict, group: str = "arm") -> None:
         code = self.execute_trajectory(self.plan_to(values, group).trajectory.joint_trajectory)
@@ -436,16 +435,12 @@ class MoveGroupTest(unittest.TestCase):
         goal = MoveGroupGoal()
         goal.request = self.plan_request(joint_goal(self.states[("arm", "home pose")]))
         goal.planning_options.plan_only = True
-        self.move_group.send_goal(goal)
-        self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
-        result = self.move_group.get_result()
+        result = self.move_group_result(goal)
         self.assert_code(result.error_code, MoveItErrorCodes.SUCCESS)
         self.assertTrue(result.planned_trajectory.joint_trajectory.points)
         self.assertFalse(result.executed_trajectory.joint_trajectory.points)
         goal.planning_options.plan_only = False
-        self.move_group.send_goal(goal)
-        self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
-        result = self.move_group.get_result()
+        result = self.move_group_result(goal)
         self.assert_code(result.error_code, MoveItErrorCodes.SUCCESS)
         self.assertTrue(result.executed_trajectory.joint_trajectory.points)
         current = self.current()

@@ -10,15 +10,13 @@ import sys
 
 import rospy
 from sixdof_commander import MoveGroup, SixdofCommanderError
-from sixdof_commander.arm_driver import describe_error
+from sixdof_commander.cli import add_group_arguments, report_motion, scale
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("name", nargs="?", help="named state, e.g. 'home pose'")
-    parser.add_argument("--group", default="arm", help="planning group (default: arm)")
-    parser.add_argument("--ns", default="", help="namespace of the move_group node")
-    parser.add_argument("--velocity-scaling", type=float, default=0.5, help="max velocity scaling in (0, 1]")
+    add_group_arguments(parser)
     parser.add_argument("--list", action="store_true", help="print the group's named states and exit")
     args = parser.parse_args(rospy.myargv(sys.argv)[1:])
     if not args.list and args.name is None:
@@ -31,12 +29,9 @@ def main() -> int:
                 values = ", ".join(f"{j}={v:.4f}" for j, v in group.get_named_target_values(name).items())
                 print(f"{name}: {values}")
             return 0
-        group.set_max_velocity_scaling_factor(args.velocity_scaling)
-        group.set_max_acceleration_scaling_factor(args.velocity_scaling)
+        scale(group, args)
         group.set_named_target(args.name)
-        ok = group.go(wait=True)
-        print(f"move to '{args.name}': {'ok' if ok else 'FAILED: ' + describe_error(group.last_error)}")
-        return 0 if ok else 1
+        return report_motion(f"'{args.name}'", group.go(wait=True), group)
     except SixdofCommanderError as err:
         print(f"error: {err}", file=sys.stderr)
         return 2

@@ -10,21 +10,19 @@ import sys
 import rospy
 from sixdof_commander import MoveGroup, SixdofCommanderError, rad
 from sixdof_commander.arm_driver import describe_error
+from sixdof_commander.cli import add_group_arguments, report_motion, scale
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("values", nargs=6, type=float, metavar="X Y Z ROLL PITCH YAW")
-    parser.add_argument("--group", default="arm", help="planning group (default: arm)")
-    parser.add_argument("--ns", default="", help="namespace of the move_group node")
-    parser.add_argument("--velocity-scaling", type=float, default=0.5, help="max velocity scaling in (0, 1]")
+    add_group_arguments(parser)
     parser.add_argument("--plan-only", action="store_true", help="plan, do not move")
     args = parser.parse_args(rospy.myargv(sys.argv)[1:])
     rospy.init_node("move_to_pose", anonymous=True)
     try:
         group = MoveGroup(args.group, ns=args.ns)
-        group.set_max_velocity_scaling_factor(args.velocity_scaling)
-        group.set_max_acceleration_scaling_factor(args.velocity_scaling)
+        scale(group, args)
         group.set_pose_target(args.values[:3] + rad(args.values[3:]))
         if args.plan_only:
             ok, trajectory, planning_time, code = group.plan()
@@ -33,9 +31,7 @@ def main() -> int:
                 f"plan: {'ok' if ok else 'FAILED'} in {planning_time:.3f} s, {points} points ({describe_error(code)})"
             )
             return 0 if ok else 1
-        ok = group.go(wait=True)
-        print(f"move to {args.values}: {'ok' if ok else 'FAILED: ' + describe_error(group.last_error)}")
-        return 0 if ok else 1
+        return report_motion(str(args.values), group.go(wait=True), group)
     except SixdofCommanderError as err:
         print(f"error: {err}", file=sys.stderr)
         return 2

@@ -38,19 +38,26 @@ def _quaternion(values: list[float]) -> tuple[float, float, float, float]:
     return quaternion_from_rpy(*values[3:]) if len(values) == 6 else tuple(values[3:])
 
 
+# Pose (position, orientation) and Transform (translation, rotation) hold the same two parts under other names.
+def _to_list(vector: object, quaternion: object) -> list[float]:
+    return [vector.x, vector.y, vector.z, quaternion.x, quaternion.y, quaternion.z, quaternion.w]
+
+
+def _from_list(values: Sequence[float], what: str, vector: object, quaternion: object) -> None:
+    numbers = _numbers(values, (6, 7), what)
+    vector.x, vector.y, vector.z = numbers[:3]
+    quaternion.x, quaternion.y, quaternion.z, quaternion.w = _quaternion(numbers)
+
+
 def pose_to_list(pose_msg: Pose) -> list[float]:
     """[x, y, z, qx, qy, qz, qw] of a Pose."""
-    p, o = pose_msg.position, pose_msg.orientation
-    return [p.x, p.y, p.z, o.x, o.y, o.z, o.w]
+    return _to_list(pose_msg.position, pose_msg.orientation)
 
 
 def list_to_pose(pose_list: Sequence[float]) -> Pose:
     """Pose from [x, y, z, roll, pitch, yaw] or [x, y, z, qx, qy, qz, qw]."""
-    values = _numbers(pose_list, (6, 7), "list_to_pose")
     pose = Pose()
-    pose.position.x, pose.position.y, pose.position.z = values[:3]
-    o = pose.orientation
-    o.x, o.y, o.z, o.w = _quaternion(values)
+    _from_list(pose_list, "list_to_pose", pose.position, pose.orientation)
     return pose
 
 
@@ -64,15 +71,11 @@ def list_to_pose_stamped(pose_list: Sequence[float], target_frame: str) -> PoseS
 
 def transform_to_list(trf_msg: Transform) -> list[float]:
     """[x, y, z, qx, qy, qz, qw] of a Transform."""
-    t, r = trf_msg.translation, trf_msg.rotation
-    return [t.x, t.y, t.z, r.x, r.y, r.z, r.w]
+    return _to_list(trf_msg.translation, trf_msg.rotation)
 
 
 def list_to_transform(trf_list: Sequence[float]) -> Transform:
     """Transform from [x, y, z, roll, pitch, yaw] or [x, y, z, qx, qy, qz, qw]."""
-    values = _numbers(trf_list, (6, 7), "list_to_transform")
     transform = Transform()
-    transform.translation.x, transform.translation.y, transform.translation.z = values[:3]
-    r = transform.rotation
-    r.x, r.y, r.z, r.w = _quaternion(values)
+    _from_list(trf_list, "list_to_transform", transform.translation, transform.rotation)
     return transform

@@ -125,27 +125,29 @@ def pose_stamped_from_target(target: object, default_frame: str, what: str = "po
     return result
 
 
-def position_constraint(link: str, target: PoseStamped, tolerance: float) -> PositionConstraint:
-    """The link's origin within `tolerance` metres of the target position (a sphere, as MoveIt builds it)."""
-    constraint = PositionConstraint()
+def _link_constraint(constraint: object, link: str, target: PoseStamped) -> object:
+    """A position or orientation constraint's common fields: the target's header, the link, weight 1."""
     constraint.header = target.header
     constraint.link_name = link
+    constraint.weight = 1.0
+    return constraint
+
+
+def position_constraint(link: str, target: PoseStamped, tolerance: float) -> PositionConstraint:
+    """The link's origin within `tolerance` metres of the target position (a sphere, as MoveIt builds it)."""
+    constraint = _link_constraint(PositionConstraint(), link, target)
     constraint.position = target.pose.position
     constraint.tolerance = tolerance
-    constraint.weight = 1.0
     return constraint
 
 
 def orientation_constraint(link: str, target: PoseStamped, tolerance: float) -> OrientationConstraint:
     """The link's orientation within `tolerance` radians about each axis of the target orientation."""
-    constraint = OrientationConstraint()
-    constraint.header = target.header
-    constraint.link_name = link
+    constraint = _link_constraint(OrientationConstraint(), link, target)
     constraint.orientation = target.pose.orientation
     constraint.absolute_x_axis_tolerance = tolerance
     constraint.absolute_y_axis_tolerance = tolerance
     constraint.absolute_z_axis_tolerance = tolerance
-    constraint.weight = 1.0
     return constraint
 
 

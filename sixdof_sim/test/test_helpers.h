@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <fstream>
-#include <sstream>
 #include <string>
+
+#include <sixdof_core/robot_model.h>
 
 #include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/world.h"
@@ -16,13 +16,7 @@
 namespace sixdof_sim {
 namespace test {
 
-inline std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+inline std::string readFile(const std::string& path) { return sixdof_core::readTextFile(path); }
 
 inline std::string robotUrdf() { return readFile(std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf"); }
 

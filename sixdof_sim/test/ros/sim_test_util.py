@@ -14,6 +14,18 @@ ARM_JOINTS = [f"joint{i}" for i in range(1, 7)]
 FINGER_JOINTS = ["finger1_joint", "finger2_joint"]
 
 
+def wait_for_servers(clients: tuple, timeout: float) -> None:
+    """Until each action client's server is up (an assertion fails after `timeout` seconds for one)."""
+    for client in clients:
+        assert client.wait_for_server(rospy.Duration(timeout)), "action server missing"
+
+
+def sim_service(name: str, service_type: type, timeout: float) -> rospy.ServiceProxy:
+    """A proxy of the simulator's service sixdof_sim/<name>, once it is up."""
+    rospy.wait_for_service("sixdof_sim/" + name, timeout)
+    return rospy.ServiceProxy("sixdof_sim/" + name, service_type)
+
+
 def trajectory_goal(
     joints: list[str], points: list[tuple[list[float], float]], with_velocities: bool = True
 ) -> FollowJointTrajectoryGoal:

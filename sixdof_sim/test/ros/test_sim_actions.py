@@ -10,7 +10,7 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from shape_msgs.msg import SolidPrimitive
-from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, trajectory_goal
+from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
 from std_srvs.srv import Empty
 
 from sixdof_msgs.msg import (
@@ -36,12 +36,10 @@ class SimActionsTest(unittest.TestCase):
         cls.fingers = actionlib.SimpleActionClient(
             "gripper_controller/follow_joint_trajectory", FollowJointTrajectoryAction
         )
-        for client in (cls.arm, cls.fingers):
-            assert client.wait_for_server(rospy.Duration(SERVER_TIMEOUT)), "action server missing"
-        rospy.wait_for_service("sixdof_sim/reset_world", SERVER_TIMEOUT)
-        cls.reset_world = rospy.ServiceProxy("sixdof_sim/reset_world", Empty)
-        cls.spawn = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)
-        cls.get_object = rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)
+        wait_for_servers((cls.arm, cls.fingers), SERVER_TIMEOUT)
+        cls.reset_world = sim_service("reset_world", Empty, SERVER_TIMEOUT)
+        cls.spawn = sim_service("spawn_object", SpawnObject, SERVER_TIMEOUT)
+        cls.get_object = sim_service("get_object_state", GetObjectState, SERVER_TIMEOUT)
         cls.joints = JointStateListener()
 
     def setUp(self) -> None:

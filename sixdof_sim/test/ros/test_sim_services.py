@@ -10,7 +10,7 @@ import tf2_ros
 from actionlib_msgs.msg import GoalStatus
 from rosgraph_msgs.msg import Clock
 from shape_msgs.msg import SolidPrimitive
-from sim_test_util import FINGER_JOINTS, JointStateListener, trajectory_goal
+from sim_test_util import FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
 from std_srvs.srv import Empty
 
 from sixdof_msgs.msg import (
@@ -37,22 +37,19 @@ class SimServicesTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls) -> None:
         rospy.init_node("test_sim_services")
-        rospy.wait_for_service("sixdof_sim/step", TIMEOUT)
-        ns = "sixdof_sim/"
-        cls.reset_world = rospy.ServiceProxy(ns + "reset_world", Empty)
-        cls.pause = rospy.ServiceProxy(ns + "pause_physics", Empty)
-        cls.unpause = rospy.ServiceProxy(ns + "unpause_physics", Empty)
-        cls.step = rospy.ServiceProxy(ns + "step", StepSimulation)
-        cls.spawn = rospy.ServiceProxy(ns + "spawn_object", SpawnObject)
-        cls.delete = rospy.ServiceProxy(ns + "delete_object", DeleteObject)
-        cls.get_object = rospy.ServiceProxy(ns + "get_object_state", GetObjectState)
-        cls.set_object = rospy.ServiceProxy(ns + "set_object_state", SetObjectState)
+        cls.step = sim_service("step", StepSimulation, TIMEOUT)
+        cls.reset_world = sim_service("reset_world", Empty, TIMEOUT)
+        cls.pause = sim_service("pause_physics", Empty, TIMEOUT)
+        cls.unpause = sim_service("unpause_physics", Empty, TIMEOUT)
+        cls.spawn = sim_service("spawn_object", SpawnObject, TIMEOUT)
+        cls.delete = sim_service("delete_object", DeleteObject, TIMEOUT)
+        cls.get_object = sim_service("get_object_state", GetObjectState, TIMEOUT)
+        cls.set_object = sim_service("set_object_state", SetObjectState, TIMEOUT)
         cls.fingers = actionlib.SimpleActionClient(
             "gripper_controller/follow_joint_trajectory", FollowJointTrajectoryAction
         )
         cls.gripper = actionlib.SimpleActionClient("gripper_controller/gripper_cmd", GripperCommandAction)
-        for client in (cls.fingers, cls.gripper):
-            assert client.wait_for_server(rospy.Duration(TIMEOUT)), "action server missing"
+        wait_for_servers((cls.fingers, cls.gripper), TIMEOUT)
         cls.joints = JointStateListener()
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)

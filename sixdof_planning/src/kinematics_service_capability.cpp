@@ -137,7 +137,7 @@ ErrorCode InverseKinematicsService::solve(const sixdof_msgs::PositionIKRequest& 
       options.timeout = std::max(left, 1e-4);
       options.random_seed = rng();
       const auto result = solver->solve(target, options);
-      if (!result.success()) {
+      if (!result.ok()) {
         failure = result.message;
         if (collisions == 0) break;  // the solver spent the budget without any solution
         continue;

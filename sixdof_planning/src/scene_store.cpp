@@ -144,7 +144,7 @@ ErrorCode SceneStore::frameTransform(const sixdof_core::RobotState& state, const
 
 ErrorCode SceneStore::sceneError(const sixdof_core::SceneStatus& status, const std::string& source) const {
   using Code = sixdof_core::SceneStatusCode;
-  switch (status.code) {
+  switch (status.status) {
     case Code::kOk:
       return makeSuccess(source);
     case Code::kUnknownName:

@@ -58,9 +58,9 @@ TEST(GripperController, ReachesTheTargetAndSucceeds) {
   GripperController c(fingerConfig(true));
   Finger f;
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.01, 5.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.01, 5.0}, now).ok());
   GripperUpdate u = run(c, f, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.reached_goal);
   EXPECT_FALSE(u.stalled);
   EXPECT_NEAR(u.position, 0.01, 0.001);
@@ -72,9 +72,9 @@ TEST(GripperController, ClosingOnAnObjectStallsAndSucceedsWhenStallingIsAllowed)
   Finger f;
   f.obstacle = 0.02;  // a 4 cm cube
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
   GripperUpdate u = run(c, f, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.stalled);
   EXPECT_FALSE(u.reached_goal);
   EXPECT_NEAR(u.position, 0.02, 1e-12);
@@ -94,9 +94,9 @@ TEST(GripperController, AFingerJitteringOnAnObjectStalls) {
   f.obstacle = 0.02;
   f.jitter = 2e-5;
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
   const GripperUpdate u = run(c, f, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.stalled);
   EXPECT_NEAR(now, 0.4 + 0.2, 0.01);
 }
@@ -107,11 +107,11 @@ TEST(GripperController, AFingerMovingSlowlyButSteadilyIsNotStalled) {
   Finger f;
   f.speed = 0.002;
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.036, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.036, 0.0}, now).ok());
   const GripperUpdate u = run(c, f, now, 5.0);
   EXPECT_TRUE(u.reached_goal);
   EXPECT_FALSE(u.stalled);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
 }
 
 TEST(GripperController, StallAbortsWhenStallingIsNotAllowed) {
@@ -119,9 +119,9 @@ TEST(GripperController, StallAbortsWhenStallingIsNotAllowed) {
   Finger f;
   f.obstacle = 0.02;
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
   GripperUpdate u = run(c, f, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::ABORTED);
+  EXPECT_EQ(u.state, GoalState::kAborted);
   EXPECT_TRUE(u.stalled);
 }
 
@@ -132,7 +132,7 @@ TEST(GripperController, RejectsBadGoals) {
   EXPECT_NE(c.setGoal({0.01, -1.0}, 0.0).message.find("negative"), std::string::npos);
   EXPECT_NE(c.setGoal({0.01, 25.0}, 0.0).message.find("exceeds the effort limit"), std::string::npos);
   EXPECT_NE(c.setGoal({std::nan(""), 1.0}, 0.0).message.find("finite"), std::string::npos);
-  EXPECT_FALSE(c.setGoal({0.01, 25.0}, 0.0).ok);
+  EXPECT_FALSE(c.setGoal({0.01, 25.0}, 0.0).ok());
   EXPECT_FALSE(c.active());
 }
 
@@ -140,18 +140,18 @@ TEST(GripperController, CancelHoldsTheActualPositionAndPreemptionRestartsTheStal
   GripperController c(fingerConfig(true));
   Finger f;
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
   run(c, f, now, 0.1);
   c.cancel(f.q);
-  EXPECT_EQ(c.state(), GoalState::CANCELED);
+  EXPECT_EQ(c.state(), GoalState::kCanceled);
   const double held = f.q;
   GripperUpdate u = c.update(now, f.q);
   EXPECT_DOUBLE_EQ(u.command_position, held);
   EXPECT_FALSE(u.finished);
 
   // A new goal while one is active replaces it.
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok);
-  ASSERT_TRUE(c.setGoal({0.03, 0.0}, now).ok);
+  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
+  ASSERT_TRUE(c.setGoal({0.03, 0.0}, now).ok());
   u = run(c, f, now, 5.0);
   EXPECT_TRUE(u.reached_goal);
   EXPECT_NEAR(f.q, 0.03, 0.001);

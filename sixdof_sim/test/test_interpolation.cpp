@@ -16,7 +16,7 @@ TEST(JointSpline, EndpointConditionsHoldForEveryType) {
     const double p0 = u(rng), v0 = u(rng), a0 = u(rng), p1 = u(rng), v1 = u(rng), a1 = u(rng);
     double p, v, a;
 
-    JointSpline quintic(InterpolationType::QUINTIC, t, p0, v0, a0, p1, v1, a1);
+    JointSpline quintic(InterpolationType::kQuintic, t, p0, v0, a0, p1, v1, a1);
     quintic.sample(0.0, p, v, a);
     EXPECT_NEAR(p, p0, 1e-9);
     EXPECT_NEAR(v, v0, 1e-9);
@@ -26,7 +26,7 @@ TEST(JointSpline, EndpointConditionsHoldForEveryType) {
     EXPECT_NEAR(v, v1, 1e-8);
     EXPECT_NEAR(a, a1, 1e-7);
 
-    JointSpline cubic(InterpolationType::CUBIC, t, p0, v0, 0.0, p1, v1, 0.0);
+    JointSpline cubic(InterpolationType::kCubic, t, p0, v0, 0.0, p1, v1, 0.0);
     cubic.sample(0.0, p, v, a);
     EXPECT_NEAR(p, p0, 1e-9);
     EXPECT_NEAR(v, v0, 1e-9);
@@ -34,7 +34,7 @@ TEST(JointSpline, EndpointConditionsHoldForEveryType) {
     EXPECT_NEAR(p, p1, 1e-9);
     EXPECT_NEAR(v, v1, 1e-8);
 
-    JointSpline linear(InterpolationType::LINEAR, t, p0, 0.0, 0.0, p1, 0.0, 0.0);
+    JointSpline linear(InterpolationType::kLinear, t, p0, 0.0, 0.0, p1, 0.0, 0.0);
     linear.sample(0.5 * t, p, v, a);
     EXPECT_NEAR(p, 0.5 * (p0 + p1), 1e-9);
     EXPECT_NEAR(v, (p1 - p0) / t, 1e-9);
@@ -43,7 +43,7 @@ TEST(JointSpline, EndpointConditionsHoldForEveryType) {
 }
 
 TEST(JointSpline, DerivativesMatchFiniteDifferences) {
-  JointSpline s(InterpolationType::QUINTIC, 2.0, 0.3, -0.5, 1.0, 1.2, 0.4, -0.7);
+  JointSpline s(InterpolationType::kQuintic, 2.0, 0.3, -0.5, 1.0, 1.2, 0.4, -0.7);
   const double h = 1e-6;
   for (double t = 0.1; t < 1.9; t += 0.17) {
     double p0, v0, a0, p1, v1, a1, p, v, a;
@@ -56,23 +56,23 @@ TEST(JointSpline, DerivativesMatchFiniteDifferences) {
 }
 
 TEST(JointSpline, ClampsOutsideItsSpan) {
-  JointSpline s(InterpolationType::CUBIC, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
+  JointSpline s(InterpolationType::kCubic, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
   double p, v, a;
   s.sample(5.0, p, v, a);
   EXPECT_DOUBLE_EQ(p, 1.0);
   s.sample(-1.0, p, v, a);
   EXPECT_DOUBLE_EQ(p, 0.0);
-  EXPECT_THROW(JointSpline(InterpolationType::LINEAR, 0.0, 0, 0, 0, 1, 0, 0), std::invalid_argument);
+  EXPECT_THROW(JointSpline(InterpolationType::kLinear, 0.0, 0, 0, 0, 1, 0, 0), std::invalid_argument);
 }
 
 TEST(InterpolationType, IsTheHighestOrderBothPointsCarry) {
   TrajectoryPoint pos{{1.0}, {}, {}, 0.0};
   TrajectoryPoint vel{{1.0}, {0.0}, {}, 0.0};
   TrajectoryPoint acc{{1.0}, {0.0}, {0.0}, 0.0};
-  EXPECT_EQ(interpolationType(pos, acc), InterpolationType::LINEAR);
-  EXPECT_EQ(interpolationType(acc, vel), InterpolationType::CUBIC);
-  EXPECT_EQ(interpolationType(vel, vel), InterpolationType::CUBIC);
-  EXPECT_EQ(interpolationType(acc, acc), InterpolationType::QUINTIC);
+  EXPECT_EQ(interpolationType(pos, acc), InterpolationType::kLinear);
+  EXPECT_EQ(interpolationType(acc, vel), InterpolationType::kCubic);
+  EXPECT_EQ(interpolationType(vel, vel), InterpolationType::kCubic);
+  EXPECT_EQ(interpolationType(acc, acc), InterpolationType::kQuintic);
 }
 
 TEST(JointTrajectory, SamplesKnotsSegmentsAndHoldsOutside) {
@@ -81,7 +81,7 @@ TEST(JointTrajectory, SamplesKnotsSegmentsAndHoldsOutside) {
                                          {{2.0, -1.0}, {0.0, 0.0}, {}, 3.0}});
   EXPECT_EQ(traj.dof(), 2u);
   EXPECT_EQ(traj.segmentCount(), 2u);
-  EXPECT_EQ(traj.segmentType(0), InterpolationType::CUBIC);
+  EXPECT_EQ(traj.segmentType(0), InterpolationType::kCubic);
   EXPECT_DOUBLE_EQ(traj.startTime(), 1.0);
   EXPECT_DOUBLE_EQ(traj.endTime(), 4.0);
 

@@ -87,14 +87,14 @@ TEST_F(TrajectoryControllerTest, ReachesGoalAndSucceedsAtTheEndTime) {
   const double start = now;
   TrajectoryUpdate u = run(c, plant, now, 5.0);
   EXPECT_TRUE(u.finished);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.result.ok());
   EXPECT_NEAR(now - start, 1.0, 2 * kDt);
   EXPECT_NEAR(plant.q[0], 0.5, 1e-9);
   EXPECT_NEAR(plant.q[1], -1.0, 1e-9);
   // Idle afterwards: the final point stays commanded.
   u = c.update(now + 1.0, plant.q, plant.v);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_FALSE(u.finished);
   EXPECT_NEAR(u.desired.position[0], 0.5, 1e-12);
 }
@@ -104,7 +104,7 @@ TEST_F(TrajectoryControllerTest, LaggingRobotSucceedsWithinGoalTime) {
   ASSERT_TRUE(c.setGoal(goalTo(0.5, 1.0, 1.0), now).ok());
   const double start = now;
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED) << u.result.message;
+  EXPECT_EQ(u.state, GoalState::kSucceeded) << u.result.message;
   EXPECT_GT(now - start, 1.0);
   EXPECT_LT(now - start, 1.5);
 }
@@ -118,8 +118,8 @@ TEST_F(TrajectoryControllerTest, GoalToleranceViolatedWithoutGoalTime) {
   ASSERT_TRUE(c.setGoal(g, now).ok());
   const double start = now;
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::ABORTED);
-  EXPECT_EQ(u.result.code, TrajectoryErrorCode::GOAL_TOLERANCE_VIOLATED);
+  EXPECT_EQ(u.state, GoalState::kAborted);
+  EXPECT_EQ(u.result.status, TrajectoryErrorCode::kGoalToleranceViolated);
   EXPECT_NE(u.result.message.find("j1"), std::string::npos) << u.result.message;
   EXPECT_NEAR(now - start, 0.5, 2 * kDt);
 }
@@ -131,7 +131,7 @@ TEST_F(TrajectoryControllerTest, StoppedVelocityToleranceIsPartOfTheGoal) {
   plant.v = {0.05, 0.0};
   const double start = now;
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.result.code, TrajectoryErrorCode::GOAL_TOLERANCE_VIOLATED);
+  EXPECT_EQ(u.result.status, TrajectoryErrorCode::kGoalToleranceViolated);
   EXPECT_NE(u.result.message.find("velocity"), std::string::npos) << u.result.message;
   EXPECT_NEAR(now - start, 0.2 + 0.5, 2 * kDt);
 }
@@ -140,8 +140,8 @@ TEST_F(TrajectoryControllerTest, PathToleranceViolatedHoldsTheActualPosition) {
   plant.kind = Plant::kStuck;
   ASSERT_TRUE(c.setGoal(goalTo(0.9, 0.0, 1.0), now).ok());
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::ABORTED);
-  EXPECT_EQ(u.result.code, TrajectoryErrorCode::PATH_TOLERANCE_VIOLATED);
+  EXPECT_EQ(u.state, GoalState::kAborted);
+  EXPECT_EQ(u.result.status, TrajectoryErrorCode::kPathToleranceViolated);
   EXPECT_NE(u.result.message.find("j1"), std::string::npos) << u.result.message;
   EXPECT_DOUBLE_EQ(u.desired.position[0], 0.0);
   EXPECT_DOUBLE_EQ(c.update(now, plant.q, plant.v).desired.position[0], 0.0);
@@ -155,7 +155,7 @@ TEST_F(TrajectoryControllerTest, GoalToleranceOverridesConfig) {
   g.goal_tolerance = {{"j1", 1.0, 0.0, 0.0}};
   ASSERT_TRUE(c.setGoal(g, now).ok());
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED) << u.result.message;
+  EXPECT_EQ(u.state, GoalState::kSucceeded) << u.result.message;
 
   // A positive path tolerance tightens the configured one.
   plant.kind = Plant::kLag;
@@ -163,7 +163,7 @@ TEST_F(TrajectoryControllerTest, GoalToleranceOverridesConfig) {
   g.path_tolerance = {{"j1", 1e-4, 0.0, 0.0}};
   ASSERT_TRUE(c.setGoal(g, now).ok());
   u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.result.code, TrajectoryErrorCode::PATH_TOLERANCE_VIOLATED);
+  EXPECT_EQ(u.result.status, TrajectoryErrorCode::kPathToleranceViolated);
 }
 
 TEST_F(TrajectoryControllerTest, JointOrderOfTheGoalIsFollowed) {
@@ -172,7 +172,7 @@ TEST_F(TrajectoryControllerTest, JointOrderOfTheGoalIsFollowed) {
   g.points = {{{1.5, -0.5}, {}, {}, 0.5}};
   ASSERT_TRUE(c.setGoal(g, now).ok());
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_NEAR(plant.q[0], -0.5, 1e-9);
   EXPECT_NEAR(plant.q[1], 1.5, 1e-9);
 }
@@ -207,7 +207,7 @@ TEST_F(TrajectoryControllerTest, PreemptionContinuesFromTheCurrentDesiredState) 
   EXPECT_NEAR(after.desired.velocity[0], before.desired.velocity[0], 1e-12);
   EXPECT_GT(before.desired.velocity[0], 0.1);
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_NEAR(plant.q[0], -0.5, 1e-9);
 }
 
@@ -216,7 +216,7 @@ TEST_F(TrajectoryControllerTest, CancelHoldsTheActualPosition) {
   run(c, plant, now, 0.5);
   const std::vector<double> at_cancel = plant.q;
   c.cancel(plant.q);
-  EXPECT_EQ(c.state(), GoalState::CANCELED);
+  EXPECT_EQ(c.state(), GoalState::kCanceled);
   for (int i = 0; i < 100; ++i) {
     TrajectoryUpdate u = c.update(now, plant.q, plant.v);
     plant.apply(u.desired);
@@ -232,7 +232,7 @@ TEST_F(TrajectoryControllerTest, EmptyTrajectoryStopsAndSucceeds) {
   const double q_stop = plant.q[0];
   ASSERT_TRUE(c.setGoal(TrajectoryGoal{}, now).ok());
   TrajectoryUpdate u = run(c, plant, now, 1.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_NEAR(plant.q[0], q_stop, 1e-12);
 }
 
@@ -240,30 +240,30 @@ TEST_F(TrajectoryControllerTest, InvalidJointsAreRejectedByName) {
   TrajectoryGoal g = goalTo(0.1, 0.1, 1.0);
   g.joint_names = {"j1", "elbow"};
   TrajectoryResult r = c.setGoal(g, now);
-  EXPECT_EQ(r.code, TrajectoryErrorCode::INVALID_JOINTS);
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidJoints);
   EXPECT_NE(r.message.find("elbow"), std::string::npos) << r.message;
 
   g.joint_names = {"j1", "j1"};
   r = c.setGoal(g, now);
-  EXPECT_EQ(r.code, TrajectoryErrorCode::INVALID_JOINTS);
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidJoints);
   EXPECT_NE(r.message.find("twice"), std::string::npos) << r.message;
 
   g.joint_names = {"j1"};
   g.points = {{{0.1}, {}, {}, 1.0}};
   r = c.setGoal(g, now);
-  EXPECT_EQ(r.code, TrajectoryErrorCode::INVALID_JOINTS);
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidJoints);
   EXPECT_NE(r.message.find("j2"), std::string::npos) << r.message;
 
   g = goalTo(0.1, 0.1, 1.0);
   g.goal_tolerance = {{"wrist", 0.1, 0.0, 0.0}};
-  EXPECT_EQ(c.setGoal(g, now).code, TrajectoryErrorCode::INVALID_JOINTS);
+  EXPECT_EQ(c.setGoal(g, now).status, TrajectoryErrorCode::kInvalidJoints);
   EXPECT_FALSE(c.active());
 }
 
 TEST_F(TrajectoryControllerTest, InvalidGoalsAreRejectedWithTheReason) {
   const auto expectInvalid = [&](const TrajectoryGoal& g, const std::string& needle) {
     TrajectoryResult r = c.setGoal(g, now);
-    EXPECT_EQ(r.code, TrajectoryErrorCode::INVALID_GOAL) << needle;
+    EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidGoal) << needle;
     EXPECT_NE(r.message.find(needle), std::string::npos) << r.message;
   };
   TrajectoryGoal g = goalTo(std::nan(""), 0.0, 1.0);
@@ -300,19 +300,19 @@ TEST_F(TrajectoryControllerTest, RejectedGoalDoesNotDisturbTheActiveOne) {
   EXPECT_FALSE(c.setGoal(goalTo(5.0, 0.0, 1.0), now).ok());
   EXPECT_TRUE(c.active());
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_NEAR(plant.q[0], 0.5, 1e-9);
 }
 
 TEST_F(TrajectoryControllerTest, HeaderStampSchedulesTheTrajectory) {
   TrajectoryGoal g = goalTo(0.5, 0.0, 1.0);
   g.start_time = now - 5.0;
-  EXPECT_EQ(c.setGoal(g, now).code, TrajectoryErrorCode::OLD_HEADER_TIMESTAMP);
+  EXPECT_EQ(c.setGoal(g, now).status, TrajectoryErrorCode::kOldHeaderTimestamp);
   g.start_time = now + 1.0;
   ASSERT_TRUE(c.setGoal(g, now).ok());
   const double start = now;
   TrajectoryUpdate u = run(c, plant, now, 5.0);
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_NEAR(now - start, 2.0, 2 * kDt);
 }
 
@@ -331,7 +331,7 @@ TEST_F(TrajectoryControllerTest, PointsAlreadyInThePastAreSkipped) {
     highest = std::max(highest, plant.q[0]);
     now += kDt;
   }
-  EXPECT_EQ(u.state, GoalState::SUCCEEDED);
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_NEAR(now - start, 1.0, 5 * kDt);  // fixed steps accumulate round-off in `now`
   EXPECT_NEAR(highest, 0.5, 1e-9);  // straight from the current state to the last point
 }
@@ -387,7 +387,7 @@ TEST(TrajectoryControllerNoState, GoalBeforeAnyUpdateIsRejected) {
   TrajectoryController c{twoJointConfig()};
   EXPECT_FALSE(c.sample(0.0));
   TrajectoryResult r = c.setGoal(goalTo(0.1, 0.1, 1.0), 0.0);
-  EXPECT_EQ(r.code, TrajectoryErrorCode::INVALID_GOAL);
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidGoal);
   EXPECT_NE(r.message.find("no current state"), std::string::npos);
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_sim/world_types.h"
 
 namespace sixdof_sim {
 
@@ -30,16 +31,14 @@ struct GripperGoal {
   double max_effort = 0.0;  // N; 0 = the URDF effort limit
 };
 
-struct GripperResult {
-  bool ok = true;
-  std::string message;  // names the problem when !ok
-};
+// A rejected goal: kInvalidArgument (not finite, negative effort) or kOutOfLimits (position, effort).
+using GripperResult = Result;
 
 // One control step's command and the goal's status.
 struct GripperUpdate {
   double command_position = 0.0;
   double command_max_effort = 0.0;  // always > 0 (0 is resolved to the effort limit)
-  GoalState state = GoalState::IDLE;
+  GoalState state = GoalState::kIdle;
   bool finished = false;  // the goal ended in this step
   bool reached_goal = false;
   bool stalled = false;
@@ -70,7 +69,7 @@ class GripperController {
 
   GripperUpdate update(double now, double position);
 
-  bool active() const { return state_ == GoalState::ACTIVE; }
+  bool active() const { return state_ == GoalState::kActive; }
   GoalState state() const { return state_; }
 
  private:
@@ -82,7 +81,7 @@ class GripperController {
   bool movement_anchored_ = false;
   double movement_position_ = 0.0;
   double movement_time_ = 0.0;
-  GoalState state_ = GoalState::IDLE;
+  GoalState state_ = GoalState::kIdle;
 };
 
 }  // namespace sixdof_sim

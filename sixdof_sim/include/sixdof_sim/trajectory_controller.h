@@ -5,25 +5,23 @@
 #include <string>
 #include <vector>
 
+#include "sixdof_core/result.h"
 #include "sixdof_sim/interpolation.h"
 
 namespace sixdof_sim {
 
 // Result codes, values as in sixdof_msgs/FollowJointTrajectory (control_msgs).
 enum class TrajectoryErrorCode : int {
-  SUCCESSFUL = 0,
-  INVALID_GOAL = -1,
-  INVALID_JOINTS = -2,
-  OLD_HEADER_TIMESTAMP = -3,
-  PATH_TOLERANCE_VIOLATED = -4,
-  GOAL_TOLERANCE_VIOLATED = -5,
+  kSuccessful = 0,
+  kInvalidGoal = -1,
+  kInvalidJoints = -2,
+  kOldHeaderTimestamp = -3,
+  kPathToleranceViolated = -4,
+  kGoalToleranceViolated = -5,
 };
 
-struct TrajectoryResult {
-  TrajectoryErrorCode code = TrajectoryErrorCode::SUCCESSFUL;
-  std::string message;  // names the offending joint/point/value when code != SUCCESSFUL
-  bool ok() const { return code == TrajectoryErrorCode::SUCCESSFUL; }
-};
+// message names the offending joint/point/value on failure.
+using TrajectoryResult = sixdof_core::Result<TrajectoryErrorCode>;
 
 // Per-joint tolerances on |desired - actual|; 0 means "not checked".
 struct StateTolerance {
@@ -64,25 +62,25 @@ struct TrajectoryGoal {
   double start_time = 0.0;           // trajectory header stamp; 0 = when the goal is accepted
 };
 
-enum class GoalState { IDLE, ACTIVE, SUCCEEDED, ABORTED, CANCELED };
+enum class GoalState { kIdle, kActive, kSucceeded, kAborted, kCanceled };
 
 // What one control step produces.
 struct TrajectoryUpdate {
   TrajectorySample desired;  // the command to the joint motors, in config joint order
   TrajectorySample error;    // desired - actual (acceleration error is 0: no measured acceleration)
-  GoalState state = GoalState::IDLE;  // of the current/last goal
+  GoalState state = GoalState::kIdle;  // of the current/last goal
   bool finished = false;              // the goal ended in this step; result holds why
   TrajectoryResult result;
 };
 
 // joint_trajectory_controller semantics, ROS-free:
 // - a goal is validated (joints, sizes, times, finite values, position limits, tolerances) and either
-//   rejected with INVALID_JOINTS / INVALID_GOAL / OLD_HEADER_TIMESTAMP or replaces the current one (which
+//   rejected with kInvalidJoints / kInvalidGoal / kOldHeaderTimestamp or replaces the current one (which
 //   the caller reports as preempted). The new trajectory starts from the current desired state when its
 //   first point lies in the future.
-// - during execution the path tolerances are checked (PATH_TOLERANCE_VIOLATED aborts and holds the actual
+// - during execution the path tolerances are checked (kPathToleranceViolated aborts and holds the actual
 //   position); after the last point the goal tolerances (positions, velocity with the stopped velocity
-//   tolerance) must hold within goal_time, else GOAL_TOLERANCE_VIOLATED (the final point stays commanded).
+//   tolerance) must hold within goal_time, else kGoalToleranceViolated (the final point stays commanded).
 // - an empty trajectory stops: it holds the current desired position and succeeds at once.
 // - cancel holds the actual position. Without a goal the controller holds its last command.
 class TrajectoryController {
@@ -109,7 +107,7 @@ class TrajectoryController {
   TrajectoryUpdate update(double now, const std::vector<double>& actual_position,
                           const std::vector<double>& actual_velocity);
 
-  bool active() const { return state_ == GoalState::ACTIVE; }
+  bool active() const { return state_ == GoalState::kActive; }
   GoalState state() const { return state_; }
   // The commanded trajectory (the active goal's, or the hold) sampled at `time`, as the next update() at that
   // time would command it; nullopt before the first hold or goal (joint_trajectory_controller's query_state).
@@ -128,7 +126,7 @@ class TrajectoryController {
   std::vector<StateTolerance> path_tolerance_;   // of the active goal
   std::vector<StateTolerance> goal_tolerance_;
   double goal_time_ = 0.0;
-  GoalState state_ = GoalState::IDLE;
+  GoalState state_ = GoalState::kIdle;
   TrajectorySample last_desired_;  // empty before the first update
 };
 

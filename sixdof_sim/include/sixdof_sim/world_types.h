@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sixdof_core/geometry.h"
+#include "sixdof_core/result.h"
 
 namespace sixdof_sim {
 
@@ -24,12 +25,7 @@ enum class Status {
   kStaticObject,     // a twist was given to a static object
 };
 
-struct Result {
-  Status status = Status::kOk;
-  std::string message;
-  bool ok() const { return status == Status::kOk; }
-  static Result success() { return {}; }
-};
+using Result = sixdof_core::Result<Status>;
 
 enum class JointType { kRevolute, kPrismatic };
 

@@ -58,7 +58,7 @@ void GripperActionHandler::finishActive(bool succeeded, bool canceled, bool reac
 void GripperActionHandler::goalCallback(Server::GoalHandle gh) {
   const GripperGoal goal{gh.getGoal()->command.position, gh.getGoal()->command.max_effort};
   const GripperResult check = controller_.validate(goal);
-  if (!check.ok) {
+  if (!check.ok()) {
     ROS_WARN_STREAM("[" << controller_.config().name << "/gripper_cmd] goal rejected: " << check.message);
     gh.setRejected(makeResult(false, false), check.message);
     return;
@@ -99,10 +99,10 @@ void GripperActionHandler::update(double now) {
   }
   if (u.finished) {
     const std::string text = u.reached_goal ? "reached the goal"
-                             : u.state == GoalState::SUCCEEDED
+                             : u.state == GoalState::kSucceeded
                                  ? "stalled (closed on an object): counts as success, allow_stalling is true"
                                  : "stalled before reaching the goal";
-    finishActive(u.state == GoalState::SUCCEEDED, false, u.reached_goal, u.stalled, text);
+    finishActive(u.state == GoalState::kSucceeded, false, u.reached_goal, u.stalled, text);
   }
 }
 

@@ -124,7 +124,7 @@ void TrajectoryActionHandler::goalCallback(Server::GoalHandle gh) {
   if (check.ok()) {
     const std::string mimic_error = checkMimics(goal);
     if (!mimic_error.empty()) {
-      check = {TrajectoryErrorCode::INVALID_GOAL, mimic_error};
+      check = {TrajectoryErrorCode::kInvalidGoal, mimic_error};
     }
   }
   if (check.ok() && !ownsAny()) {
@@ -138,13 +138,13 @@ void TrajectoryActionHandler::goalCallback(Server::GoalHandle gh) {
     check = controller_.setGoal(goal, now);
   }
   if (!check.ok()) {
-    result.error_code = static_cast<int>(check.code);
+    result.error_code = static_cast<int>(check.status);
     result.error_string = check.message;
     ROS_WARN_STREAM("[" << controller_.config().name << "] goal rejected: " << check.message);
     gh.setRejected(result, check.message);
     return;
   }
-  finishActive(static_cast<int>(TrajectoryErrorCode::SUCCESSFUL), "preempted by a new goal", false, true);
+  finishActive(static_cast<int>(TrajectoryErrorCode::kSuccessful), "preempted by a new goal", false, true);
   gh.setAccepted();
   active_ = gh;
 }
@@ -176,14 +176,14 @@ void TrajectoryActionHandler::cancelCallback(Server::GoalHandle gh) {
   std::vector<double> q, v;
   readState(&q, &v);
   controller_.cancel(q);
-  finishActive(static_cast<int>(TrajectoryErrorCode::SUCCESSFUL), "canceled", false, true);
+  finishActive(static_cast<int>(TrajectoryErrorCode::kSuccessful), "canceled", false, true);
 }
 
 void TrajectoryActionHandler::release() {
   std::vector<double> q, v;
   readState(&q, &v);
   controller_.cancel(q);
-  finishActive(static_cast<int>(TrajectoryErrorCode::SUCCESSFUL), "preempted by another controller's goal", false,
+  finishActive(static_cast<int>(TrajectoryErrorCode::kSuccessful), "preempted by another controller's goal", false,
                true);
 }
 
@@ -191,7 +191,7 @@ void TrajectoryActionHandler::reset() {
   std::vector<double> q, v;
   readState(&q, &v);
   controller_.hold(q);
-  finishActive(static_cast<int>(TrajectoryErrorCode::SUCCESSFUL), "canceled by a world reset", false, true);
+  finishActive(static_cast<int>(TrajectoryErrorCode::kSuccessful), "canceled by a world reset", false, true);
 }
 
 void TrajectoryActionHandler::update(double now) {
@@ -214,8 +214,8 @@ void TrajectoryActionHandler::update(double now) {
     }
   }
   if (last_update_.finished) {
-    finishActive(static_cast<int>(last_update_.result.code), last_update_.result.message,
-                 last_update_.state == GoalState::SUCCEEDED, false);
+    finishActive(static_cast<int>(last_update_.result.status), last_update_.result.message,
+                 last_update_.state == GoalState::kSucceeded, false);
   }
 }
 

@@ -27,24 +27,29 @@ GripperController::GripperController(GripperControllerConfig config) : config_(s
 
 GripperResult GripperController::validate(const GripperGoal& goal) const {
   std::ostringstream s;
+  Status status = Status::kOk;
   if (!std::isfinite(goal.position) || !std::isfinite(goal.max_effort)) {
+    status = Status::kInvalidArgument;
     s << "position and max_effort must be finite (got " << goal.position << ", " << goal.max_effort << ")";
   } else if (goal.position < config_.lower || goal.position > config_.upper) {
+    status = Status::kOutOfLimits;
     s << "position " << goal.position << " of joint '" << config_.joint << "' is outside its limits ["
       << config_.lower << ", " << config_.upper << "]";
   } else if (goal.max_effort < 0.0) {
+    status = Status::kInvalidArgument;
     s << "max_effort " << goal.max_effort << " is negative (0 means the effort limit " << config_.effort_limit
       << ")";
   } else if (goal.max_effort > config_.effort_limit) {
+    status = Status::kOutOfLimits;
     s << "max_effort " << goal.max_effort << " exceeds the effort limit " << config_.effort_limit << " of joint '"
       << config_.joint << "'";
   }
-  return {s.str().empty(), s.str()};
+  return {status, s.str()};
 }
 
 GripperResult GripperController::setGoal(const GripperGoal& goal, double now) {
   GripperResult r = validate(goal);
-  if (!r.ok) {
+  if (!r.ok()) {
     return r;
   }
   has_command_ = true;
@@ -52,13 +57,13 @@ GripperResult GripperController::setGoal(const GripperGoal& goal, double now) {
   command_effort_ = goal.max_effort > 0.0 ? goal.max_effort : config_.effort_limit;
   movement_time_ = now;
   movement_anchored_ = false;
-  state_ = GoalState::ACTIVE;
+  state_ = GoalState::kActive;
   return r;
 }
 
 void GripperController::hold(double position) {
-  if (state_ == GoalState::ACTIVE) {
-    state_ = GoalState::CANCELED;
+  if (state_ == GoalState::kActive) {
+    state_ = GoalState::kCanceled;
   }
   has_command_ = true;
   command_position_ = position;
@@ -66,7 +71,7 @@ void GripperController::hold(double position) {
 }
 
 void GripperController::cancel(double actual_position) {
-  if (state_ == GoalState::ACTIVE) {
+  if (state_ == GoalState::kActive) {
     hold(actual_position);
   }
 }
@@ -77,7 +82,7 @@ GripperUpdate GripperController::update(double now, double position) {
   }
   GripperUpdate out;
   out.position = position;
-  if (state_ == GoalState::ACTIVE) {
+  if (state_ == GoalState::kActive) {
     if (!movement_anchored_) {
       movement_anchored_ = true;
       movement_position_ = position;
@@ -85,7 +90,7 @@ GripperUpdate GripperController::update(double now, double position) {
     if (std::abs(command_position_ - position) < config_.goal_tolerance) {
       out.reached_goal = true;
       out.finished = true;
-      state_ = GoalState::SUCCEEDED;
+      state_ = GoalState::kSucceeded;
     } else if (std::abs(position - movement_position_) > config_.stall_velocity_threshold * config_.stall_timeout) {
       // Moved on by more than the threshold speed allows in stall_timeout: not stalled.
       movement_position_ = position;
@@ -93,7 +98,7 @@ GripperUpdate GripperController::update(double now, double position) {
     } else if (now - movement_time_ > config_.stall_timeout) {
       out.stalled = true;
       out.finished = true;
-      state_ = config_.allow_stalling ? GoalState::SUCCEEDED : GoalState::ABORTED;
+      state_ = config_.allow_stalling ? GoalState::kSucceeded : GoalState::kAborted;
     }
   }
   out.command_position = command_position_;

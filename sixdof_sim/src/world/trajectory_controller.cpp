@@ -71,7 +71,7 @@ TrajectoryResult TrajectoryController::validateTolerances(const std::vector<Join
                                                           const char* what) const {
   for (const JointToleranceOverride& t : tolerances) {
     if (std::find(config_.joints.begin(), config_.joints.end(), t.name) == config_.joints.end()) {
-      return fail(TrajectoryErrorCode::INVALID_JOINTS, std::string(what) + " names joint '" + t.name +
+      return fail(TrajectoryErrorCode::kInvalidJoints, std::string(what) + " names joint '" + t.name +
                                                            "', which controller '" + config_.name +
                                                            "' does not control " + jointList());
     }
@@ -80,7 +80,7 @@ TrajectoryResult TrajectoryController::validateTolerances(const std::vector<Join
         std::ostringstream s;
         s << what << " of joint '" << t.name << "' has value " << v
           << " (allowed: > 0 a limit, 0 the default, -1 no limit)";
-        return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+        return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
       }
     }
   }
@@ -93,16 +93,16 @@ TrajectoryResult TrajectoryController::validate(const TrajectoryGoal& goal, doub
   if (!(names.empty() && goal.points.empty())) {
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (std::find(names.begin(), names.begin() + i, names[i]) != names.begin() + i) {
-        return fail(TrajectoryErrorCode::INVALID_JOINTS, "joint '" + names[i] + "' appears twice in joint_names");
+        return fail(TrajectoryErrorCode::kInvalidJoints, "joint '" + names[i] + "' appears twice in joint_names");
       }
       if (std::find(config_.joints.begin(), config_.joints.end(), names[i]) == config_.joints.end()) {
-        return fail(TrajectoryErrorCode::INVALID_JOINTS, "unknown joint '" + names[i] + "': controller '" +
+        return fail(TrajectoryErrorCode::kInvalidJoints, "unknown joint '" + names[i] + "': controller '" +
                                                              config_.name + "' controls " + jointList());
       }
     }
     for (const std::string& j : config_.joints) {
       if (std::find(names.begin(), names.end(), j) == names.end()) {
-        return fail(TrajectoryErrorCode::INVALID_JOINTS, "joint '" + j + "' of controller '" + config_.name +
+        return fail(TrajectoryErrorCode::kInvalidJoints, "joint '" + j + "' of controller '" + config_.name +
                                                              "' is missing from joint_names (all of " + jointList() +
                                                              " are required)");
       }
@@ -114,32 +114,32 @@ TrajectoryResult TrajectoryController::validate(const TrajectoryGoal& goal, doub
     s << "point " << p << ": ";
     if (pt.positions.size() != n) {
       s << pt.positions.size() << " positions for " << n << " joints";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     if (!pt.velocities.empty() && pt.velocities.size() != n) {
       s << pt.velocities.size() << " velocities for " << n << " joints (give none or one per joint)";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     if (!pt.accelerations.empty() && pt.accelerations.size() != n) {
       s << pt.accelerations.size() << " accelerations for " << n << " joints (give none or one per joint)";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     if (!pt.accelerations.empty() && pt.velocities.empty()) {
       s << "accelerations without velocities";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     if (!allFinite(pt.positions) || !allFinite(pt.velocities) || !allFinite(pt.accelerations)) {
       s << "non-finite (NaN or inf) position, velocity or acceleration";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     if (!std::isfinite(pt.time_from_start) || pt.time_from_start < 0.0) {
       s << "time_from_start " << pt.time_from_start << " must be finite and >= 0";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     if (p > 0 && !(pt.time_from_start > goal.points[p - 1].time_from_start)) {
       s << "time_from_start " << pt.time_from_start << " s is not after point " << p - 1 << "'s "
         << goal.points[p - 1].time_from_start << " s (times must strictly increase)";
-      return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+      return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
     }
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t c = static_cast<std::size_t>(
@@ -148,21 +148,21 @@ TrajectoryResult TrajectoryController::validate(const TrajectoryGoal& goal, doub
       if (q < config_.lower_limits[c] || q > config_.upper_limits[c]) {
         s << "position " << q << " of joint '" << names[i] << "' is outside its limits [" << config_.lower_limits[c]
           << ", " << config_.upper_limits[c] << "]";
-        return fail(TrajectoryErrorCode::INVALID_GOAL, s.str());
+        return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
       }
     }
   }
   if (!std::isfinite(goal.start_time) || goal.start_time < 0.0) {
-    return fail(TrajectoryErrorCode::INVALID_GOAL, "trajectory start time (header stamp) must be finite and >= 0");
+    return fail(TrajectoryErrorCode::kInvalidGoal, "trajectory start time (header stamp) must be finite and >= 0");
   }
   if (!goal.points.empty() && goal.start_time > 0.0 && goal.start_time + goal.points.back().time_from_start < now) {
     std::ostringstream s;
     s << "trajectory ends at " << goal.start_time + goal.points.back().time_from_start
       << " s, before the current time " << now << " s (header stamp too old)";
-    return fail(TrajectoryErrorCode::OLD_HEADER_TIMESTAMP, s.str());
+    return fail(TrajectoryErrorCode::kOldHeaderTimestamp, s.str());
   }
   if (!std::isfinite(goal.goal_time_tolerance)) {
-    return fail(TrajectoryErrorCode::INVALID_GOAL, "goal_time_tolerance must be finite");
+    return fail(TrajectoryErrorCode::kInvalidGoal, "goal_time_tolerance must be finite");
   }
   TrajectoryResult r = validateTolerances(goal.path_tolerance, "path_tolerance");
   if (!r.ok()) {
@@ -177,7 +177,7 @@ TrajectoryResult TrajectoryController::setGoal(const TrajectoryGoal& goal, doubl
     return r;
   }
   if (last_desired_.position.empty()) {
-    return fail(TrajectoryErrorCode::INVALID_GOAL,
+    return fail(TrajectoryErrorCode::kInvalidGoal,
                 "controller '" + config_.name + "' has no current state yet (no update or hold before the goal)");
   }
   const std::size_t n = config_.joints.size();
@@ -189,7 +189,7 @@ TrajectoryResult TrajectoryController::setGoal(const TrajectoryGoal& goal, doubl
     trajectory_ = std::make_unique<JointTrajectory>(std::vector<double>{now},
                                                     std::vector<TrajectoryPoint>{{last_desired_.position, {}, {}}});
     goal_time_ = 0.0;
-    state_ = GoalState::ACTIVE;
+    state_ = GoalState::kActive;
     return {};
   }
 
@@ -246,7 +246,7 @@ TrajectoryResult TrajectoryController::setGoal(const TrajectoryGoal& goal, doubl
     knots.insert(knots.begin(), {last_desired_.position, last_desired_.velocity, last_desired_.acceleration, 0.0});
   }
   trajectory_ = std::make_unique<JointTrajectory>(std::move(times), std::move(knots));
-  state_ = GoalState::ACTIVE;
+  state_ = GoalState::kActive;
   return {};
 }
 
@@ -267,14 +267,14 @@ void TrajectoryController::hold(const std::vector<double>& position) {
   if (position.size() != config_.joints.size()) {
     throw std::invalid_argument("TrajectoryController::hold: wrong number of positions");
   }
-  if (state_ == GoalState::ACTIVE) {
-    state_ = GoalState::CANCELED;
+  if (state_ == GoalState::kActive) {
+    state_ = GoalState::kCanceled;
   }
   holdAt(position);
 }
 
 void TrajectoryController::cancel(const std::vector<double>& actual_position) {
-  if (state_ == GoalState::ACTIVE) {
+  if (state_ == GoalState::kActive) {
     hold(actual_position);
   }
 }
@@ -319,14 +319,14 @@ TrajectoryUpdate TrajectoryController::update(double now, const std::vector<doub
     return "";
   };
 
-  if (state_ == GoalState::ACTIVE) {
+  if (state_ == GoalState::kActive) {
     if (now < trajectory_->endTime()) {
       const std::string v = violation(path_tolerance_);
       if (!v.empty()) {
         std::ostringstream s;
         s << "path tolerance violated at t=" << now << " s: " << v;
-        out.result = fail(TrajectoryErrorCode::PATH_TOLERANCE_VIOLATED, s.str());
-        state_ = GoalState::ABORTED;
+        out.result = fail(TrajectoryErrorCode::kPathToleranceViolated, s.str());
+        state_ = GoalState::kAborted;
         out.finished = true;
         holdAt(actual_position);
         out.desired = trajectory_->sample(now);
@@ -335,14 +335,14 @@ TrajectoryUpdate TrajectoryController::update(double now, const std::vector<doub
     } else {
       const std::string v = violation(goal_tolerance_);
       if (v.empty()) {
-        state_ = GoalState::SUCCEEDED;
+        state_ = GoalState::kSucceeded;
         out.finished = true;
       } else if (now >= trajectory_->endTime() + goal_time_) {
         std::ostringstream s;
         s << "goal tolerance violated " << now - trajectory_->endTime()
           << " s after the trajectory end (goal_time " << goal_time_ << " s): " << v;
-        out.result = fail(TrajectoryErrorCode::GOAL_TOLERANCE_VIOLATED, s.str());
-        state_ = GoalState::ABORTED;
+        out.result = fail(TrajectoryErrorCode::kGoalToleranceViolated, s.str());
+        state_ = GoalState::kAborted;
         out.finished = true;
       }
     }

@@ -66,7 +66,7 @@ Row run(const std::string& name, const IkSolver& solver, const IkOptions& option
     const sixdof_core::IkResult result = solver.solve(pose, options);
     times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
     cpu_times.push_back(threadCpuMicroseconds() - cpu_start);
-    if (!result.success()) continue;
+    if (!result.ok()) continue;
     const sixdof_core::PoseError error = sixdof_core::poseError(solver.chain().forward(result.solution), pose);
     if (error.position < 1e-5 && (options.position_only || error.orientation < 1e-5)) ++successes;
   }

@@ -63,7 +63,7 @@ Run runQueries(const sixdof_test::TableTop& t, int queries, sixdof_core::Plannin
         t.context->planToPose(state, t.tipFor(tcp), sixdof_core::PoseGoalOptions(), options);
     run.times.push_back(r.planning_time);
     run.checks += r.validity_checks;
-    if (r.success()) {
+    if (r.ok()) {
       ++run.solved;
       run.simplify_times.push_back(r.simplification_time);
       run.lengths.push_back(r.path_length);

@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
   options.collision.density = static_cast<std::size_t>(density);
   options.groups_skeleton = true;
   std::vector<double> core_seconds;
-  sixdof_core::SetupAssistantResult result;
+  sixdof_core::SetupAssistantOutput result;
   for (int r = 0; r < runs; ++r) {
     const auto start = Clock::now();
     result = sixdof_core::runSetupAssistant(urdf, "", options);

@@ -74,27 +74,18 @@ std::size_t firstRelativeJump(double factor, const std::vector<Eigen::VectorXd>&
 }  // namespace
 
 const char* toString(CartesianStatus status) {
-  switch (status) {
-    case CartesianStatus::kSuccess:
-      return "SUCCESS";
-    case CartesianStatus::kInvalidRequest:
-      return "INVALID_REQUEST";
-    case CartesianStatus::kInvalidStart:
-      return "INVALID_START";
-    case CartesianStatus::kIkFailed:
-      return "IK_FAILED";
-    case CartesianStatus::kInCollision:
-      return "IN_COLLISION";
-    case CartesianStatus::kJumpDetected:
-      return "JUMP_DETECTED";
-  }
-  return "UNKNOWN";
+  static constexpr const char* kNames[] = {"SUCCESS",   "INVALID_REQUEST", "INVALID_START",
+                                           "IK_FAILED", "IN_COLLISION",    "JUMP_DETECTED"};
+  return enumName<CartesianStatus::kJumpDetected>(status, kNames);
 }
 
 CartesianPathResult computeCartesianPath(const CartesianPathRequest& r) {
   CartesianPathResult result;
-  result.message = validateRequest(r);
-  if (!result.message.empty()) return result;
+  const std::string invalid = validateRequest(r);
+  if (!invalid.empty()) {
+    result.fail(CartesianStatus::kInvalidRequest, invalid);
+    return result;
+  }
   if (r.avoid_collisions && !r.is_valid(r.start)) {
     result.status = CartesianStatus::kInvalidStart;
     result.message = "start state is invalid" + explain(r, r.start);

@@ -369,7 +369,7 @@ IkResult AnalyticIkSolver::solveValidated(const Eigen::Isometry3d& target, const
   if (!options.position_only) {
     result.attempts = 1;
     result.status = solveNearest(target, s, &best, &result.message);
-    if (result.success()) {
+    if (result.ok()) {
       result.solution = best;
       Eigen::Isometry3d reached;
       forwardPoe(best, &reached);

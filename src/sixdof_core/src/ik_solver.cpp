@@ -21,21 +21,9 @@ IkResult invalid(const std::string& message) {
 }  // namespace
 
 const char* toString(IkStatus status) {
-  switch (status) {
-    case IkStatus::kSuccess:
-      return "success";
-    case IkStatus::kNoSolution:
-      return "no solution";
-    case IkStatus::kTimeout:
-      return "timeout";
-    case IkStatus::kOutOfReach:
-      return "out of reach";
-    case IkStatus::kJointLimits:
-      return "joint limits";
-    case IkStatus::kInvalidInput:
-      return "invalid input";
-  }
-  return "unknown";
+  static constexpr const char* kNames[] = {"success",      "no solution",  "timeout",
+                                           "out of reach", "joint limits", "invalid input"};
+  return enumName<IkStatus::kInvalidInput>(status, kNames, "unknown");
 }
 
 IkResult IkSolver::solve(const Eigen::Isometry3d& tip_in_base, const IkOptions& options) const {

@@ -74,7 +74,7 @@ MeshLoadResult loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   if (!scale.allFinite() || (scale.array() <= 0.0).any()) {
     std::ostringstream msg;
     msg << "mesh '" << path << "': scale must be positive and finite, got (" << scale.transpose() << ")";
-    result.message = msg.str();
+    result.fail(MeshLoadStatus::kInvalidScale, msg.str());
     return result;
   }
   static std::mutex mutex;
@@ -84,7 +84,6 @@ MeshLoadResult loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(key);
     if (it != cache.end()) {
-      result.ok = true;
       result.mesh = it->second;
       return result;
     }
@@ -93,14 +92,14 @@ MeshLoadResult loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
-    result.message = "mesh '" + path + "': cannot be read: " + importer.GetErrorString();
+    result.fail(MeshLoadStatus::kUnreadable, "mesh '" + path + "': cannot be read: " + importer.GetErrorString());
     return result;
   }
   auto mesh = std::make_shared<MeshData>();
   // Collada files may declare a non-metre unit or a Y-up axis in their root node transform: kept, as rviz does.
   collectNode(scene, scene->mRootNode, aiMatrix4x4(), scale, mesh.get());
   if (mesh->triangles.empty()) {
-    result.message = "mesh '" + path + "': contains no triangles";
+    result.fail(MeshLoadStatus::kNoTriangles, "mesh '" + path + "': contains no triangles");
     return result;
   }
   mesh->convex = isConvexMesh(*mesh);
@@ -108,7 +107,6 @@ MeshLoadResult loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
     std::lock_guard<std::mutex> lock(mutex);
     cache.emplace(key, mesh);
   }
-  result.ok = true;
   result.mesh = mesh;
   return result;
 }

@@ -321,16 +321,13 @@ struct Session {
   }
 };
 
-struct GoalSet {
-  PlanningStatus status = PlanningStatus::kSuccess;
-  std::string message;
+struct GoalSet : Result<PlanningStatus> {
   std::vector<Eigen::VectorXd> states;
 };
 
 GoalSet fail(PlanningStatus status, std::string message) {
   GoalSet g;
-  g.status = status;
-  g.message = std::move(message);
+  g.fail(status, std::move(message));
   return g;
 }
 
@@ -552,8 +549,7 @@ Attempt runAttempt(const PlanningProblem& p, Session* session, const PlannerFact
 
 PlanningResult finish(PlanningResult r, PlanningStatus status, std::string message, Clock::time_point t0,
                       const Session* session) {
-  r.status = status;
-  r.message = std::move(message);
+  r.fail(status, std::move(message));
   r.planning_time = secondsSince(t0);
   if (session) r.validity_checks = session->checks.load();
   return r;
@@ -562,25 +558,9 @@ PlanningResult finish(PlanningResult r, PlanningStatus status, std::string messa
 }  // namespace
 
 const char* toString(PlanningStatus status) {
-  switch (status) {
-    case PlanningStatus::kSuccess:
-      return "SUCCESS";
-    case PlanningStatus::kInvalidRequest:
-      return "INVALID_REQUEST";
-    case PlanningStatus::kInvalidStart:
-      return "INVALID_START";
-    case PlanningStatus::kInvalidGoal:
-      return "INVALID_GOAL";
-    case PlanningStatus::kGoalInCollision:
-      return "GOAL_IN_COLLISION";
-    case PlanningStatus::kNoIkSolution:
-      return "NO_IK_SOLUTION";
-    case PlanningStatus::kTimeout:
-      return "TIMED_OUT";
-    case PlanningStatus::kPlanningFailed:
-      return "PLANNING_FAILED";
-  }
-  return "UNKNOWN";
+  static constexpr const char* kNames[] = {"SUCCESS",           "INVALID_REQUEST", "INVALID_START", "INVALID_GOAL",
+                                           "GOAL_IN_COLLISION", "NO_IK_SOLUTION",  "TIMED_OUT",     "PLANNING_FAILED"};
+  return enumName<PlanningStatus::kPlanningFailed>(status, kNames);
 }
 
 std::vector<std::string> availablePlannerIds() {
@@ -668,7 +648,7 @@ PlanningResult plan(const PlanningProblem& p) {
   const GoalSet goals = p.joint_goal     ? jointGoalStates(p, &session)
                         : p.sampled_goal ? sampledGoalStates(p, &session)
                                          : explicitGoalStates(p, &session);
-  if (goals.status != PlanningStatus::kSuccess) return finish(result, goals.status, goals.message, t0, &session);
+  if (!goals.ok()) return finish(result, goals.status, goals.message, t0, &session);
 
   const int attempts = options.num_planning_attempts;
   std::vector<Attempt> outcomes(attempts);

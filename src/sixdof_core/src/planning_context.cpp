@@ -105,8 +105,7 @@ PlanningResult PlanningContext::planToNamed(const RobotState& start, const std::
   const GroupState* named = model_->findGroupState(group_, name);
   if (!named) {
     PlanningResult result;
-    result.status = PlanningStatus::kInvalidRequest;
-    result.message = "group '" + group_ + "' has no named state '" + name + "'; known:";
+    result.fail(PlanningStatus::kInvalidRequest, "group '" + group_ + "' has no named state '" + name + "'; known:");
     for (const GroupState& s : model_->groupStates()) {
       if (s.group == group_) result.message += " '" + s.name + "'";
     }
@@ -143,7 +142,7 @@ SampledGoal PlanningContext::poseSampler(const RobotState& start, const Eigen::I
     o.random_seed = state->rng();
     ++state->calls;
     const IkResult r = ik->solve(tip_pose, o);
-    if (!r.success()) return false;
+    if (!r.ok()) return false;
     *out = r.solution;
     return true;
   };
@@ -154,8 +153,7 @@ PlanningResult PlanningContext::planToPose(const RobotState& start, const Eigen:
                                            const PoseGoalOptions& pose_goal, const PlanningOptions& options) const {
   if (!ik_) {
     PlanningResult result;
-    result.status = PlanningStatus::kInvalidRequest;
-    result.message = "group '" + group_ + "' has no IK solver: pose goals are unavailable";
+    result.fail(PlanningStatus::kInvalidRequest, "group '" + group_ + "' has no IK solver: pose goals are unavailable");
     return result;
   }
   PlanningProblem p = problem(start, options);
@@ -179,7 +177,8 @@ CartesianPathResult PlanningContext::cartesianPath(const RobotState& start,
                                                    const IkOptions& ik_options) const {
   if (!ik_) {
     CartesianPathResult result;
-    result.message = "group '" + group_ + "' has no IK solver: Cartesian paths are unavailable";
+    result.fail(CartesianStatus::kInvalidRequest,
+                "group '" + group_ + "' has no IK solver: Cartesian paths are unavailable");
     return result;
   }
   CartesianPathRequest request;
@@ -197,7 +196,7 @@ CartesianPathResult PlanningContext::cartesianPath(const RobotState& start,
     o.seed = seed;
     o.attempts = 1;
     const IkResult r = ik->solve(target, o);
-    if (!r.success()) return false;
+    if (!r.ok()) return false;
     *out = r.solution;
     return true;
   };

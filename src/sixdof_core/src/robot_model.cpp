@@ -14,6 +14,8 @@
 
 #include <console_bridge/console.h>
 
+#include "sixdof_core/result.h"
+
 namespace sixdof_core {
 
 namespace fs = std::filesystem;
@@ -131,6 +133,11 @@ std::optional<fs::path> findPackage(const fs::path& root, const std::string& pac
 }
 
 }  // namespace
+
+const char* toString(JointType type) {
+  static constexpr const char* kNames[] = {"fixed", "revolute", "continuous", "prismatic"};
+  return enumName<JointType::kPrismatic>(type, kNames, "");
+}
 
 bool JointModel::isMultiTurn() const {
   if (type == JointType::kContinuous) return true;

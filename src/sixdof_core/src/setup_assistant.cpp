@@ -20,6 +20,7 @@
 #include "sixdof_core/collision.h"
 #include "sixdof_core/ik_analytic.h"
 #include "sixdof_core/ik_solver.h"
+#include "sixdof_core/result.h"
 
 namespace sixdof_core {
 
@@ -59,17 +60,8 @@ std::string emptySrdf(const std::string& robot_name) {
 }  // namespace
 
 std::string reasonName(DisableReason reason) {
-  switch (reason) {
-    case DisableReason::kAdjacent:
-      return "Adjacent";
-    case DisableReason::kDefault:
-      return "Default";
-    case DisableReason::kAlways:
-      return "Always";
-    case DisableReason::kNever:
-      return "Never";
-  }
-  return "";
+  static constexpr const char* kNames[] = {"Adjacent", "Default", "Always", "Never"};
+  return enumName<DisableReason::kNever>(reason, kNames, "");
 }
 
 std::vector<std::pair<std::string, std::string>> adjacentLinkPairs(const RobotModel& model) {
@@ -133,7 +125,7 @@ Eigen::VectorXd StateSampler::sample() {
   return q;
 }
 
-CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model,
+DisabledCollisions computeDisabledCollisions(const RobotModelConstPtr& model,
                                                 const CollisionMatrixOptions& options) {
   if (!model) throw std::invalid_argument("computeDisabledCollisions: no robot model");
   if (options.density == 0) throw std::invalid_argument("sampling density must be > 0");
@@ -145,7 +137,7 @@ CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model,
   for (size_t l = 0; l < links.size(); ++l) {
     if (!links[l].collision.shapes.empty()) with_geometry.push_back(static_cast<int>(l));
   }
-  CollisionMatrixResult result;
+  DisabledCollisions result;
   const size_t geometry_links = with_geometry.size();
   result.link_pairs = geometry_links < 2 ? 0 : geometry_links * (geometry_links - 1) / 2;
 
@@ -249,7 +241,7 @@ void addGroupsSkeleton(const RobotModel& model, SrdfDocument& document) {
   }
 }
 
-SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::string& srdf_in_xml,
+SetupAssistantOutput runSetupAssistant(const std::string& urdf_xml, const std::string& srdf_in_xml,
                                        const SetupAssistantOptions& options, const PackageResolver& resolver) {
   SrdfDocument document;
   std::string model_srdf;
@@ -263,7 +255,7 @@ SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::s
   // The model validates the input SRDF against the URDF (names, limits, robot name).
   const auto model = std::make_shared<const RobotModel>(urdf_xml, model_srdf, resolver);
 
-  SetupAssistantResult result;
+  SetupAssistantOutput result;
   if (options.groups_skeleton && document.groups.empty()) {
     addGroupsSkeleton(*model, document);
     result.skeleton_written = true;
@@ -347,23 +339,9 @@ std::string yamlNames(const std::vector<std::string>& names) {
   return out + "]";
 }
 
-const char* jointTypeName(JointType type) {
-  switch (type) {
-    case JointType::kFixed:
-      return "fixed";
-    case JointType::kRevolute:
-      return "revolute";
-    case JointType::kContinuous:
-      return "continuous";
-    case JointType::kPrismatic:
-      return "prismatic";
-  }
-  return "";
-}
-
 }  // namespace
 
-std::string describeModel(const RobotModel& model, const CollisionMatrixResult* collisions) {
+std::string describeModel(const RobotModel& model, const DisabledCollisions* collisions) {
   std::ostringstream out;
   out << "robot: " << yamlString(model.name()) << "\n";
   out << "root_link: " << yamlString(model.rootLink()) << "\n";
@@ -376,7 +354,7 @@ std::string describeModel(const RobotModel& model, const CollisionMatrixResult* 
   out << "joints:\n";
   for (const auto& joint : model.joints()) {
     out << "- name: " << yamlString(joint.name) << "\n";
-    out << "  type: " << jointTypeName(joint.type) << "\n";
+    out << "  type: " << toString(joint.type) << "\n";
     out << "  parent: " << yamlString(joint.parent_link) << "\n";
     out << "  child: " << yamlString(joint.child_link) << "\n";
     out << "  xyz: " << yamlVector(joint.origin.translation()) << "\n";
@@ -533,7 +511,7 @@ SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string
   return command;
 }
 
-SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& command) {
+SetupAssistantOutput runSetupAssistantOnFiles(const SetupAssistantCommand& command) {
   namespace fs = std::filesystem;
   // The folders above the URDF come first: a URDF usually lives in <package>/urdf/ and names its own
   // package's meshes, which an installed copy elsewhere on ROS_PACKAGE_PATH may lack.
@@ -555,7 +533,7 @@ SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& comma
     if (srdf_in.empty()) throw RobotModelError("SRDF file '" + command.srdf_in_path + "' is empty");
   }
   const auto resolver = PackageResolver::fromSearchRoots(roots);
-  SetupAssistantResult result;
+  SetupAssistantOutput result;
   std::string description;
   try {
     if (command.srdf_out_path.empty()) {

@@ -389,9 +389,9 @@ TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::s
                                                         const std::vector<std::vector<double>>& waypoints,
                                                         const TimeParameterizationOptions& options) {
   TimeParameterizationResult result;
-  result.message = checkInputs(joint_names, waypoints, options);
-  if (!result.message.empty()) {
-    result.message = "time parameterization: " + result.message;
+  const std::string invalid = checkInputs(joint_names, waypoints, options);
+  if (!invalid.empty()) {
+    result.fail(TimeParameterizationStatus::kInvalidInput, "time parameterization: " + invalid);
     return result;
   }
   const std::size_t n = joint_names.size();
@@ -401,7 +401,6 @@ TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::s
     // Repeated waypoints add no path: dropping them changes nothing.
     if (points.empty() || (p - points.back()).norm() > kSamePoint) points.push_back(p);
   }
-  result.status = TimeParameterizationStatus::kSuccess;
   result.trajectory.joint_names = joint_names;
   if (points.size() == 1) {
     TrajectoryPoint rest;

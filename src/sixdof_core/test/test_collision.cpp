@@ -256,11 +256,11 @@ TEST(CollisionScene, AllowedCollisionMatrixIsHonoured) {
   EXPECT_FALSE(scene.isColliding(home, CollisionScope::kWorld));
 
   const SceneStatus unknown = scene.setAllowed("link1", "ghost", true);
-  EXPECT_EQ(unknown.code, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(unknown.status, SceneStatusCode::kUnknownName);
   EXPECT_NE(unknown.message.find("ghost"), std::string::npos);
-  EXPECT_EQ(scene.setDefaultAllowed("ghost", true).code, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.setDefaultAllowed("ghost", true).status, SceneStatusCode::kUnknownName);
   AllowedCollisionMatrix acm = AllowedCollisionMatrix::fromDisabledPairs({{"link1", "phantom"}});
-  EXPECT_EQ(scene.setAllowedCollisionMatrix(acm).code, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.setAllowedCollisionMatrix(acm).status, SceneStatusCode::kUnknownName);
 
   // Entries of a removed object go with it.
   ASSERT_TRUE(scene.removeWorldObject("crate").ok());
@@ -300,10 +300,10 @@ TEST(CollisionScene, WorldMeshesHitAndMiss) {
   const std::string cube = writeCubeObj("cube.obj");
   const std::string l_shape = writeLStl("l_shape.stl");
   const MeshLoadResult cube_mesh = loadMesh(cube);
-  ASSERT_TRUE(cube_mesh.ok) << cube_mesh.message;
+  ASSERT_TRUE(cube_mesh.ok()) << cube_mesh.message;
   EXPECT_TRUE(cube_mesh.mesh->convex);
   const MeshLoadResult l_mesh = loadMesh(l_shape);
-  ASSERT_TRUE(l_mesh.ok) << l_mesh.message;
+  ASSERT_TRUE(l_mesh.ok()) << l_mesh.message;
   EXPECT_FALSE(l_mesh.mesh->convex);
   EXPECT_EQ(l_mesh.mesh->triangles.size(), 20u);
 
@@ -342,7 +342,7 @@ TEST(CollisionScene, WorldMeshesHitAndMiss) {
 
   Shape broken = mesh(testing::TempDir() + "missing.stl");
   const SceneStatus missing = scene.addWorldObject(object("ghost", broken, at(0, 0, 0)));
-  EXPECT_EQ(missing.code, SceneStatusCode::kMeshLoadFailed);
+  EXPECT_EQ(missing.status, SceneStatusCode::kMeshLoadFailed);
   EXPECT_NE(missing.message.find("missing.stl"), std::string::npos);
   EXPECT_FALSE(scene.hasWorldObject("ghost"));
 }
@@ -440,9 +440,9 @@ TEST(CollisionScene, PaddingAndScaleGrowLinks) {
   ASSERT_TRUE(scene.setScale(1.0).ok());
   EXPECT_FALSE(scene.isColliding(pose));
 
-  EXPECT_EQ(scene.setLinkPadding("probe", -0.1).code, SceneStatusCode::kInvalidValue);
-  EXPECT_EQ(scene.setLinkPadding("nope", 0.1).code, SceneStatusCode::kUnknownName);
-  EXPECT_EQ(scene.setLinkScale("probe", 0.0).code, SceneStatusCode::kInvalidValue);
+  EXPECT_EQ(scene.setLinkPadding("probe", -0.1).status, SceneStatusCode::kInvalidValue);
+  EXPECT_EQ(scene.setLinkPadding("nope", 0.1).status, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.setLinkScale("probe", 0.0).status, SceneStatusCode::kInvalidValue);
   EXPECT_TRUE(std::isnan(scene.linkPadding("nope")));
 
   // A padded convex mesh link grows by the padding on every face (corners move out diagonally).
@@ -630,25 +630,25 @@ TEST(CollisionScene, ObjectBookkeepingErrors) {
   CollisionScene scene(arm.links, disabledPairs(arm));
   const WorldObject cube = object("cube", box(0.04, 0.04, 0.04), at(0.4, -0.15, 0.02));
   ASSERT_TRUE(scene.addWorldObject(cube).ok());
-  EXPECT_EQ(scene.addWorldObject(cube).code, SceneStatusCode::kDuplicateName);
-  EXPECT_EQ(scene.addWorldObject(object("link3", sphere(0.1), at(0, 0, 0))).code, SceneStatusCode::kDuplicateName);
+  EXPECT_EQ(scene.addWorldObject(cube).status, SceneStatusCode::kDuplicateName);
+  EXPECT_EQ(scene.addWorldObject(object("link3", sphere(0.1), at(0, 0, 0))).status, SceneStatusCode::kDuplicateName);
   WorldObject empty;
   empty.id = "empty";
-  EXPECT_EQ(scene.addWorldObject(empty).code, SceneStatusCode::kInvalidShape);
-  EXPECT_EQ(scene.addWorldObject(object("flat", box(0.1, 0.0, 0.1), at(0, 0, 0))).code,
+  EXPECT_EQ(scene.addWorldObject(empty).status, SceneStatusCode::kInvalidShape);
+  EXPECT_EQ(scene.addWorldObject(object("flat", box(0.1, 0.0, 0.1), at(0, 0, 0))).status,
             SceneStatusCode::kInvalidShape);
-  EXPECT_EQ(scene.moveWorldObject("ghost", at(0, 0, 0)).code, SceneStatusCode::kUnknownName);
-  EXPECT_EQ(scene.removeWorldObject("ghost").code, SceneStatusCode::kUnknownName);
-  EXPECT_EQ(scene.attachWorldObject("ghost", "link6", Eigen::Isometry3d::Identity(), {}).code,
+  EXPECT_EQ(scene.moveWorldObject("ghost", at(0, 0, 0)).status, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.removeWorldObject("ghost").status, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.attachWorldObject("ghost", "link6", Eigen::Isometry3d::Identity(), {}).status,
             SceneStatusCode::kUnknownName);
   const SceneStatus bad_link = scene.attachWorldObject("cube", "link9", Eigen::Isometry3d::Identity(), {});
-  EXPECT_EQ(bad_link.code, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(bad_link.status, SceneStatusCode::kUnknownName);
   EXPECT_NE(bad_link.message.find("link9"), std::string::npos);
   EXPECT_TRUE(scene.hasWorldObject("cube"));  // a failed attach leaves it in the world
-  EXPECT_EQ(scene.attachWorldObject("cube", "link6", Eigen::Isometry3d::Identity(), {"fingerX"}).code,
+  EXPECT_EQ(scene.attachWorldObject("cube", "link6", Eigen::Isometry3d::Identity(), {"fingerX"}).status,
             SceneStatusCode::kUnknownName);
-  EXPECT_EQ(scene.detachObject("ghost", Eigen::Isometry3d::Identity()).code, SceneStatusCode::kUnknownName);
-  EXPECT_EQ(scene.removeAttachedObject("ghost").code, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.detachObject("ghost", Eigen::Isometry3d::Identity()).status, SceneStatusCode::kUnknownName);
+  EXPECT_EQ(scene.removeAttachedObject("ghost").status, SceneStatusCode::kUnknownName);
 
   // Moving an object moves its collision geometry.
   const auto home = arm.poses({});
@@ -664,18 +664,18 @@ TEST(MeshLoader, CachesAndReportsErrors) {
   const std::string cube = writeCubeObj("cache_cube.obj");
   const MeshLoadResult first = loadMesh(cube);
   const MeshLoadResult second = loadMesh(cube);
-  ASSERT_TRUE(first.ok && second.ok);
+  ASSERT_TRUE(first.ok() && second.ok());
   EXPECT_EQ(first.mesh.get(), second.mesh.get());
   const MeshLoadResult scaled = loadMesh(cube, Eigen::Vector3d(2, 1, 1));
-  ASSERT_TRUE(scaled.ok);
+  ASSERT_TRUE(scaled.ok());
   EXPECT_NE(scaled.mesh.get(), first.mesh.get());
   double max_x = 0;
   for (const auto& v : scaled.mesh->vertices) max_x = std::max(max_x, v.x());
   EXPECT_NEAR(max_x, 0.2, 1e-6);  // assimp stores floats
   const MeshLoadResult missing = loadMesh("/no/such/file.stl");
-  EXPECT_FALSE(missing.ok);
+  EXPECT_FALSE(missing.ok());
   EXPECT_NE(missing.message.find("/no/such/file.stl"), std::string::npos);
-  EXPECT_FALSE(loadMesh(cube, Eigen::Vector3d(1, 0, 1)).ok);
+  EXPECT_FALSE(loadMesh(cube, Eigen::Vector3d(1, 0, 1)).ok());
 }
 
 }  // namespace

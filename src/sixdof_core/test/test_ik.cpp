@@ -62,7 +62,7 @@ double roundTripSuccessRate(const IkSolver& solver, int count, const IkOptions& 
     const Eigen::VectorXd q = randomConfiguration(solver.chain(), rng);
     const Eigen::Isometry3d target = solver.chain().forward(q);
     const IkResult result = solver.solve(target, options);
-    if (!result.success()) continue;
+    if (!result.ok()) continue;
     ++successes;
     const PoseError error = poseError(solver.chain().forward(result.solution), target);
     EXPECT_LT(error.position, kPoseTolerance) << solver.name() << " q = " << q.transpose();
@@ -153,7 +153,7 @@ void checkAllSolutions(const RobotModel& model, double same_configuration) {
     IkOptions options = attemptsOnly(1);
     options.seed = q + Eigen::VectorXd::Constant(6, 0.01);
     const IkResult result = solver.solve(target, options);
-    ASSERT_TRUE(result.success());
+    ASSERT_TRUE(result.ok());
     double nearest = 1e9;
     for (const auto& s : solver.solveAll(target, options.seed).solutions) {
       nearest = std::min(nearest, (s - options.seed).norm());
@@ -199,7 +199,7 @@ TEST(IkAnalytic, AgreesWithNumeric) {
     options.seed = randomConfiguration(analytic->chain(), rng);
     options.random_seed = i;
     const IkResult from_numeric = numeric->solve(target, options);
-    ASSERT_TRUE(from_numeric.success());
+    ASSERT_TRUE(from_numeric.ok());
     // Near a singularity an epsilon-accurate pose leaves the joints ill-determined (e.g. joints 4 and 6
     // when joint 5 is near 0): compare configurations only where the Jacobian is well-conditioned.
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(analytic->chain().jacobian(from_numeric.solution));
@@ -214,7 +214,7 @@ TEST(IkAnalytic, AgreesWithNumeric) {
     // And the analytic answer from the numeric solution as seed is that solution.
     options.seed = from_numeric.solution;
     const IkResult from_analytic = analytic->solve(target, options);
-    ASSERT_TRUE(from_analytic.success());
+    ASSERT_TRUE(from_analytic.ok());
     EXPECT_LT((from_analytic.solution - from_numeric.solution).norm(), 1e-2);
     EXPECT_LT(from_analytic.position_error, 1e-9);
     EXPECT_LT(from_analytic.orientation_error, 1e-9);
@@ -231,7 +231,7 @@ TEST(IkAnalytic, SingularConfigurationsKeepTheSeed) {
   Eigen::VectorXd wrist(6);
   wrist << 0.5, 0.3, 0.4, 1.0, 0.0, -0.5;
   IkResult result = solver->solve(solver->chain().forward(wrist), options);
-  ASSERT_TRUE(result.success()) << result.message;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_NEAR(result.solution[3], 0.2, 1e-9);
   EXPECT_LT(result.position_error, kPoseTolerance);
   EXPECT_LT(result.orientation_error, kPoseTolerance);
@@ -240,7 +240,7 @@ TEST(IkAnalytic, SingularConfigurationsKeepTheSeed) {
   Eigen::VectorXd shoulder(6);
   shoulder << 0.7, 0.5, -M_PI / 2 - 1.0, 0.3, 0.6, 0.1;
   result = solver->solve(solver->chain().forward(shoulder), options);
-  ASSERT_TRUE(result.success()) << result.message;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_NEAR(result.solution[0], 0.2, 1e-9);
   EXPECT_LT(result.position_error, kPoseTolerance);
   EXPECT_LT(result.orientation_error, kPoseTolerance);
@@ -274,7 +274,7 @@ TEST(IkPaperPoses, EverySolverReachesBoth) {
     const auto solver = createIkSolver(name, *model, "arm");
     for (const auto& target : {paperHome(), paperTarget()}) {
       const IkResult result = solver->solve(target, attemptsOnly(200));
-      ASSERT_TRUE(result.success()) << name << ": " << toString(result.status) << " " << result.message;
+      ASSERT_TRUE(result.ok()) << name << ": " << toString(result.status) << " " << result.message;
       const PoseError error = poseError(solver->chain().forward(result.solution), target);
       EXPECT_LT(error.position, kPoseTolerance) << name;
       EXPECT_LT(error.orientation, kPoseTolerance) << name;
@@ -299,7 +299,7 @@ TEST(IkPositionOnly, ReachesThePosition) {
       IkOptions options = attemptsOnly(50);
       options.position_only = true;
       const IkResult result = solver->solve(target, options);
-      if (!result.success()) continue;
+      if (!result.ok()) continue;
       ++successes;
       EXPECT_LT((solver->chain().forward(result.solution).translation() - target.translation()).norm(),
                 kPoseTolerance);
@@ -318,7 +318,7 @@ TEST(IkContinuousJoints, SolutionStaysNearTheSeed) {
     options.seed = q;
     options.seed[0] += 4 * M_PI;  // the continuous pan joint, two turns away
     const IkResult result = solver->solve(solver->chain().forward(q), options);
-    ASSERT_TRUE(result.success());
+    ASSERT_TRUE(result.ok());
     EXPECT_LE(std::abs(result.solution[0] - options.seed[0]), M_PI + 1e-9);
   }
 }

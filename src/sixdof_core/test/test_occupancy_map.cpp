@@ -114,7 +114,7 @@ TEST(ShapeMask, PrimitivesWithScaleAndPadding) {
   EXPECT_FALSE(mask.contains(Eigen::Vector3d(0.0, 0.0, 1.165)));
   EXPECT_FALSE(mask.contains(Eigen::Vector3d(0.12, 0.12, 1.0)));
   EXPECT_FALSE(mask.contains(Eigen::Vector3d(0.5, 0.5, 0.5)));
-  EXPECT_EQ(mask.addShape(box(-1.0, 0.1, 0.1), at(0, 0, 0)).code, SceneStatusCode::kInvalidShape);
+  EXPECT_EQ(mask.addShape(box(-1.0, 0.1, 0.1), at(0, 0, 0)).status, SceneStatusCode::kInvalidShape);
 }
 
 sixdof_test::UrdfArm loadArm() {

@@ -152,7 +152,7 @@ TEST_F(PlanningTest, NarrowPassage) {
     p.options.seed = seed;
     p.options.max_joint_step = 0.02;
     const PlanningResult r = plan(p);
-    if (!r.success()) continue;
+    if (!r.ok()) continue;
     ++solved;
     expectValidPath(w, r, 0.02);
     bool through_gap = false;
@@ -193,7 +193,7 @@ TEST_F(PlanningTest, SeededPlanningIsRepeatable) {
   p.options.seed = 7;
   const PlanningResult a = plan(p);
   const PlanningResult b = plan(p);
-  ASSERT_TRUE(a.success()) << a.message;
+  ASSERT_TRUE(a.ok()) << a.message;
   ASSERT_EQ(a.path.size(), b.path.size());
   for (std::size_t k = 0; k < a.path.size(); ++k) EXPECT_TRUE(a.path[k].isApprox(b.path[k], 0.0)) << k;
 }
@@ -400,7 +400,7 @@ TEST_F(PlanningTest, ValidityResolutionIsHonoured) {
   p.options.longest_valid_segment_length = 0.45;
   p.options.simplify = false;
   PlanningResult r = plan(p);
-  ASSERT_TRUE(r.success()) << r.message;
+  ASSERT_TRUE(r.ok()) << r.message;
   bool crossed_wall = false;
   for (std::size_t k = 1; k < r.path.size(); ++k) crossed_wall |= r.path[k - 1][0] < 0.2 && r.path[k][0] > 0.22;
   EXPECT_TRUE(crossed_wall);
@@ -446,8 +446,8 @@ TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
   const PlanningResult capped = plan(p);
   p.options.simplify_coarse_factor = PlanningOptions().simplify_coarse_factor;
   const PlanningResult defaulted = plan(p);
-  ASSERT_TRUE(capped.success()) << capped.message;
-  ASSERT_TRUE(defaulted.success()) << defaulted.message;
+  ASSERT_TRUE(capped.ok()) << capped.message;
+  ASSERT_TRUE(defaulted.ok()) << defaulted.message;
   EXPECT_EQ(defaulted.validity_checks, capped.validity_checks);
   ASSERT_EQ(defaulted.path.size(), capped.path.size());
   for (std::size_t k = 0; k < capped.path.size(); ++k) EXPECT_TRUE(defaulted.path[k].isApprox(capped.path[k]));

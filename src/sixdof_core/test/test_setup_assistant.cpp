@@ -38,7 +38,7 @@ using NamePair = std::pair<std::string, std::string>;
 
 NamePair unordered(const std::string& a, const std::string& b) { return a < b ? NamePair(a, b) : NamePair(b, a); }
 
-std::set<NamePair> pairsWithReason(const CollisionMatrixResult& result, DisableReason reason) {
+std::set<NamePair> pairsWithReason(const DisabledCollisions& result, DisableReason reason) {
   std::set<NamePair> pairs;
   for (const auto& p : result.disabled) {
     if (p.reason == reason) pairs.insert(unordered(p.link1, p.link2));
@@ -421,7 +421,7 @@ TEST(SetupAssistant, DescribesTheModelWithTheSolverThatFitsEachChain) {
   const std::string numeric = describeModel(offset);
   EXPECT_NE(numeric.find("  solver: numeric\n  solver_reason: \"no closed form: "), std::string::npos) << numeric;
 
-  CollisionMatrixResult collisions;
+  DisabledCollisions collisions;
   collisions.link_pairs = 3;
   EXPECT_NE(describeModel(*arm, &collisions).find("collisions: {link_pairs: 3,"), std::string::npos);
 }

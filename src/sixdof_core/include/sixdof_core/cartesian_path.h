@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "sixdof_core/planning.h"
+#include "sixdof_core/result.h"
 
 namespace sixdof_core {
 
@@ -57,9 +58,8 @@ struct CartesianPathRequest {
   JointValidityExplainFn explain_invalid;  // optional, words the kInCollision / kInvalidStart message
 };
 
-struct CartesianPathResult {
-  CartesianStatus status = CartesianStatus::kInvalidRequest;
-  std::string message;
+// message: on failure what stopped the path; a success may carry a note (a skipped relative jump test).
+struct CartesianPathResult : Result<CartesianStatus> {
   // Start state first, then one point per interpolated pose, up to where the path stopped.
   std::vector<Eigen::VectorXd> path;
   // Achieved part of the requested path: each waypoint segment counts 1 / waypoints.size(), the segment where

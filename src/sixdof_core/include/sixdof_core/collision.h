@@ -10,6 +10,7 @@
 
 #include "sixdof_core/collision_matrix.h"
 #include "sixdof_core/geometry.h"
+#include "sixdof_core/result.h"
 
 namespace sixdof_core {
 
@@ -39,11 +40,7 @@ struct AttachedObject {
 
 enum class SceneStatusCode { kOk, kUnknownName, kDuplicateName, kInvalidShape, kMeshLoadFailed, kInvalidValue };
 
-struct SceneStatus {
-  SceneStatusCode code = SceneStatusCode::kOk;
-  std::string message;
-  bool ok() const { return code == SceneStatusCode::kOk; }
-};
+using SceneStatus = Result<SceneStatusCode>;
 
 enum class CollisionScope {
   kAll,    // self collision and robot vs world

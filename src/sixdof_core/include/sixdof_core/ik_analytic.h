@@ -14,12 +14,10 @@ class AnalyticIkUnsupported : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Every solution of one target pose.
-struct AnalyticSolutions {
-  IkStatus status = IkStatus::kOutOfReach;  // kSuccess if any solution respects the limits
-  std::vector<Eigen::VectorXd> solutions;   // within limits; bounded multi-turn joints add 2*pi multiples
-  int unconstrained_count = 0;              // solutions before the joint-limit filter (up to 8)
-  std::string message;
+// Every solution of one target pose; ok() if any solution respects the limits.
+struct AnalyticSolutions : Result<IkStatus> {
+  std::vector<Eigen::VectorXd> solutions;  // within limits; bounded multi-turn joints add 2*pi multiples
+  int unconstrained_count = 0;             // solutions before the joint-limit filter (up to 8)
 };
 
 // Closed-form inverse kinematics of a 6R arm with a spherical wrist, derived from the chain geometry

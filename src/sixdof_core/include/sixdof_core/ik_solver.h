@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "sixdof_core/kinematics.h"
+#include "sixdof_core/result.h"
 #include "sixdof_core/robot_model.h"
 
 namespace sixdof_core {
@@ -36,16 +37,13 @@ struct IkOptions {
   std::uint64_t random_seed = 42;
 };
 
-struct IkResult {
-  IkStatus status = IkStatus::kNoSolution;
+// status, message (why it failed), ok(): see Result.
+struct IkResult : Result<IkStatus> {
   Eigen::VectorXd solution;        // chain joint values (set on success)
   double position_error = 0.0;     // of the returned (or best found) configuration, m
   double orientation_error = 0.0;  // rad
   int iterations = 0;              // solver iterations summed over attempts
   int attempts = 0;                // starts used
-  std::string message;             // why it failed
-
-  bool success() const { return status == IkStatus::kSuccess; }
 };
 
 // Inverse kinematics of one group chain: the tip pose is given in the chain's base frame.

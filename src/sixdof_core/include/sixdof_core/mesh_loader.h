@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "sixdof_core/result.h"
+
 namespace sixdof_core {
 
 // A triangle mesh in its file's frame, scale applied, node transforms of the file flattened.
@@ -18,10 +20,15 @@ struct MeshData {
   bool convex = false;
 };
 
-struct MeshLoadResult {
-  bool ok = false;
-  std::string message;
-  std::shared_ptr<const MeshData> mesh;
+enum class MeshLoadStatus {
+  kSuccess,
+  kInvalidScale,  // a scale component not positive or not finite
+  kUnreadable,    // assimp cannot read the file
+  kNoTriangles,   // the file holds no triangles
+};
+
+struct MeshLoadResult : Result<MeshLoadStatus> {
+  std::shared_ptr<const MeshData> mesh;  // set on success
 };
 
 // Loads any format assimp reads (STL, OBJ, DAE, ...). Results are cached by (path, scale), so each

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "sixdof_core/result.h"
+
 namespace sixdof_core {
 
 // Joint-space motion planning with OMPL, decoupled from the robot model and the collision scene: the
@@ -104,9 +106,7 @@ struct PlanningProblem {
   PlanningOptions options;
 };
 
-struct PlanningResult {
-  PlanningStatus status = PlanningStatus::kPlanningFailed;
-  std::string message;
+struct PlanningResult : Result<PlanningStatus> {
   std::vector<Eigen::VectorXd> path;  // start first, goal last; empty unless kSuccess
   double planning_time = 0.0;         // s, wall clock of the whole call
   double path_length = 0.0;           // sum of jointDistance() over the path's segments
@@ -115,8 +115,6 @@ struct PlanningResult {
   std::size_t validity_checks = 0;    // calls of is_valid made by this call
   int solved_attempts = 0;
   std::string planner_id;             // canonical id used
-
-  bool success() const { return status == PlanningStatus::kSuccess; }
 };
 
 // Plans a collision-free joint path; never throws on bad input (returns kInvalidRequest with a message).

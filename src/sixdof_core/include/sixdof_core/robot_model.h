@@ -20,6 +20,8 @@ class RobotModelError : public std::runtime_error {
 };
 
 enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
+// The URDF name: "fixed", "revolute", "continuous", "prismatic".
+const char* toString(JointType type);
 
 struct JointLimits {
   // The one convention of every package (docs/design.md, "Joint limits"), MoveIt's: a continuous joint is

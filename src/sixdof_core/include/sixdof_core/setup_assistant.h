@@ -40,7 +40,7 @@ struct ComputedPair {
   std::size_t colliding_samples = 0;  // for Always/Never: in how many samples the pair collided
 };
 
-struct CollisionMatrixResult {
+struct DisabledCollisions {
   // Sorted by reason (Adjacent, Default, Always, Never), then by the links' model order.
   std::vector<ComputedPair> disabled;
   std::size_t link_pairs = 0;    // pairs of links that both have collision geometry
@@ -70,7 +70,7 @@ class StateSampler {
 
 // Classifies every pair of links with geometry. Throws std::invalid_argument on density 0 or
 // always_fraction outside (0, 1).
-CollisionMatrixResult computeDisabledCollisions(const RobotModelConstPtr& model, const CollisionMatrixOptions& options);
+DisabledCollisions computeDisabledCollisions(const RobotModelConstPtr& model, const CollisionMatrixOptions& options);
 
 // Groups of a model without an SRDF: `arm` = chain from the root to the child of the last revolute
 // (or continuous) joint; `gripper` = every other non-fixed joint; end effector `hand` (parent link = the
@@ -83,9 +83,9 @@ struct SetupAssistantOptions {
   bool groups_skeleton = false;  // only applied when the input SRDF has no groups
 };
 
-struct SetupAssistantResult {
+struct SetupAssistantOutput {
   std::string srdf;
-  CollisionMatrixResult collisions;
+  DisabledCollisions collisions;
   bool skeleton_written = false;
   std::size_t manual_pairs_kept = 0;
 };
@@ -95,7 +95,7 @@ struct SetupAssistantResult {
 // Adjacent, Default, Always or Never are replaced by the computed set, entries with any other reason
 // (e.g. User) are kept and win over a computed entry for the same pair. Throws RobotModelError or
 // SrdfError on bad input, std::invalid_argument on bad options.
-SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::string& srdf_in_xml,
+SetupAssistantOutput runSetupAssistant(const std::string& urdf_xml, const std::string& srdf_in_xml,
                                        const SetupAssistantOptions& options,
                                        const PackageResolver& resolver = PackageResolver());
 
@@ -105,7 +105,7 @@ SetupAssistantResult runSetupAssistant(const std::string& urdf_xml, const std::s
 // joints, active joints, chain ends, and the IK solver that fits a chain: `analytic` when the closed form
 // of AnalyticIkSolver applies, else `numeric`, with the reason); group states, end effectors and virtual
 // joints; and, when given, the collision-matrix counts.
-std::string describeModel(const RobotModel& model, const CollisionMatrixResult* collisions = nullptr);
+std::string describeModel(const RobotModel& model, const DisabledCollisions* collisions = nullptr);
 
 // The command line of `rosrun sixdof_core setup_assistant_core` (the C++ half of `setup_assistant`).
 struct SetupAssistantCommand {
@@ -127,6 +127,6 @@ SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string
 // the model with the written SRDF). Without srdf_out_path: only describes the URDF (+ input SRDF) model.
 // package:// mesh URIs are resolved in the three folders above the URDF first, then in ROS_PACKAGE_PATH.
 // Throws RobotModelError naming a file that cannot be read or written, and whatever runSetupAssistant throws.
-SetupAssistantResult runSetupAssistantOnFiles(const SetupAssistantCommand& command);
+SetupAssistantOutput runSetupAssistantOnFiles(const SetupAssistantCommand& command);
 
 }  // namespace sixdof_core

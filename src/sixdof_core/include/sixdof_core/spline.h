@@ -12,9 +12,9 @@
 
 namespace sixdof_core {
 
-// How a segment is interpolated; chosen from the derivatives both of its end points carry.
-// The enumerators keep joint_trajectory_controller's names.
-enum class InterpolationType { LINEAR, CUBIC, QUINTIC };
+// How a segment is interpolated; chosen from the derivatives both of its end points carry
+// (joint_trajectory_controller's LINEAR, CUBIC and QUINTIC).
+enum class InterpolationType { kLinear, kCubic, kQuintic };
 
 // Polynomial p(t) = sum c[k] t^k, t in [0, duration], for one joint over one segment.
 class JointSpline {
@@ -31,15 +31,15 @@ class JointSpline {
     const double dp = p1 - p0;
     c_[0] = p0;
     switch (type) {
-      case InterpolationType::LINEAR:
+      case InterpolationType::kLinear:
         c_[1] = dp / t;
         break;
-      case InterpolationType::CUBIC:
+      case InterpolationType::kCubic:
         c_[1] = v0;
         c_[2] = (3.0 * dp - (2.0 * v0 + v1) * t) / (t * t);
         c_[3] = (-2.0 * dp + (v0 + v1) * t) / (t * t * t);
         break;
-      case InterpolationType::QUINTIC: {
+      case InterpolationType::kQuintic: {
         const double t2 = t * t;
         const double t3 = t2 * t;
         c_[1] = v0;
@@ -68,9 +68,9 @@ class JointSpline {
 
 // The interpolation the two points allow together: the highest derivative order both carry.
 inline InterpolationType interpolationType(const TrajectoryPoint& from, const TrajectoryPoint& to) {
-  if (from.velocities.empty() || to.velocities.empty()) return InterpolationType::LINEAR;
-  if (from.accelerations.empty() || to.accelerations.empty()) return InterpolationType::CUBIC;
-  return InterpolationType::QUINTIC;
+  if (from.velocities.empty() || to.velocities.empty()) return InterpolationType::kLinear;
+  if (from.accelerations.empty() || to.accelerations.empty()) return InterpolationType::kCubic;
+  return InterpolationType::kQuintic;
 }
 
 }  // namespace sixdof_core

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "sixdof_core/result.h"
 #include "sixdof_core/trajectory.h"
 
 namespace sixdof_core {
@@ -25,11 +26,8 @@ struct TimeParameterizationOptions {
 
 enum class TimeParameterizationStatus { kSuccess, kInvalidInput };
 
-struct TimeParameterizationResult {
-  TimeParameterizationStatus status = TimeParameterizationStatus::kInvalidInput;
-  std::string message;
+struct TimeParameterizationResult : Result<TimeParameterizationStatus> {
   Trajectory trajectory;
-  bool ok() const { return status == TimeParameterizationStatus::kSuccess; }
 };
 
 // Time-optimal parameterization along a path with circular blends (the path of Kunz & Stilman,

@@ -189,7 +189,7 @@ GeometryPtr makeGeometry(const Shape& shape, double scale, double padding, Scene
         if (it != cache.end()) return it->second;
       }
       const MeshLoadResult loaded = loadMesh(shape.mesh_path, shape.mesh_scale);
-      if (!loaded.ok) {
+      if (!loaded.ok()) {
         *status = error(SceneStatusCode::kMeshLoadFailed, loaded.message);
         return nullptr;
       }

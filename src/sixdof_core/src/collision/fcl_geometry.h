@@ -24,7 +24,9 @@ struct ShapeInstance {
   bool origin_is_identity = false;
 };
 
-inline SceneStatus error(SceneStatusCode code, const std::string& message) { return SceneStatus{code, message}; }
+inline SceneStatus error(SceneStatusCode code, const std::string& message) {
+  return SceneStatus::failure(code, message);
+}
 
 // Builds the FCL geometry of a shape scaled about its origin and then padded. Null with *status set on an
 // invalid shape or an unreadable mesh. Meshes are cached: one geometry per (file, scales, padding).

@@ -1,25 +1,69 @@
 #pragma once
-// Helpers the simulator's benchmarks share.
+// Helpers the simulator's benchmarks share: the install space's share directory and the command line.
 
+#include <exception>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
+#include <functional>
+#include <map>
 #include <string>
 
 namespace sixdof_sim::bench {
-
-inline std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
 
 // The install space's share directory: <prefix>/lib/sixdof_sim/<benchmark> -> <prefix>/share.
 inline std::filesystem::path shareDir() {
   return std::filesystem::canonical("/proc/self/exe").parent_path().parent_path().parent_path() / "share";
 }
+
+// A benchmark's options: `--name value` into the variable registered under the name, a bare `--flag` sets its
+// bool. The robot and world options every benchmark takes are registered from the start.
+class CommandLine {
+ public:
+  CommandLine() {
+    text("--urdf", &urdf_path);
+    text("--world", &world_path);
+    text("--package-root", &package_root);
+  }
+
+  void text(const std::string& name, std::string* value) {
+    options_[name] = [value](const std::string& v) { *value = v; };
+  }
+  void number(const std::string& name, double* value) {
+    options_[name] = [value](const std::string& v) { *value = std::stod(v); };
+  }
+  void number(const std::string& name, int* value) {
+    options_[name] = [value](const std::string& v) { *value = std::stoi(v); };
+  }
+  void flag(const std::string& name, bool* value) { flags_[name] = value; }
+
+  // False for an unknown option, a missing value or one that is not a number (the caller prints its usage).
+  // Then the robot and world default to the installed sixdof_description URDF and sixdof_sim's table_top.yaml.
+  bool parse(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      if (flags_.count(arg) != 0) {
+        *flags_[arg] = true;
+        continue;
+      }
+      const auto option = options_.find(arg);
+      if (option == options_.end() || i + 1 >= argc) return false;
+      try {
+        option->second(argv[++i]);
+      } catch (const std::exception&) {
+        return false;
+      }
+    }
+    if (urdf_path.empty()) urdf_path = (shareDir() / "sixdof_description" / "urdf" / "sixdof.urdf").string();
+    if (world_path.empty()) world_path = (shareDir() / "sixdof_sim" / "worlds" / "table_top.yaml").string();
+    return true;
+  }
+
+  std::string urdf_path;
+  std::string world_path;
+  std::string package_root;  // empty: the install space's share directory
+
+ private:
+  std::map<std::string, std::function<void(const std::string&)>> options_;
+  std::map<std::string, bool*> flags_;
+};
 
 }  // namespace sixdof_sim::bench

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <sixdof_core/robot_model.h>
+
 #include "bench_util.h"
 #include "sixdof_sim/camera.h"
 #include "sixdof_sim/world.h"
@@ -24,7 +26,6 @@
 
 namespace {
 
-using sixdof_sim::bench::readFile;
 using sixdof_sim::bench::shareDir;
 using sixdof_sim::CameraFrame;
 using sixdof_sim::CameraRenderer;
@@ -81,46 +82,19 @@ int usage(const char* argv0) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string urdf_path, world_path, package_root;
   double seconds = 10.0, rate = 15.0;
   int frames = 200, width = 640, height = 480, threads = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (!has_value) return usage(argv[0]);
-    const std::string value = argv[++i];
-    try {
-      if (arg == "--urdf") {
-        urdf_path = value;
-      } else if (arg == "--world") {
-        world_path = value;
-      } else if (arg == "--package-root") {
-        package_root = value;
-      } else if (arg == "--seconds") {
-        seconds = std::stod(value);
-      } else if (arg == "--frames") {
-        frames = std::stoi(value);
-      } else if (arg == "--width") {
-        width = std::stoi(value);
-      } else if (arg == "--height") {
-        height = std::stoi(value);
-      } else if (arg == "--rate") {
-        rate = std::stod(value);
-      } else if (arg == "--threads") {
-        threads = std::stoi(value);
-      } else {
-        return usage(argv[0]);
-      }
-    } catch (const std::exception&) {
-      return usage(argv[0]);
-    }
-  }
-  if (!(seconds > 0.0) || frames < 1 || threads < 0) return usage(argv[0]);
-  if (urdf_path.empty()) urdf_path = (shareDir() / "sixdof_description" / "urdf" / "sixdof.urdf").string();
-  if (world_path.empty()) world_path = (shareDir() / "sixdof_sim" / "worlds" / "table_top.yaml").string();
+  sixdof_sim::bench::CommandLine cli;
+  cli.number("--seconds", &seconds);
+  cli.number("--frames", &frames);
+  cli.number("--width", &width);
+  cli.number("--height", &height);
+  cli.number("--rate", &rate);
+  cli.number("--threads", &threads);
+  if (!cli.parse(argc, argv) || !(seconds > 0.0) || frames < 1 || threads < 0) return usage(argv[0]);
 
-  const std::string urdf = readFile(urdf_path);
-  WorldSpec spec = sixdof_sim::loadWorldFile(world_path);
+  const std::string urdf = sixdof_core::readTextFile(cli.urdf_path);
+  WorldSpec spec = sixdof_sim::loadWorldFile(cli.world_path);
   if (spec.cameras.empty()) {
     CameraSpec camera;
     camera.name = "bench";
@@ -142,7 +116,7 @@ int main(int argc, char** argv) {
   }
 
   sixdof_sim::WorldOptions options;
-  options.package_search_roots = {package_root.empty() ? shareDir().string() : package_root};
+  options.package_search_roots = {cli.package_root.empty() ? shareDir().string() : cli.package_root};
   options.grasp_fix_enabled = false;
   try {
     World world(urdf, spec, options);

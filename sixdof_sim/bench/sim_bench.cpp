@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <sixdof_core/robot_model.h>
+
 #include "bench_util.h"
 #include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/world.h"
@@ -26,7 +28,6 @@
 
 namespace {
 
-using sixdof_sim::bench::readFile;
 using sixdof_sim::bench::shareDir;
 using sixdof_sim::GraspFixConfig;
 using sixdof_sim::ObjectSpec;
@@ -57,37 +58,18 @@ int usage(const char* argv0) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string urdf_path;
-  std::string world_path;
-  std::string package_root;
   double seconds = 20.0;
   int dynamic_objects = 5;
-  bool grasp_fix = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--urdf" && has_value) {
-      urdf_path = argv[++i];
-    } else if (arg == "--world" && has_value) {
-      world_path = argv[++i];
-    } else if (arg == "--package-root" && has_value) {
-      package_root = argv[++i];
-    } else if (arg == "--seconds" && has_value) {
-      seconds = std::stod(argv[++i]);
-    } else if (arg == "--objects" && has_value) {
-      dynamic_objects = std::stoi(argv[++i]);
-    } else if (arg == "--no-grasp-fix") {
-      grasp_fix = false;
-    } else {
-      return usage(argv[0]);
-    }
-  }
-  if (!(seconds > 0.0) || dynamic_objects < 0) return usage(argv[0]);
-  if (urdf_path.empty()) urdf_path = (shareDir() / "sixdof_description" / "urdf" / "sixdof.urdf").string();
-  if (world_path.empty()) world_path = (shareDir() / "sixdof_sim" / "worlds" / "table_top.yaml").string();
+  bool no_grasp_fix = false;
+  sixdof_sim::bench::CommandLine cli;
+  cli.number("--seconds", &seconds);
+  cli.number("--objects", &dynamic_objects);
+  cli.flag("--no-grasp-fix", &no_grasp_fix);
+  if (!cli.parse(argc, argv) || !(seconds > 0.0) || dynamic_objects < 0) return usage(argv[0]);
+  const bool grasp_fix = !no_grasp_fix;
 
-  const std::string urdf = readFile(urdf_path);
-  WorldSpec spec = sixdof_sim::loadWorldFile(world_path);
+  const std::string urdf = sixdof_core::readTextFile(cli.urdf_path);
+  WorldSpec spec = sixdof_sim::loadWorldFile(cli.world_path);
   int dynamic = 0;
   for (const ObjectSpec& o : spec.objects) dynamic += o.is_static ? 0 : 1;
   // Extra dynamic boxes in a row at the back of the table until the requested count is reached.
@@ -101,7 +83,7 @@ int main(int argc, char** argv) {
   }
 
   WorldOptions options;
-  options.package_search_roots = {package_root.empty() ? shareDir().string() : package_root};
+  options.package_search_roots = {cli.package_root.empty() ? shareDir().string() : cli.package_root};
   options.grasp_fix_enabled = grasp_fix;
   std::string grasp_note = grasp_fix ? "on (URDF block)" : "off";
   if (grasp_fix && !sixdof_sim::parseGraspFixConfig(urdf)) {

@@ -32,7 +32,7 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   move_group_ = std::make_unique<MoveGroupActionCapability>(context_.get(), executor_.get(), "move_group");
   execute_trajectory_ = std::make_unique<ExecuteTrajectoryActionCapability>(context_.get(), executor_.get(),
                                                                             "execute_trajectory");
-  robot_model_ = std::make_unique<QueryRobotModelService>(context_.get());
+  robot_model_ = std::make_unique<QueryRobotModelService>(context_.get(), "get_robot_model");
 }
 
 MoveGroupNode::~MoveGroupNode() = default;

@@ -3,6 +3,7 @@
 #include <sixdof_core/robot_model.h>
 #include <sixdof_msgs/GetRobotModel.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/errors.h"
 #include "sixdof_planning/move_group_context.h"
@@ -10,8 +11,6 @@
 namespace sixdof_planning {
 
 namespace {
-const char* const kSource = "get_robot_model";
-
 const char* typeName(sixdof_core::JointType type) {
   switch (type) {
     case sixdof_core::JointType::kRevolute:
@@ -92,15 +91,13 @@ void describeRobotModel(const sixdof_core::RobotModel& model, sixdof_msgs::GetRo
   }
 }
 
-QueryRobotModelService::QueryRobotModelService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("get_robot_model", &QueryRobotModelService::handle, this);
-}
-
 bool QueryRobotModelService::handle(sixdof_msgs::GetRobotModelRequest& /*request*/,
                                     sixdof_msgs::GetRobotModelResponse& response) {
   describeRobotModel(*context_->model(), &response);
-  response.error_code = makeSuccess(kSource);
+  response.error_code = makeSuccess(service_);
   return true;
 }
+
+template class ServiceCapability<QueryRobotModelService>;
 
 }  // namespace sixdof_planning

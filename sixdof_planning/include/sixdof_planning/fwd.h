@@ -37,6 +37,10 @@ struct GetPositionIKRequest_;
 template <class ContainerAllocator>
 struct GetPositionIKResponse_;
 template <class ContainerAllocator>
+struct GetRobotModelRequest_;
+template <class ContainerAllocator>
+struct GetRobotModelResponse_;
+template <class ContainerAllocator>
 struct GetStateValidityRequest_;
 template <class ContainerAllocator>
 struct GetStateValidityResponse_;
@@ -74,6 +78,8 @@ typedef GetPositionFKRequest_<std::allocator<void>> GetPositionFKRequest;
 typedef GetPositionFKResponse_<std::allocator<void>> GetPositionFKResponse;
 typedef GetPositionIKRequest_<std::allocator<void>> GetPositionIKRequest;
 typedef GetPositionIKResponse_<std::allocator<void>> GetPositionIKResponse;
+typedef GetRobotModelRequest_<std::allocator<void>> GetRobotModelRequest;
+typedef GetRobotModelResponse_<std::allocator<void>> GetRobotModelResponse;
 typedef GetStateValidityRequest_<std::allocator<void>> GetStateValidityRequest;
 typedef GetStateValidityResponse_<std::allocator<void>> GetStateValidityResponse;
 typedef MotionPlanRequest_<std::allocator<void>> MotionPlanRequest;

@@ -9,6 +9,7 @@
 #include <sixdof_msgs/GetPositionFK.h>
 #include <sixdof_msgs/GetPositionIK.h>
 
+#include "move_group_capability_impl.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
@@ -17,58 +18,14 @@
 namespace sixdof_planning {
 
 namespace {
-const char* const kFkSource = "compute_fk";
 const char* const kIkSource = "compute_ik";
-}  // namespace
 
-ForwardKinematicsService::ForwardKinematicsService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("compute_fk", &ForwardKinematicsService::handle, this);
-}
-
-bool ForwardKinematicsService::handle(sixdof_msgs::GetPositionFKRequest& request,
-                                      sixdof_msgs::GetPositionFKResponse& response) {
-  ErrorCode& code = response.error_code;
-  const auto& model = *context_->model();
-  for (const auto& link : request.fk_link_names) {
-    code = validateLink(model, link, kFkSource);
-    if (!isSuccess(code)) return true;
-  }
-  sixdof_core::RobotState state(context_->model());
-  std::shared_ptr<const SceneStore> scene;
-  code = context_->resolveRobotState(request.robot_state, "robot_state", kFkSource, &state, &scene);
-  if (!isSuccess(code)) return true;
-  Eigen::Isometry3d frame;
-  code = SceneStore::frameTransform(state, request.header.frame_id, kFkSource, &frame);
-  if (!isSuccess(code)) return true;
-  const std::string frame_id = request.header.frame_id.empty() ? context_->planningFrame() : request.header.frame_id;
-  for (const auto& link : request.fk_link_names) {
-    geometry_msgs::PoseStamped pose;
-    pose.header.frame_id = frame_id;
-    pose.header.stamp = ros::Time::now();
-    pose.pose = eigenToPose(frame.inverse() * state.linkTransform(link));
-    response.pose_stamped.push_back(pose);
-    response.fk_link_names.push_back(link);
-  }
-  code = makeSuccess(kFkSource);
-  return true;
-}
-
-InverseKinematicsService::InverseKinematicsService(MoveGroupContext* context) : context_(context) {
-  server_ = context_->nodeHandle().advertiseService("compute_ik", &InverseKinematicsService::handle, this);
-}
-
-bool InverseKinematicsService::handle(sixdof_msgs::GetPositionIKRequest& request,
-                                      sixdof_msgs::GetPositionIKResponse& response) {
-  response.error_code = solve(request.ik_request, &response.solution);
-  return true;
-}
-
-ErrorCode InverseKinematicsService::solve(const sixdof_msgs::PositionIKRequest& request,
-                                          sixdof_msgs::RobotState* solution) const {
-  const auto& model = *context_->model();
+ErrorCode solveIk(MoveGroupContext* context, const sixdof_msgs::PositionIKRequest& request,
+                  sixdof_msgs::RobotState* solution) {
+  const auto& model = *context->model();
   ErrorCode code = validateGroup(model, request.group_name, kIkSource);
   if (!isSuccess(code)) return code;
-  const auto solver = context_->ikSolver(request.group_name);
+  const auto solver = context->ikSolver(request.group_name);
   if (!solver) {
     return makeError(ErrorCode::NO_IK_SOLUTION,
                      "group '" + request.group_name + "' has no IK solver (no entry in robot_description_kinematics)",
@@ -79,21 +36,21 @@ ErrorCode InverseKinematicsService::solve(const sixdof_msgs::PositionIKRequest& 
   if (request.timeout.toSec() < 0.0) {
     return makeError(ErrorCode::INVALID_REQUEST, "ik_request.timeout is negative", kIkSource);
   }
-  sixdof_core::RobotState state(context_->model());
+  sixdof_core::RobotState state(context->model());
   std::shared_ptr<const SceneStore> scene;
-  code = context_->resolveRobotState(request.robot_state, "ik_request.robot_state", kIkSource, &state, &scene);
+  code = context->resolveRobotState(request.robot_state, "ik_request.robot_state", kIkSource, &state, &scene);
   if (!isSuccess(code)) return code;
   Eigen::Isometry3d frame;
   code = SceneStore::frameTransform(state, request.pose_stamped.header.frame_id, kIkSource, &frame);
   if (!isSuccess(code)) return code;
   Eigen::Isometry3d link_in_tip;
-  code = context_->linkInTip(request.group_name, request.ik_link_name, kIkSource, &link_in_tip);
+  code = context->linkInTip(request.group_name, request.ik_link_name, kIkSource, &link_in_tip);
   if (!isSuccess(code)) return code;
   const Eigen::Isometry3d base = state.linkTransform(solver->chain().baseLink());
   const Eigen::Isometry3d target =
       base.inverse() * frame * poseToEigen(request.pose_stamped.pose) * link_in_tip.inverse();
 
-  sixdof_core::IkOptions options = context_->ikOptions(request.group_name);
+  sixdof_core::IkOptions options = context->ikOptions(request.group_name);
   if (request.timeout.toSec() > 0.0) options.timeout = request.timeout.toSec();
   options.seed = state.groupPositions(request.group_name);
 
@@ -165,5 +122,43 @@ ErrorCode InverseKinematicsService::solve(const sixdof_msgs::PositionIKRequest& 
   solution->joint_state = toJointState(state);
   return makeSuccess(source);
 }
+}  // namespace
+
+bool ForwardKinematicsService::handle(sixdof_msgs::GetPositionFKRequest& request,
+                                      sixdof_msgs::GetPositionFKResponse& response) {
+  ErrorCode& code = response.error_code;
+  const auto& model = *context_->model();
+  for (const auto& link : request.fk_link_names) {
+    code = validateLink(model, link, service_);
+    if (!isSuccess(code)) return true;
+  }
+  sixdof_core::RobotState state(context_->model());
+  std::shared_ptr<const SceneStore> scene;
+  code = context_->resolveRobotState(request.robot_state, "robot_state", service_, &state, &scene);
+  if (!isSuccess(code)) return true;
+  Eigen::Isometry3d frame;
+  code = SceneStore::frameTransform(state, request.header.frame_id, service_, &frame);
+  if (!isSuccess(code)) return true;
+  const std::string frame_id = request.header.frame_id.empty() ? context_->planningFrame() : request.header.frame_id;
+  for (const auto& link : request.fk_link_names) {
+    geometry_msgs::PoseStamped pose;
+    pose.header.frame_id = frame_id;
+    pose.header.stamp = ros::Time::now();
+    pose.pose = eigenToPose(frame.inverse() * state.linkTransform(link));
+    response.pose_stamped.push_back(pose);
+    response.fk_link_names.push_back(link);
+  }
+  code = makeSuccess(service_);
+  return true;
+}
+
+bool InverseKinematicsService::handle(sixdof_msgs::GetPositionIKRequest& request,
+                                      sixdof_msgs::GetPositionIKResponse& response) {
+  response.error_code = solveIk(context_, request.ik_request, &response.solution);
+  return true;
+}
+
+template class ServiceCapability<ForwardKinematicsService>;
+template class ServiceCapability<InverseKinematicsService>;
 
 }  // namespace sixdof_planning

@@ -21,8 +21,8 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   executor_ = std::make_unique<TrajectoryExecutor>(context_.get());
   occupancy_map_ = std::make_unique<OccupancyMapMonitor>(context_.get());
   // Services and actions under MoveIt's names, relative to the node handle's namespace.
-  fk_ = std::make_unique<ForwardKinematicsService>(context_.get());
-  ik_ = std::make_unique<InverseKinematicsService>(context_.get());
+  fk_ = std::make_unique<ForwardKinematicsService>(context_.get(), "compute_fk");
+  ik_ = std::make_unique<InverseKinematicsService>(context_.get(), "compute_ik");
   plan_ = std::make_unique<MotionPlanService>(context_.get(), "plan_kinematic_path");
   cartesian_ = std::make_unique<CartesianPathService>(context_.get(), "compute_cartesian_path");
   validity_ = std::make_unique<StateValidityService>(context_.get(), "check_state_validity");

@@ -27,16 +27,25 @@ sensor_msgs::JointState toJointState(const sixdof_core::RobotState& state) {
   return msg;
 }
 
+namespace {
+// A point's positions, velocities and accelerations, which the message and the core name alike; the time is
+// converted by the caller.
+template <class From, class To>
+To copyMotion(const From& from) {
+  To to;
+  to.positions = from.positions;
+  to.velocities = from.velocities;
+  to.accelerations = from.accelerations;
+  return to;
+}
+}  // namespace
+
 trajectory_msgs::JointTrajectory toJointTrajectory(const sixdof_core::Trajectory& trajectory) {
   trajectory_msgs::JointTrajectory msg;
   msg.joint_names = trajectory.joint_names;
   for (const auto& point : trajectory.points) {
-    trajectory_msgs::JointTrajectoryPoint p;
-    p.positions = point.positions;
-    p.velocities = point.velocities;
-    p.accelerations = point.accelerations;
-    p.time_from_start = ros::Duration(point.time_from_start);
-    msg.points.push_back(p);
+    msg.points.push_back(copyMotion<sixdof_core::TrajectoryPoint, trajectory_msgs::JointTrajectoryPoint>(point));
+    msg.points.back().time_from_start = ros::Duration(point.time_from_start);
   }
   return msg;
 }
@@ -45,12 +54,8 @@ sixdof_core::Trajectory fromJointTrajectory(const trajectory_msgs::JointTrajecto
   sixdof_core::Trajectory result;
   result.joint_names = trajectory.joint_names;
   for (const auto& p : trajectory.points) {
-    sixdof_core::TrajectoryPoint point;
-    point.positions = p.positions;
-    point.velocities = p.velocities;
-    point.accelerations = p.accelerations;
-    point.time_from_start = p.time_from_start.toSec();
-    result.points.push_back(point);
+    result.points.push_back(copyMotion<trajectory_msgs::JointTrajectoryPoint, sixdof_core::TrajectoryPoint>(p));
+    result.points.back().time_from_start = p.time_from_start.toSec();
   }
   return result;
 }

@@ -4,8 +4,10 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <string>
+#include <utility>
 
 namespace sixdof_sim::bench {
 
@@ -19,23 +21,26 @@ inline std::filesystem::path shareDir() {
 class CommandLine {
  public:
   CommandLine() {
-    text("--urdf", &urdf_path);
-    text("--world", &world_path);
-    text("--package-root", &package_root);
+    text("--urdf", "FILE", &urdf_path);
+    text("--world", "FILE", &world_path);
+    text("--package-root", "DIR", &package_root);
   }
 
-  void text(const std::string& name, std::string* value) {
-    options_[name] = [value](const std::string& v) { *value = v; };
+  void text(const std::string& name, const std::string& metavar, std::string* value) {
+    add(name, metavar, [value](const std::string& v) { *value = v; });
   }
-  void number(const std::string& name, double* value) {
-    options_[name] = [value](const std::string& v) { *value = std::stod(v); };
+  void number(const std::string& name, const std::string& metavar, double* value) {
+    add(name, metavar, [value](const std::string& v) { *value = std::stod(v); });
   }
-  void number(const std::string& name, int* value) {
-    options_[name] = [value](const std::string& v) { *value = std::stoi(v); };
+  void number(const std::string& name, const std::string& metavar, int* value) {
+    add(name, metavar, [value](const std::string& v) { *value = std::stoi(v); });
   }
-  void flag(const std::string& name, bool* value) { flags_[name] = value; }
+  void flag(const std::string& name, bool* value) {
+    flags_[name] = value;
+    usage_ += " [" + name + "]";
+  }
 
-  // False for an unknown option, a missing value or one that is not a number (the caller prints its usage).
+  // False for an unknown option, a missing value or one that is not a number (then see usage()).
   // Then the robot and world default to the installed sixdof_description URDF and sixdof_sim's table_top.yaml.
   bool parse(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
@@ -57,13 +62,25 @@ class CommandLine {
     return true;
   }
 
+  // Prints the options in the order they were registered; the exit code of a usage error.
+  int usage(const char* argv0) const {
+    std::cerr << "usage: " << argv0 << usage_ << "\n";
+    return 2;
+  }
+
   std::string urdf_path;
   std::string world_path;
   std::string package_root;  // empty: the install space's share directory
 
  private:
+  void add(const std::string& name, const std::string& metavar, std::function<void(const std::string&)> parse) {
+    options_[name] = std::move(parse);
+    usage_ += " [" + name + " " + metavar + "]";
+  }
+
   std::map<std::string, std::function<void(const std::string&)>> options_;
   std::map<std::string, bool*> flags_;
+  std::string usage_;
 };
 
 }  // namespace sixdof_sim::bench

@@ -72,26 +72,19 @@ double realTimeFactor(World& world, CameraRenderer* renderer, double seconds, do
   return (world.simTime() - start_sim) / wall;
 }
 
-int usage(const char* argv0) {
-  std::cerr << "usage: " << argv0
-            << " [--urdf FILE] [--world FILE] [--package-root DIR] [--seconds SIM_SECONDS] [--frames N]"
-               " [--width W] [--height H] [--rate HZ] [--threads N]\n";
-  return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   double seconds = 10.0, rate = 15.0;
   int frames = 200, width = 640, height = 480, threads = 0;
   sixdof_sim::bench::CommandLine cli;
-  cli.number("--seconds", &seconds);
-  cli.number("--frames", &frames);
-  cli.number("--width", &width);
-  cli.number("--height", &height);
-  cli.number("--rate", &rate);
-  cli.number("--threads", &threads);
-  if (!cli.parse(argc, argv) || !(seconds > 0.0) || frames < 1 || threads < 0) return usage(argv[0]);
+  cli.number("--seconds", "SIM_SECONDS", &seconds);
+  cli.number("--frames", "N", &frames);
+  cli.number("--width", "W", &width);
+  cli.number("--height", "H", &height);
+  cli.number("--rate", "HZ", &rate);
+  cli.number("--threads", "N", &threads);
+  if (!cli.parse(argc, argv) || !(seconds > 0.0) || frames < 1 || threads < 0) return cli.usage(argv[0]);
 
   const std::string urdf = sixdof_core::readTextFile(cli.urdf_path);
   WorldSpec spec = sixdof_sim::loadWorldFile(cli.world_path);

@@ -48,13 +48,6 @@ double cpuSeconds() {
          static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-6;
 }
 
-int usage(const char* argv0) {
-  std::cerr << "usage: " << argv0
-            << " [--urdf FILE] [--world FILE] [--package-root DIR] [--seconds SIM_SECONDS] [--objects N]"
-               " [--no-grasp-fix]\n";
-  return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -62,10 +55,10 @@ int main(int argc, char** argv) {
   int dynamic_objects = 5;
   bool no_grasp_fix = false;
   sixdof_sim::bench::CommandLine cli;
-  cli.number("--seconds", &seconds);
-  cli.number("--objects", &dynamic_objects);
+  cli.number("--seconds", "SIM_SECONDS", &seconds);
+  cli.number("--objects", "N", &dynamic_objects);
   cli.flag("--no-grasp-fix", &no_grasp_fix);
-  if (!cli.parse(argc, argv) || !(seconds > 0.0) || dynamic_objects < 0) return usage(argv[0]);
+  if (!cli.parse(argc, argv) || !(seconds > 0.0) || dynamic_objects < 0) return cli.usage(argv[0]);
   const bool grasp_fix = !no_grasp_fix;
 
   const std::string urdf = sixdof_core::readTextFile(cli.urdf_path);

@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "action_goal.h"
+
 namespace sixdof_sim {
 
 GripperActionHandler::GripperActionHandler(ros::NodeHandle nh, GripperControllerConfig config, World& world,
@@ -40,19 +42,8 @@ sixdof_msgs::GripperCommandResult GripperActionHandler::makeResult(bool reached_
 
 void GripperActionHandler::finishActive(bool succeeded, bool canceled, bool reached_goal, bool stalled,
                                         const std::string& text) {
-  if (!active_) {
-    return;
-  }
-  const sixdof_msgs::GripperCommandResult result = makeResult(reached_goal, stalled);
-  if (succeeded) {
-    active_->setSucceeded(result, text);
-  } else if (canceled) {
-    active_->setCanceled(result, text);
-  } else {
-    ROS_WARN_STREAM("[" << controller_.config().name << "/gripper_cmd] goal aborted: " << text);
-    active_->setAborted(result, text);
-  }
-  active_.reset();
+  const std::string server = controller_.config().name + "/gripper_cmd";
+  finishGoal(&active_, makeResult(reached_goal, stalled), succeeded, canceled, server, text);
 }
 
 void GripperActionHandler::goalCallback(Server::GoalHandle gh) {

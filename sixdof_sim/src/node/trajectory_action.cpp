@@ -9,6 +9,7 @@
 
 #include <sixdof_msgs/JointTrajectoryControllerState.h>
 
+#include "action_goal.h"
 #include "conversions.h"
 
 namespace sixdof_sim {
@@ -99,21 +100,10 @@ std::string TrajectoryActionHandler::checkMimics(const TrajectoryGoal& goal) con
 }
 
 void TrajectoryActionHandler::finishActive(int code, const std::string& message, bool succeeded, bool canceled) {
-  if (!active_) {
-    return;
-  }
   sixdof_msgs::FollowJointTrajectoryResult result;
   result.error_code = code;
   result.error_string = message;
-  if (succeeded) {
-    active_->setSucceeded(result, message);
-  } else if (canceled) {
-    active_->setCanceled(result, message);
-  } else {
-    ROS_WARN_STREAM("[" << controller_.config().name << "] goal aborted: " << message);
-    active_->setAborted(result, message);
-  }
-  active_.reset();
+  finishGoal(&active_, result, succeeded, canceled, controller_.config().name, message);
 }
 
 void TrajectoryActionHandler::goalCallback(Server::GoalHandle gh) {

@@ -20,6 +20,7 @@ node's growth from the end of the warm-up to the end, and the run fails when any
 --max-growth-mb.
 
     bench/pick_bench.py --trials 100 --seed 1 --report report.md
+    bench/pick_bench.py --seed 1 --only 35 220     # replay trials 35 and 220 of that sequence
 """
 
 from __future__ import annotations
@@ -59,6 +60,7 @@ class Trial:
     size: float  # the object's width (cube edge, cylinder or sphere diameter), m
     start: tuple[float, float, float]  # x, y, yaw
     target: tuple[float, float]
+    height: float = math.nan  # cylinders: drawn separately from the width, m
     outcome: str = "ok"
     detail: str = ""
     error_mm: float = math.nan
@@ -148,7 +150,11 @@ class Bench:
         while True:
             tx, ty = self.random_point()
             if math.dist((x, y), (tx, ty)) >= self.args.min_separation:
-                return Trial(index, shape, size, (x, y, yaw), (tx, ty))
+                break
+        trial = Trial(index, shape, size, (x, y, yaw), (tx, ty))
+        if shape == "cylinder":  # last draw of the trial: the sequence is that of every earlier run of the bench
+            trial.height = self.rng.uniform(0.03, 0.06)
+        return trial
 
     def sim_object(self, trial: Trial) -> SimObject:
         obj = SimObject(name=OBJECT, mass=0.1, friction=0.8)
@@ -156,8 +162,7 @@ class Bench:
         if trial.shape == "cube":
             primitive.type, primitive.dimensions = SolidPrimitive.BOX, [trial.size] * 3
         elif trial.shape == "cylinder":
-            height = self.rng.uniform(0.03, 0.06)
-            primitive.type, primitive.dimensions = SolidPrimitive.CYLINDER, [height, trial.size / 2.0]
+            primitive.type, primitive.dimensions = SolidPrimitive.CYLINDER, [trial.height, trial.size / 2.0]
         else:
             primitive.type, primitive.dimensions = SolidPrimitive.SPHERE, [trial.size / 2.0]
         obj.shape = primitive
@@ -288,7 +293,9 @@ def report(
         f"## {title} (scripts/bench_pick.sh)",
         "",
         f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}.",
-        f"{len(trials)} randomized pick-and-place trials, seed {args.seed}, headless (simulator as fast as possible),",
+        f"{len(trials)} randomized pick-and-place trials, seed {args.seed}"
+        + (f" (only trials {', '.join(map(str, args.only))} of the sequence)" if args.only else "")
+        + ", headless (simulator as fast as possible),",
         f"velocity scaling {args.velocity_scaling:g}; objects: cube, upright cylinder, sphere, 3-6 cm wide, random",
         "position and yaw in x [{:g}, {:g}] m, y [{:g}, {:g}] m;".format(*args.region),
         f"success = resting within {args.tolerance * 1000:.0f} mm of the target and {args.tilt:g} deg of upright.",
@@ -332,7 +339,9 @@ def report(
         lines += ["", "Failures:", ""]
         for t in failed:
             lines.append(
-                f"- trial {t.index} ({t.shape} {t.size * 100:.1f} cm at ({t.start[0]:.3f}, {t.start[1]:.3f}) -> "
+                f"- trial {t.index} ({t.shape} {t.size * 100:.1f} cm"
+                + (f", {t.height * 100:.1f} cm high" if t.shape == "cylinder" else "")
+                + f" at ({t.start[0]:.3f}, {t.start[1]:.3f}) -> "
                 f"({t.target[0]:.3f}, {t.target[1]:.3f})): {t.outcome}: {t.detail}"
             )
     return "\n".join(lines) + "\n", passed
@@ -340,8 +349,16 @@ def report(
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--trials", type=int, default=100, help="number of trials (default: 100)")
+    parser.add_argument("--trials", type=int, help="number of trials (default: 100)")
     parser.add_argument("--seed", type=int, default=1, help="random seed (default: 1)")
+    parser.add_argument(
+        "--only",
+        nargs="+",
+        type=int,
+        metavar="N",
+        help="run only these trials (1-based) of the seeded sequence, e.g. to replay a failure; --trials then "
+        "defaults to the largest",
+    )
     parser.add_argument(
         "--region",
         nargs=4,
@@ -365,6 +382,15 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--max-growth-mb", type=float, default=5.0, help="allowed RSS growth per node (MB)")
     parser.add_argument("--report", help="write the markdown report here too")
     args = parser.parse_args(argv)
+    if args.only is not None:
+        if any(n < 1 for n in args.only):
+            parser.error(f"--only takes trial numbers >= 1, got {args.only}")
+        if args.trials is None:
+            args.trials = max(args.only)
+        elif max(args.only) > args.trials:
+            parser.error(f"--only {max(args.only)} is beyond --trials {args.trials}")
+    if args.trials is None:
+        args.trials = 100
     if args.trials < 1:
         parser.error(f"--trials must be >= 1, got {args.trials}")
     xmin, xmax, ymin, ymax = args.region
@@ -396,6 +422,8 @@ def main() -> int:
             if rospy.is_shutdown():
                 break
             trial = bench.make_trial(i + 1)
+            if args.only and trial.index not in args.only:
+                continue  # drawn all the same: trial N is the same object and target as in a full run
             print(
                 f"trial {trial.index}/{args.trials}: {trial.shape} {trial.size * 100:.1f} cm at "
                 f"({trial.start[0]:.3f}, {trial.start[1]:.3f}, yaw {math.degrees(trial.start[2]):.0f} deg) -> "

@@ -5,6 +5,7 @@
 #   scripts/bench_pick.sh --soak             500 trials with every node's RSS sampled (make soak); fails on any
 #                                            failed trial or a node growing by more than 5 MB
 #   scripts/bench_pick.sh [--soak] ARGS...   ARGS go to bench/pick_bench.py (--trials, --seed, --region, ...)
+#   scripts/bench_pick.sh --only 35 220      replay trials 35 and 220 of the seeded sequence (results.md untouched)
 # Logs in artifacts/bench_pick_logs/.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -16,7 +17,7 @@ set -u
 # shellcheck source=scripts/stack_lib.sh
 . scripts/stack_lib.sh
 
-args=(--trials 100)
+args=()  # pick_bench.py: 100 trials
 if [ "${1:-}" = --soak ]; then
   shift
   args=(--trials 500 --rss)
@@ -31,7 +32,9 @@ stack_wait_ready "" "${stack_pids[-1]}" || { echo "[bench-pick] the stack did no
 
 status=0
 python3 bench/pick_bench.py "${args[@]}" "$@" --report "$report" || status=$?
-if [ -s "$report" ]; then
+if [[ " $* " == *" --only "* ]]; then
+  echo "[bench-pick] a replay of some trials (--only): bench/results.md left as it is"
+elif [ -s "$report" ]; then
   python3 scripts/results_section.py bench/results.md "$report"
   echo "[bench-pick] wrote its section of bench/results.md"
 fi

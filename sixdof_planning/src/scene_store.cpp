@@ -207,9 +207,7 @@ ErrorCode SceneStore::applyCollisionObject(const CollisionObject& object, const 
                            (attached_.count(object.id) ? " (it is attached: detach it first)" : ""),
                        source);
     }
-    code = sceneError(collision_->removeWorldObject(object.id), source);
-    if (isSuccess(code)) world_.erase(object.id);
-    return code;
+    return removeWorldObject(object.id, source);
   }
   Eigen::Isometry3d frame_pose;
   code = frameTransform(state, object.header.frame_id, source, &frame_pose);
@@ -250,12 +248,23 @@ ErrorCode SceneStore::applyCollisionObject(const CollisionObject& object, const 
   if (!isSuccess(code)) return code;
   // ADD replaces an object of the same id, as in MoveIt.
   if (exists) {
-    code = sceneError(collision_->removeWorldObject(object.id), source);
+    code = removeWorldObject(object.id, source);
     if (!isSuccess(code)) return code;
-    world_.erase(object.id);
   }
   code = sceneError(collision_->addWorldObject(world_object), source);
   if (isSuccess(code)) world_[stored.id] = stored;
+  return code;
+}
+
+ErrorCode SceneStore::removeWorldObject(const std::string& id, const std::string& source) {
+  const ErrorCode code = sceneError(collision_->removeWorldObject(id), source);
+  if (isSuccess(code)) world_.erase(id);
+  return code;
+}
+
+ErrorCode SceneStore::removeAttachedObject(const std::string& id, const std::string& source) {
+  const ErrorCode code = sceneError(collision_->removeAttachedObject(id), source);
+  if (isSuccess(code)) attached_.erase(id);
   return code;
 }
 
@@ -383,14 +392,12 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
   if (!isSuccess(code)) return code;
   // A new attached object replaces a world or attached object of the same id, as in MoveIt.
   if (world_.count(object.id)) {
-    code = sceneError(collision_->removeWorldObject(object.id), source);
+    code = removeWorldObject(object.id, source);
     if (!isSuccess(code)) return code;
-    world_.erase(object.id);
   }
   if (attached_.count(object.id)) {
-    code = sceneError(collision_->removeAttachedObject(object.id), source);
+    code = removeAttachedObject(object.id, source);
     if (!isSuccess(code)) return code;
-    attached_.erase(object.id);
   }
   code = sceneError(collision_->attachObject(core_object), source);
   if (isSuccess(code)) attached_[object.id] = stored;

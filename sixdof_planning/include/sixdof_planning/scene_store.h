@@ -70,6 +70,9 @@ class SceneStore {
   ErrorCode carrierLink(const std::string& link, const std::string& source, std::string* carrier,
                         Eigen::Isometry3d* link_in_carrier) const;
   ErrorCode detach(const std::string& id, const sixdof_core::RobotState& state, const std::string& source);
+  // Remove a world (attached) object from the collision scene and, if that succeeded, from the stored messages.
+  ErrorCode removeWorldObject(const std::string& id, const std::string& source);
+  ErrorCode removeAttachedObject(const std::string& id, const std::string& source);
 
   sixdof_core::RobotModelConstPtr model_;
   std::shared_ptr<sixdof_core::CollisionScene> collision_;

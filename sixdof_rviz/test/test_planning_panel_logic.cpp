@@ -1,5 +1,10 @@
 // PlanningPanelLogic: request building, goal resolution and status texts (rostest: needs a master, no GUI).
 // move_group is deliberately absent: the unavailable-planner paths are part of the behaviour under test.
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sixdof_core/robot_model.h>
@@ -91,24 +96,22 @@ TEST_F(PlanningPanelLogicTest, MoveGroupGoalPlanOnlyFlag) {
 
 TEST_F(PlanningPanelLogicTest, BadSettingsAreRejectedNamingTheField) {
   const JointValues home = namedGoal("arm", "home pose");
-  PlanningSettings s;
-  s.velocity_scaling = 0.0;
-  EXPECT_EQ(requestError(s, home), "velocity scaling must be in (0, 1] (got 0.000000)");
-  s = PlanningSettings{};
-  s.acceleration_scaling = 1.5;
-  EXPECT_EQ(requestError(s, home), "acceleration scaling must be in (0, 1] (got 1.500000)");
-  s = PlanningSettings{};
-  s.attempts = 0;
-  EXPECT_EQ(requestError(s, home), "planning attempts must be >= 1 (got 0)");
-  s = PlanningSettings{};
-  s.planning_time = 0.0;
-  EXPECT_EQ(requestError(s, home), "planning time must be > 0 s (got 0.000000)");
-  s = PlanningSettings{};
-  s.planner_id = "";
-  EXPECT_EQ(requestError(s, home), "planner id is empty");
-  s = PlanningSettings{};
-  s.group = "legs";
-  EXPECT_EQ(requestError(s, home), "unknown planning group 'legs'");
+  // One bad field per case (the others at their defaults) and the message that names it.
+  const std::vector<std::pair<std::function<void(PlanningSettings*)>, std::string>> cases = {
+      {[](PlanningSettings* s) { s->velocity_scaling = 0.0; },
+       "velocity scaling must be in (0, 1] (got 0.000000)"},
+      {[](PlanningSettings* s) { s->acceleration_scaling = 1.5; },
+       "acceleration scaling must be in (0, 1] (got 1.500000)"},
+      {[](PlanningSettings* s) { s->attempts = 0; }, "planning attempts must be >= 1 (got 0)"},
+      {[](PlanningSettings* s) { s->planning_time = 0.0; }, "planning time must be > 0 s (got 0.000000)"},
+      {[](PlanningSettings* s) { s->planner_id = ""; }, "planner id is empty"},
+      {[](PlanningSettings* s) { s->group = "legs"; }, "unknown planning group 'legs'"},
+  };
+  for (const auto& [spoil, message] : cases) {
+    PlanningSettings settings;
+    spoil(&settings);
+    EXPECT_EQ(requestError(settings, home), message);
+  }
 }
 
 TEST_F(PlanningPanelLogicTest, BadGoalsAreRejectedNamingTheJoint) {

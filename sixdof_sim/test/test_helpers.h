@@ -18,6 +18,17 @@ namespace test {
 
 inline std::string readFile(const std::string& path) { return sixdof_core::readTextFile(path); }
 
+// The message of the `Error` that `call` throws, "" when it throws none (any other exception passes through).
+template <class Error, class Call>
+std::string errorMessage(Call call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 inline std::string robotUrdf() { return readFile(std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf"); }
 
 inline std::string defaultWorldPath() { return std::string(SIXDOF_SIM_DIR) + "/worlds/table_top.yaml"; }

@@ -90,12 +90,7 @@ objects:
 }
 
 std::string errorOf(const std::string& yaml) {
-  try {
-    parseWorldYaml(yaml, "w.yaml");
-  } catch (const WorldFileError& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage<WorldFileError>([&] { parseWorldYaml(yaml, "w.yaml"); });
 }
 
 // Each message names the file, the line, the entry and the problem.

@@ -59,12 +59,7 @@ TEST(UrdfLoader, ReadsJointsInertiasAndFriction) {
 }
 
 std::string errorOf(const std::string& urdf) {
-  try {
-    parseRobotDescription(urdf);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage<std::invalid_argument>([&] { parseRobotDescription(urdf); });
 }
 
 TEST(UrdfLoader, ErrorsNameTheProblem) {

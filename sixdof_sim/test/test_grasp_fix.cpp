@@ -1,5 +1,5 @@
 // Grasp fix: configuration parsing, the decision logic on synthetic contacts, and picking the
-// default world's red_cube with the real arm (with and without the fix).
+// default world's red_cube and upright cylinders with the real arm (with and without the fix).
 
 #include <gtest/gtest.h>
 
@@ -367,6 +367,110 @@ TEST_F(HeavyCubeFrictionOnly, WeakFrictionGraspDropsTheCube) {
   EXPECT_GT(slip, 0.05);  // left behind on the table
   EXPECT_NEAR(cubePosition().z(), 0.02, 3e-3);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Upright cylinders that `make soak` failed to pick (never attached: the fingers' per-point mean forces
+// differed 4x on the cylinder's curved side), picked as sixdof_commander does: the tcp at the centre of
+// the cylinder, tool z down, the wrist turned away from the base; a straight descent, close, lift.
+
+struct Cylinder {
+  double diameter;
+  double height;
+  double x;
+  double y;
+};
+
+class CylinderGrasp : public ::testing::TestWithParam<Cylinder> {
+ protected:
+  CylinderGrasp()
+      : world(test::robotUrdf(), loadWorldFile(std::string(SIXDOF_SIM_DIR) + "/worlds/table_only.yaml"),
+              test::options(true)) {}
+
+  Eigen::Vector3d position() {
+    ObjectState state;
+    EXPECT_TRUE(world.objectState("cylinder", &state).ok());
+    return state.spec.pose.translation();
+  }
+
+  // The arm from its current joints to q in `duration` s (cubic in joint space), then 0.3 s to settle.
+  void moveArm(const std::vector<double>& q, double duration) {
+    const std::vector<double> q0 = test::armPositions(world);
+    const double t0 = world.simTime();
+    world.setPreStepCallback([&](double t) {
+      const double s = std::min((t - t0) / duration, 1.0);
+      const double p = 3 * s * s - 2 * s * s * s;
+      for (size_t j = 0; j < q.size(); ++j) {
+        ASSERT_TRUE(world.setPositionTarget(armJoints()[j], q0[j] + p * (q[j] - q0[j])).ok());
+      }
+    });
+    world.step(static_cast<std::uint64_t>(std::lround((duration + 0.3) / world.timeStep())));
+    world.setPreStepCallback(nullptr);
+  }
+
+  // Joints putting the tcp at `tcp` (IK seeded with `seed`); empty if IK fails.
+  std::vector<double> solve(const Eigen::Isometry3d& tcp, const std::vector<double>& seed) {
+    const std::vector<double> before = test::armPositions(world);
+    std::vector<double> q;
+    if (test::solveIk(world, "tcp", tcp, seed)) q = test::armPositions(world);
+    EXPECT_TRUE(world.setJointPositions(armJoints(), before).ok());
+    return q;
+  }
+
+  World world;
+};
+
+TEST_P(CylinderGrasp, IsAttachedAndLifted) {
+  const Cylinder c = GetParam();
+  ObjectSpec cylinder;
+  cylinder.name = "cylinder";
+  cylinder.shape.type = ShapeType::kCylinder;
+  cylinder.shape.radius = c.diameter / 2.0;
+  cylinder.shape.length = c.height;
+  cylinder.pose.translation() = Eigen::Vector3d(c.x, c.y, c.height / 2.0);
+  ASSERT_TRUE(world.spawnObject(cylinder).ok());
+  world.step(300);  // settle on the table
+
+  const double yaw = std::atan2(c.y, c.x) + M_PI;
+  Eigen::Isometry3d grasp = Eigen::Isometry3d::Identity();
+  grasp.linear() =
+      (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX())).matrix();
+  grasp.translation() = position();
+  Eigen::Isometry3d above = grasp;
+  above.translation().z() += 0.08;
+  const std::vector<double> q_grasp = solve(grasp, {std::atan2(c.y, c.x), 0.3, 0.9, 0.0, 1.9, 0.0});
+  ASSERT_FALSE(q_grasp.empty());
+  const std::vector<double> q_above = solve(above, q_grasp);
+  ASSERT_FALSE(q_above.empty());
+  ASSERT_TRUE(world.setJointPositions(armJoints(), q_above).ok());
+  ASSERT_TRUE(world.setJointPositions({"finger1_joint"}, {0.04}).ok());
+  ASSERT_TRUE(world.setPositionTarget("finger1_joint", 0.04).ok());
+  for (size_t j = 0; j < q_above.size(); ++j) ASSERT_TRUE(world.setPositionTarget(armJoints()[j], q_above[j]).ok());
+  world.step(200);
+  moveArm(q_grasp, 1.0);
+
+  ASSERT_TRUE(world.setPositionTarget("finger1_joint", 0.0).ok());
+  const double closed_at = world.simTime();
+  double attached_at = -1.0;
+  while (attached_at < 0.0 && world.simTime() - closed_at < 4.0) {
+    world.step();
+    for (const GraspEvent& e : world.takeGraspEvents()) {
+      if (e.type == GraspEvent::Type::kAttached && e.object == "cylinder") attached_at = world.simTime();
+    }
+  }
+  // Attached on the 5th gripped update (1.25 s in the original semantics) plus the fingers' travel.
+  ASSERT_GE(attached_at, 0.0) << "not attached within 4 s of closing";
+  EXPECT_LT(attached_at - closed_at, 2.0);
+  const double z0 = position().z();
+  moveArm(q_above, 1.0);
+  EXPECT_EQ(world.attachedObjects(), std::vector<std::string>{"cylinder"});
+  EXPECT_NEAR(position().z(), z0 + 0.08, 0.005);
+}
+
+// make soak's trials 35, 235 and 364 (seed 1): diameter, height, x, y.
+INSTANTIATE_TEST_SUITE_P(SoakFailures, CylinderGrasp,
+                         ::testing::Values(Cylinder{0.0323, 0.0460, 0.401, 0.033},
+                                           Cylinder{0.0529, 0.0415, 0.352, -0.071},
+                                           Cylinder{0.0462, 0.0502, 0.416, -0.169}));
 
 }  // namespace
 }  // namespace sixdof_sim

@@ -4,6 +4,13 @@ namespace sixdof_sim {
 
 void World::Impl::collectContacts(std::vector<GraspContact>* grasp_contacts) {
   last_contacts.clear();
+  // Grasp-fix samples: one per (robot link, dynamic object) pair and step, over all of the pair's manifolds and
+  // points: the link's total force on the object and the mean contact point. The total, not a per-point mean:
+  // Bullet keeps 1 to 4 points per manifold depending on the contact's shape (a finger pad on a cylinder's side
+  // is a line: often several points on one finger and one on the other), so per-point means of a balanced grip
+  // differed up to 4x and failed the grasp fix's 0.3 force-ratio test (upright cylinders were never attached).
+  std::map<std::string, GraspContact> pairs;
+  std::map<std::string, int> pair_points;
   const int manifolds = dispatcher->getNumManifolds();
   for (int m = 0; m < manifolds; ++m) {
     const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
@@ -31,9 +38,6 @@ void World::Impl::collectContacts(std::vector<GraspContact>* grasp_contacts) {
     };
     const bool a_robot = a->getUserIndex() == kRobotBody;
     const bool b_robot = b->getUserIndex() == kRobotBody;
-    // Grasp-fix samples: one per (robot link, dynamic object) pair and step, averaged over points.
-    std::map<std::string, GraspContact> pairs;
-    std::map<std::string, int> pair_points;
     for (int p = 0; p < points; ++p) {
       const btManifoldPoint& pt = manifold->getContactPoint(p);
       Contact contact;
@@ -64,12 +68,10 @@ void World::Impl::collectContacts(std::vector<GraspContact>* grasp_contacts) {
       gc.point += toEigen((pt.getPositionWorldOnA() + pt.getPositionWorldOnB()) * 0.5);
       ++pair_points[key];
     }
-    for (auto& entry : pairs) {
-      const int n = pair_points[entry.first];
-      entry.second.force_on_object /= n;
-      entry.second.point /= n;
-      grasp_contacts->push_back(entry.second);
-    }
+  }
+  for (auto& entry : pairs) {
+    entry.second.point /= pair_points[entry.first];
+    grasp_contacts->push_back(entry.second);
   }
 }
 

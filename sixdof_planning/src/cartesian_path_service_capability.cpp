@@ -5,10 +5,12 @@
 
 #include <sixdof_core/cartesian_path.h>
 #include <sixdof_core/planning_context.h>
+#include <ros/console.h>
 #include <sixdof_msgs/GetCartesianPath.h>
 
 #include "move_group_capability_impl.h"
 #include "sixdof_planning/conversions.h"
+#include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
 
@@ -59,6 +61,10 @@ ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesian
   std::shared_ptr<const SceneStore> scene;
   code = context->resolveRobotState(request.start_state, "start_state", kCartesianSource, &start, &scene);
   if (!isSuccess(code)) return code;
+  // As for planning (MoveIt's FixStartStateBounds): a measured state a hair past a limit (a joint held at +pi
+  // reading 3.14161) is moved onto it; the path's first point would otherwise be refused by the controller.
+  const std::string moved = fixStartStateBounds(context->config().start_state_max_bounds_error, &start);
+  if (!moved.empty()) ROS_INFO_STREAM("Cartesian path: start state moved onto its joint limits: " << moved);
   response->start_state.joint_state = toJointState(start);
   Eigen::Isometry3d frame;
   code = SceneStore::frameTransform(start, request.header.frame_id, kCartesianSource, &frame);

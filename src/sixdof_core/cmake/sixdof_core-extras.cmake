@@ -1,6 +1,6 @@
-# sixdof_core_MODEL_LIBRARY: the model layer alone (libsixdof_core_model: the robot model, shapes, trajectory
-# points and splines; urdfdom, tinyxml2, Eigen), for dependents that need no collision checking or planning
-# (sixdof_sim's world, sixdof_rviz's logic). sixdof_core_LIBRARIES lists all three layers.
+# sixdof_core_MODEL_LIBRARY: the model layer alone (libsixdof_core_model: the robot model, shapes, mesh files,
+# trajectory points and splines; urdfdom, tinyxml2, assimp, Eigen), for dependents that need no collision checking
+# or planning (sixdof_sim's world, sixdof_rviz's logic). sixdof_core_LIBRARIES lists all three layers.
 set(sixdof_core_MODEL_LIBRARY "")
 foreach(sixdof_core_library ${sixdof_core_LIBRARIES})
   if(sixdof_core_library MATCHES "sixdof_core_model")

@@ -54,8 +54,15 @@ SceneStatus buildShapes(Body* body) {
   return SceneStatus();
 }
 
-// Sets a link's padding or scale and rebuilds its shapes; the old value and shapes stay if that fails.
-SceneStatus rebuildLink(Body* body, double Body::*member, double value) {
+// Sets a link's padding or scale (`what`, valid when finite and `requirement`) and rebuilds its shapes. An unknown
+// link (null body) or an invalid value changes nothing; the old value and shapes stay if the rebuild fails.
+SceneStatus setLinkValue(Body* body, const std::string& link_name, const char* what, double Body::*member,
+                         double value, bool valid, const char* requirement) {
+  if (!body) return error(SceneStatusCode::kUnknownName, std::string(what) + ": unknown link '" + link_name + "'");
+  if (!std::isfinite(value) || !valid) {
+    return error(SceneStatusCode::kInvalidValue,
+                 std::string(what) + " of '" + link_name + "' must be finite and " + requirement);
+  }
   const double old = body->*member;
   body->*member = value;
   SceneStatus status = buildShapes(body);
@@ -64,6 +71,16 @@ SceneStatus rebuildLink(Body* body, double Body::*member, double value) {
     buildShapes(body);
   }
   return status;
+}
+
+// setPadding/setScale: the per-link setter applied to every link, up to the first failure.
+template <class SetLink>
+SceneStatus setEveryLink(const std::vector<std::string>& link_names, const SetLink& set_link) {
+  for (const std::string& name : link_names) {
+    SceneStatus status = set_link(name);
+    if (!status.ok()) return status;
+  }
+  return SceneStatus();
 }
 
 }  // namespace
@@ -158,40 +175,26 @@ SceneStatus CollisionScene::setAllowedCollisionMatrix(const AllowedCollisionMatr
 
 SceneStatus CollisionScene::setLinkPadding(const std::string& link_name, double padding) {
   const int index = linkIndex(link_name);
-  if (index < 0) return error(SceneStatusCode::kUnknownName, "padding: unknown link '" + link_name + "'");
-  if (!std::isfinite(padding) || padding < 0.0) {
-    return error(SceneStatusCode::kInvalidValue, "padding of '" + link_name + "' must be finite and >= 0");
-  }
-  const SceneStatus status = rebuildLink(&impl_->links[index], &Body::padding, padding);
+  const SceneStatus status = setLinkValue(index < 0 ? nullptr : &impl_->links[index], link_name, "padding",
+                                          &Body::padding, padding, padding >= 0.0, ">= 0");
   if (status.ok()) impl_->rebuild();
   return status;
 }
 
 SceneStatus CollisionScene::setPadding(double padding) {
-  for (const std::string& name : impl_->link_names) {
-    SceneStatus status = setLinkPadding(name, padding);
-    if (!status.ok()) return status;
-  }
-  return SceneStatus();
+  return setEveryLink(impl_->link_names, [&](const std::string& name) { return setLinkPadding(name, padding); });
 }
 
 SceneStatus CollisionScene::setLinkScale(const std::string& link_name, double scale) {
   const int index = linkIndex(link_name);
-  if (index < 0) return error(SceneStatusCode::kUnknownName, "scale: unknown link '" + link_name + "'");
-  if (!std::isfinite(scale) || scale <= 0.0) {
-    return error(SceneStatusCode::kInvalidValue, "scale of '" + link_name + "' must be finite and > 0");
-  }
-  const SceneStatus status = rebuildLink(&impl_->links[index], &Body::scale, scale);
+  const SceneStatus status = setLinkValue(index < 0 ? nullptr : &impl_->links[index], link_name, "scale",
+                                          &Body::scale, scale, scale > 0.0, "> 0");
   if (status.ok()) impl_->rebuild();
   return status;
 }
 
 SceneStatus CollisionScene::setScale(double scale) {
-  for (const std::string& name : impl_->link_names) {
-    SceneStatus status = setLinkScale(name, scale);
-    if (!status.ok()) return status;
-  }
-  return SceneStatus();
+  return setEveryLink(impl_->link_names, [&](const std::string& name) { return setLinkScale(name, scale); });
 }
 
 double CollisionScene::linkPadding(const std::string& link_name) const {

@@ -3,14 +3,10 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cerrno>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -21,6 +17,9 @@
 #include "sixdof_core/ik_analytic.h"
 #include "sixdof_core/ik_solver.h"
 #include "sixdof_core/result.h"
+
+// The collision matrix and its merge into an SRDF; describeModel() is in setup_assistant/describe_model.cpp,
+// the command line of setup_assistant_core in setup_assistant/command_line.cpp.
 
 namespace sixdof_core {
 
@@ -293,222 +292,6 @@ SetupAssistantOutput runSetupAssistant(const std::string& urdf_xml, const std::s
   // What we write must load: this catches a skeleton that does not fit the model.
   RobotModel check(urdf_xml, result.srdf, resolver);
   return result;
-}
-
-namespace {
-
-// A YAML double-quoted scalar: names may hold any character.
-std::string yamlString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\x%02x", static_cast<unsigned char>(c));
-      out += buffer;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-// Shortest text that reads back as the same double (YAML: .inf / -.inf / .nan).
-std::string yamlNumber(double value) {
-  if (std::isnan(value)) return ".nan";
-  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::ostringstream out;
-    out << std::setprecision(precision) << value;
-    if (std::stod(out.str()) == value) return out.str();
-  }
-  std::ostringstream out;
-  out << std::setprecision(17) << value;
-  return out.str();
-}
-
-std::string yamlVector(const Eigen::Vector3d& v) {
-  return "[" + yamlNumber(v.x()) + ", " + yamlNumber(v.y()) + ", " + yamlNumber(v.z()) + "]";
-}
-
-std::string yamlNames(const std::vector<std::string>& names) {
-  std::string out = "[";
-  for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + yamlString(names[i]);
-  return out + "]";
-}
-
-}  // namespace
-
-std::string describeModel(const RobotModel& model, const DisabledCollisions* collisions) {
-  std::ostringstream out;
-  out << "robot: " << yamlString(model.name()) << "\n";
-  out << "root_link: " << yamlString(model.rootLink()) << "\n";
-  out << "links:\n";
-  for (const auto& link : model.links()) {
-    out << "- {name: " << yamlString(link.name) << ", parent_joint: "
-        << (link.parent_joint < 0 ? std::string("null") : yamlString(model.joints()[link.parent_joint].name))
-        << ", geometry: " << (link.collision.shapes.empty() ? "false" : "true") << "}\n";
-  }
-  out << "joints:\n";
-  for (const auto& joint : model.joints()) {
-    out << "- name: " << yamlString(joint.name) << "\n";
-    out << "  type: " << toString(joint.type) << "\n";
-    out << "  parent: " << yamlString(joint.parent_link) << "\n";
-    out << "  child: " << yamlString(joint.child_link) << "\n";
-    out << "  xyz: " << yamlVector(joint.origin.translation()) << "\n";
-    out << "  axis: " << yamlVector(joint.axis) << "\n";
-    out << "  active: " << (joint.isActive() ? "true" : "false") << "\n";
-    if (joint.type != JointType::kFixed) {
-      out << "  bounded: " << (joint.limits.bounded ? "true" : "false") << "\n";
-      out << "  lower: " << yamlNumber(joint.limits.lower) << "\n";
-      out << "  upper: " << yamlNumber(joint.limits.upper) << "\n";
-      out << "  velocity: " << yamlNumber(joint.limits.velocity) << "\n";
-      out << "  effort: " << yamlNumber(joint.limits.effort) << "\n";
-    }
-    if (joint.mimic) {
-      out << "  mimic: {joint: " << yamlString(joint.mimic->joint) << ", multiplier: "
-          << yamlNumber(joint.mimic->multiplier) << ", offset: " << yamlNumber(joint.mimic->offset) << "}\n";
-    }
-  }
-  out << "groups:\n";
-  for (const auto& group : model.groups()) {
-    out << "- name: " << yamlString(group.name) << "\n";
-    out << "  joints: " << yamlNames(group.joints) << "\n";
-    out << "  active_joints: " << yamlNames(group.active_joints) << "\n";
-    out << "  links: " << yamlNames(group.links) << "\n";
-    out << "  chain: " << (group.isChain() ? "true" : "false") << "\n";
-    if (group.isChain()) {
-      out << "  base_link: " << yamlString(group.chain_base) << "\n";
-      out << "  tip_link: " << yamlString(group.chain_tip) << "\n";
-    }
-    // The solver that fits: the closed form where the chain's geometry allows it (what createIkSolver
-    // would build from kinematics.yaml), else the numeric solver; the reason is the analytic solver's own.
-    std::string solver = "none";
-    std::string reason;
-    try {
-      createIkSolver("analytic", model, group.name);
-      solver = "analytic";
-      reason = "6R chain with a spherical wrist: closed-form IK (all solutions)";
-    } catch (const AnalyticIkUnsupported& e) {
-      solver = "numeric";
-      reason = std::string("no closed form: ") + e.what();
-    } catch (const std::exception& e) {
-      reason = std::string("no IK: ") + e.what();
-    }
-    out << "  solver: " << solver << "\n";
-    out << "  solver_reason: " << yamlString(reason) << "\n";
-  }
-  out << "group_states:\n";
-  for (const auto& state : model.groupStates()) {
-    out << "- name: " << yamlString(state.name) << "\n  group: " << yamlString(state.group) << "\n  values: {";
-    bool first = true;
-    for (const auto& [joint, value] : state.values) {
-      out << (first ? "" : ", ") << yamlString(joint) << ": " << yamlNumber(value);
-      first = false;
-    }
-    out << "}\n";
-  }
-  out << "end_effectors:\n";
-  for (const auto& ee : model.endEffectors()) {
-    out << "- {name: " << yamlString(ee.name) << ", parent_link: " << yamlString(ee.parent_link)
-        << ", group: " << yamlString(ee.group) << ", parent_group: " << yamlString(ee.parent_group) << "}\n";
-  }
-  out << "virtual_joints:\n";
-  for (const auto& vj : model.virtualJoints()) {
-    out << "- {name: " << yamlString(vj.name) << ", type: " << yamlString(vj.type)
-        << ", parent_frame: " << yamlString(vj.parent_frame) << ", child_link: " << yamlString(vj.child_link)
-        << "}\n";
-  }
-  if (collisions) {
-    std::map<std::string, size_t> counts;
-    for (const auto& pair : collisions->disabled) ++counts[reasonName(pair.reason)];
-    out << "collisions: {link_pairs: " << collisions->link_pairs << ", samples: " << collisions->samples
-        << ", pair_checks: " << collisions->pair_checks << ", Adjacent: " << counts["Adjacent"]
-        << ", Default: " << counts["Default"] << ", Always: " << counts["Always"] << ", Never: " << counts["Never"]
-        << ", enabled: " << collisions->link_pairs - collisions->disabled.size() << "}\n";
-  }
-  return out.str();
-}
-
-}  // namespace sixdof_core
-
-namespace sixdof_core {
-
-const char* const kSetupAssistantUsage =
-    "usage: setup_assistant_core --urdf FILE [--srdf-in FILE] (--srdf-out FILE | --describe FILE)\n"
-    "                            [--describe FILE] [--density N] [--seed S] [--groups-skeleton]\n"
-    "  The C++ half of `setup_assistant` (the command users run; it also expands xacro and generates\n"
-    "  config packages). The URDF must be expanded (no xacro).\n"
-    "  --urdf FILE         robot description (package:// meshes are found in the folders above the URDF,\n"
-    "                      then via ROS_PACKAGE_PATH)\n"
-    "  --srdf-in FILE      existing SRDF: groups, states, end effectors, virtual/passive joints and\n"
-    "                      disable_collisions entries with other reasons than Adjacent/Default/Always/Never\n"
-    "                      are kept\n"
-    "  --srdf-out FILE     where to write the SRDF (may be the same file as --srdf-in)\n"
-    "  --describe FILE     write the model (links, joints, limits, groups with the IK solver that fits,\n"
-    "                      states, end effectors, collision counts) as YAML; without --srdf-out: of the\n"
-    "                      URDF (+ --srdf-in) model, without sampling\n"
-    "  --density N         random samples for Always/Never (1000 low .. 100000 high; default 10000)\n"
-    "  --seed S            random seed (default 0); the same inputs and seed give the same file\n"
-    "  --groups-skeleton   when the input has no groups: arm = chain root -> last revolute joint's child,\n"
-    "                      gripper = the other movable joints, end effector 'hand'\n";
-
-namespace {
-
-bool parseWholeNumber(const std::string& text, unsigned long long& value) {
-  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0]))) return false;
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtoull(text.c_str(), &end, 10);
-  return errno == 0 && *end == '\0';
-}
-
-}  // namespace
-
-SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string>& args) {
-  SetupAssistantCommand command;
-  std::map<std::string, std::string> values;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg == "--help" || arg == "-h") {
-      command.help = true;
-      return command;
-    }
-    if (arg == "--groups-skeleton") {
-      command.options.groups_skeleton = true;
-    } else if (arg == "--urdf" || arg == "--srdf-in" || arg == "--srdf-out" || arg == "--density" || arg == "--seed" ||
-               arg == "--describe") {
-      if (i + 1 >= args.size()) throw std::invalid_argument(arg + " needs a value");
-      values[arg] = args[++i];
-    } else {
-      throw std::invalid_argument("unknown argument '" + arg + "'");
-    }
-  }
-  if (!values.count("--urdf")) throw std::invalid_argument("--urdf is required");
-  if (!values.count("--srdf-out") && !values.count("--describe")) {
-    throw std::invalid_argument("--srdf-out or --describe is required");
-  }
-  command.urdf_path = values["--urdf"];
-  command.srdf_out_path = values["--srdf-out"];
-  command.describe_path = values["--describe"];
-  if (values.count("--srdf-in")) command.srdf_in_path = values["--srdf-in"];
-  if (values.count("--density")) {
-    unsigned long long density = 0;
-    if (!parseWholeNumber(values["--density"], density) || density == 0) {
-      throw std::invalid_argument("--density must be a whole number > 0, got '" + values["--density"] + "'");
-    }
-    command.options.collision.density = density;
-  }
-  if (values.count("--seed")) {
-    unsigned long long seed = 0;
-    if (!parseWholeNumber(values["--seed"], seed)) {
-      throw std::invalid_argument("--seed must be a whole number >= 0, got '" + values["--seed"] + "'");
-    }
-    command.options.collision.seed = seed;
-  }
-  return command;
 }
 
 SetupAssistantOutput runSetupAssistantOnFiles(const SetupAssistantCommand& command) {

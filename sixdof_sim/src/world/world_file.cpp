@@ -300,47 +300,41 @@ class Parser {
     }
     std::set<std::string> names;
     for (const char* list : {"tables", "objects"}) {
-      const YAML::Node items = root[list];
-      if (!items) continue;
-      if (!items.IsSequence()) fail(items, list, "must be a list");
-      for (size_t i = 0; i < items.size(); ++i) {
-        const std::string context = std::string(list) + "[" + std::to_string(i) + "]";
-        ObjectSpec object = this->object(items[i], context, std::string(list) == "tables");
-        if (!names.insert(object.name).second) fail(items[i], context, "duplicate name '" + object.name + "'");
+      forEachItem(root, list, [&](const YAML::Node& item, const std::string& context) {
+        ObjectSpec object = this->object(item, context, std::string(list) == "tables");
+        if (!names.insert(object.name).second) fail(item, context, "duplicate name '" + object.name + "'");
         spec.objects.push_back(object);
-      }
+      });
     }
-    if (const YAML::Node bins = root["bins"]) {
-      if (!bins.IsSequence()) fail(bins, "bins", "must be a list");
-      std::set<std::string> bin_names;
-      for (size_t i = 0; i < bins.size(); ++i) {
-        const std::string context = "bins[" + std::to_string(i) + "]";
-        if (bins[i].IsMap() && bins[i]["name"] && bins[i]["name"].IsScalar() &&
-            !bin_names.insert(bins[i]["name"].Scalar()).second) {
-          fail(bins[i], context, "duplicate bin name '" + bins[i]["name"].Scalar() + "'");
-        }
-        for (const ObjectSpec& wall : bin(bins[i], context)) {
-          if (!names.insert(wall.name).second) fail(bins[i], context, "duplicate name '" + wall.name + "'");
-          spec.objects.push_back(wall);
-        }
+    std::set<std::string> bin_names;
+    forEachItem(root, "bins", [&](const YAML::Node& item, const std::string& context) {
+      if (item.IsMap() && item["name"] && item["name"].IsScalar() && !bin_names.insert(item["name"].Scalar()).second) {
+        fail(item, context, "duplicate bin name '" + item["name"].Scalar() + "'");
       }
-    }
-    if (const YAML::Node cameras = root["cameras"]) {
-      if (!cameras.IsSequence()) fail(cameras, "cameras", "must be a list");
-      std::set<std::string> camera_names;
-      for (size_t i = 0; i < cameras.size(); ++i) {
-        const std::string context = "cameras[" + std::to_string(i) + "]";
-        CameraSpec camera = this->camera(cameras[i], context);
-        if (!camera_names.insert(camera.name).second) {
-          fail(cameras[i], context, "duplicate camera name '" + camera.name + "'");
-        }
-        spec.cameras.push_back(camera);
+      for (const ObjectSpec& wall : bin(item, context)) {
+        if (!names.insert(wall.name).second) fail(item, context, "duplicate name '" + wall.name + "'");
+        spec.objects.push_back(wall);
       }
-    }
+    });
+    std::set<std::string> camera_names;
+    forEachItem(root, "cameras", [&](const YAML::Node& item, const std::string& context) {
+      CameraSpec camera = this->camera(item, context);
+      if (!camera_names.insert(camera.name).second) fail(item, context, "duplicate camera name '" + camera.name + "'");
+      spec.cameras.push_back(camera);
+    });
     return spec;
   }
 
  private:
+  // Calls item(element, "key[i]") for each element of the list root[key] (none when the key is absent).
+  template <class Item>
+  void forEachItem(const YAML::Node& root, const char* key, const Item& item) const {
+    const YAML::Node items = root[key];
+    if (!items) return;
+    if (!items.IsSequence()) fail(items, key, "must be a list");
+    for (size_t i = 0; i < items.size(); ++i) item(items[i], std::string(key) + "[" + std::to_string(i) + "]");
+  }
+
   std::string source_;
   std::string base_dir_;
 };

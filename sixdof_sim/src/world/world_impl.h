@@ -119,7 +119,6 @@ struct World::Impl {
   WorldOptions options;
   WorldSpec spec;
   RobotDescription robot;
-  MeshCache meshes;
 
   // Bullet, rebuilt from scratch by build() (construction and reset()).
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config;

@@ -1,5 +1,7 @@
 #include "world_impl.h"
 
+#include "sixdof_core/mesh_loader.h"
+
 namespace sixdof_sim {
 
 Result validateObjectSpec(const ObjectSpec& spec) {
@@ -58,18 +60,21 @@ std::unique_ptr<btCollisionShape> World::Impl::makeShape(const Shape& shape, Eig
         throw std::invalid_argument("mesh '" + shape.mesh_resource + "' not found (package search roots: " +
                                     std::to_string(options.package_search_roots.size()) + ")");
       }
-      const std::vector<Eigen::Vector3d>& vertices = meshes.vertices(path);
+      // The core's loader (cached per process, scale applied): the hull needs only the vertices.
+      const sixdof_core::MeshLoadResult loaded = sixdof_core::loadMesh(path, shape.mesh_scale);
+      if (!loaded) throw std::invalid_argument(loaded.message);
+      const std::vector<Eigen::Vector3d>& vertices = loaded.mesh->vertices;
+      if (vertices.size() < 4) throw std::invalid_argument("mesh '" + path + "' has fewer than 4 vertices");
       Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300);
       Eigen::Vector3d hi = Eigen::Vector3d::Constant(-1e300);
       for (const Eigen::Vector3d& v : vertices) {
-        const Eigen::Vector3d p = v.cwiseProduct(shape.mesh_scale);
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
       }
       // The hull is centred on its bounding-box centre (the body's centre of mass approximation).
       *centre = (lo + hi) / 2.0;
       auto hull = std::make_unique<btConvexHullShape>();
-      for (const Eigen::Vector3d& v : vertices) hull->addPoint(toBt(v.cwiseProduct(shape.mesh_scale) - *centre), false);
+      for (const Eigen::Vector3d& v : vertices) hull->addPoint(toBt(v - *centre), false);
       hull->recalcLocalAabb();
       hull->optimizeConvexHull();
       hull->initializePolyhedralFeatures();

@@ -8,20 +8,20 @@
 #include "sixdof_core/ik_kdl.h"
 #include "sixdof_core/ik_numeric.h"
 #include "sixdof_core/ik_solver.h"
+#include "test_models.h"
 
 #include <Eigen/SVD>
 
 namespace sixdof_core {
 namespace {
 
-const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
-const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf";
+using sixdof_test::armModel;
+using sixdof_test::armResolver;
+using sixdof_test::kArmUrdf;
+using sixdof_test::kDataDir;
+using sixdof_test::urModel;
+
 constexpr double kPoseTolerance = 1e-5;
-
-// The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
-PackageResolver armResolver() { return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}}); }
-
-RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver()); }
 
 // The provisional URDF writes pi/2 as 1.5708, so its wrist axes meet only to 3e-7 m and the closed
 // form needs refinement; this variant has exact angles, where the closed form is exact.
@@ -31,11 +31,6 @@ RobotModelConstPtr exactArmModel() {
     urdf.replace(at, 6, "1.5707963267948966");
   }
   return std::make_shared<const RobotModel>(urdf, readTextFile(kDataDir + "/sixdof.srdf"), armResolver());
-}
-
-RobotModelConstPtr urModel() {
-  return RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf",
-                               PackageResolver::fromSearchRoots({kDataDir + "/../../.."}));
 }
 
 // Attempt budgets instead of time budgets keep the tests independent of machine speed.

@@ -4,24 +4,16 @@
 
 #include "sixdof_core/kinematics.h"
 #include "sixdof_core/robot_model.h"
+#include "test_models.h"
 
 namespace sixdof_core {
 namespace {
 
-const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
-const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf";
+using sixdof_test::armModel;
+using sixdof_test::urModel;
+
 // The provisional URDF writes pi/2 as 1.5708: hand-computed poses agree to this.
 constexpr double kHandTolerance = 1e-5;
-
-// The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
-PackageResolver armResolver() { return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}}); }
-
-RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver()); }
-
-RobotModelConstPtr urModel() {
-  return RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf",
-                               PackageResolver::fromSearchRoots({kDataDir + "/../../.."}));
-}
 
 Eigen::VectorXd arm(double q1, double q2, double q3, double q4, double q5, double q6) {
   Eigen::VectorXd q(6);

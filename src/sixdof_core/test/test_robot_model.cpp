@@ -5,22 +5,16 @@
 #include <string>
 
 #include "sixdof_core/robot_model.h"
+#include "test_models.h"
 
 namespace sixdof_core {
 namespace {
 
-const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
-const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf";
-
-PackageResolver testResolver() {
-  // test/data -> sixdof_core -> src: the folder that holds the sixdof_core package.
-  return PackageResolver::fromSearchRoots({kDataDir + "/../../.."});
-}
-
-// The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
-PackageResolver armResolver() { return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}}); }
-
-RobotModelConstPtr armModel() { return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver()); }
+using sixdof_test::armModel;
+using sixdof_test::armResolver;
+using sixdof_test::kArmUrdf;
+using sixdof_test::kDataDir;
+using sixdof_test::testResolver;
 
 // Expects constructing the arm model with `srdf` to throw a RobotModelError mentioning `needle`.
 void expectSrdfError(const std::string& srdf, const std::string& needle) {

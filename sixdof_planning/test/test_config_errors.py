@@ -120,6 +120,34 @@ class ConfigErrorsTest(unittest.TestCase):
             dict(self.good, **{"move_group/simplify_solutions": "yes"}), "simplify_solutions", "is not a bool"
         )
 
+    def test_bad_occupancy_map_sensors(self) -> None:
+        """The occupancy map monitor's parameters (sensor_manager.launch.xml, sensors_3d.yaml)."""
+        sensor = {
+            "sensor_plugin": "occupancy_map_monitor/PointCloudOctomapUpdater",
+            "point_cloud_topic": "/cam/depth/points",
+        }
+        cases = (
+            ({"octomap_resolution": -0.01}, ("move_group/octomap_resolution", "must be > 0")),
+            ({"max_range": "far"}, ("move_group/max_range", "is not a number")),
+            ({"sensors": {"a": sensor}}, ("move_group/sensors", "must be a list")),
+            (
+                {"sensors": [dict(sensor, sensor_plugin="occupancy_map_monitor/DepthImageOctomapUpdater")]},
+                ("sensors[0]/sensor_plugin", "'occupancy_map_monitor/DepthImageOctomapUpdater' is not supported"),
+            ),
+            ({"sensors": [{"point_cloud_topic": "/cam"}]}, ("missing parameter", "sensors[0]/sensor_plugin")),
+            (
+                {"sensors": [sensor, {"sensor_plugin": sensor["sensor_plugin"]}]},
+                ("missing parameter", "sensors[1]/point_cloud_topic"),
+            ),
+            ({"sensors": [dict(sensor, padding_offset=-0.1)]}, ("sensors[0]/padding_offset", "must be >= 0")),
+            ({"sensors": [dict(sensor, point_subsample=1.5)]}, ("sensors[0]/point_subsample", "integer")),
+            ({"sensors": [dict(sensor, max_rang=2.0)]}, ("unknown parameter", "sensors[0]/max_rang")),
+        )
+        # A plain loop, not subTest: rosunit drops failed subTests from its report.
+        for params, fragments in cases:
+            private = {f"move_group/{key}": value for key, value in params.items()}
+            self.assert_refused(dict(self.good, **private), *fragments)
+
     def test_default_robot_padding_grows_the_links(self) -> None:
         """A 2 cm box 3 cm beyond the tool is clear of the arm, unless every link is padded by 5 cm."""
         answers = {}

@@ -20,9 +20,10 @@ Private parameters:
   ~update_scene        keep move_group's planning scene equal to what is seen (true)
   ~position_threshold  m: MOVE a scene object when its detection moved more than this (0.003)
   ~angle_threshold     rad: ... or turned more than this (0.05)
+  ~wait_for_move_group s (wall clock) to wait for move_group's services (60; 0: forever); the robot model (planning
+                       frame, end effectors) comes from move_group's get_robot_model
 """
 
-import math
 import sys
 import threading
 import time
@@ -32,17 +33,15 @@ import rospy
 import tf2_ros
 import yaml
 from sensor_msgs.msg import PointCloud2
-from sixdof_commander import SixdofCommanderError
 from sixdof_commander.mesh import load_stl
-from sixdof_commander.planning_scene import default_touch_links, resolve_resource
-from sixdof_commander.robot_model import parse_srdf, parse_urdf
+from sixdof_commander.planning_scene import resolve_resource
 from std_msgs.msg import Header
 from visualization_msgs.msg import Marker, MarkerArray
 
 from sixdof_bringup.markers import object_marker
 from sixdof_bringup.mirror import SceneMirror, SceneSnapshot, SimObjectState, template_from_sim_object
-from sixdof_msgs.msg import DetectedObjectArray, PlanningScene
-from sixdof_msgs.srv import ApplyPlanningScene, GetPlanningScene
+from sixdof_bringup.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
+from sixdof_msgs.msg import DetectedObjectArray
 from sixdof_perception import world as world_file
 from sixdof_perception.detection import Box, Detection, DetectorParams, detect_objects
 from sixdof_perception.ros_conversions import (
@@ -55,13 +54,6 @@ from sixdof_perception.ros_conversions import (
 )
 from sixdof_perception.self_filter import hand_box, link_boxes, posed_boxes
 from sixdof_perception.tracking import Tracker
-
-
-def number_param(name: str, default: float, minimum: float = 0.0) -> float:
-    value = rospy.get_param(name, default)
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value <= minimum:
-        raise ValueError(f"parameter {rospy.resolve_name(name)} must be a number > {minimum:g}, got {value!r}")
-    return float(value)
 
 
 def load_vertices(uri: str, scale: list[float]) -> np.ndarray:
@@ -90,25 +82,29 @@ class PerceptionNode:
             if not cameras:
                 raise ValueError(f"world file {path} has no cameras and ~camera is not set")
             camera = cameras[0]
-        self.rate = number_param("~rate", 5.0)
+        self.rate = number_param("~rate", 5.0, inclusive=False)
         forget_after = rospy.get_param("~forget_after", 5)
-        self.tracker = Tracker(gate=number_param("~gate", 0.04), forget_after=forget_after)
+        self.tracker = Tracker(gate=number_param("~gate", 0.04, inclusive=False), forget_after=forget_after)
         self.update_scene = bool(rospy.get_param("~update_scene", True))
         self.params = DetectorParams()
-        urdf_text = rospy.get_param("robot_description")
-        urdf = parse_urdf(urdf_text)
-        srdf = parse_srdf(rospy.get_param("robot_description_semantic"))
-        self.planning_frame = srdf.virtual_joint_parent or urdf.root_link
+        # Checked before waiting for move_group: a bad value fails at once.
+        hand_padding = number_param("~hand_padding", 0.02, inclusive=False)
+        position_threshold = number_param("~position_threshold", 0.003, inclusive=False)
+        angle_threshold = number_param("~angle_threshold", 0.05, inclusive=False)
+        self.move_group = MoveGroupScene("perception", number_param("~wait_for_move_group", MOVE_GROUP_WAIT))
+        robot = self.move_group.robot
+        self.planning_frame = robot.planning_frame
         # Self filter: every link's geometry box, and one box around each hand (a held object is inside it).
-        self.link_boxes = link_boxes(urdf_text, load_vertices)
-        self.hands = [(eef.parent_link, default_touch_links(urdf, srdf, eef.parent_link)) for eef in srdf.end_effectors]
-        self.hand_padding = number_param("~hand_padding", 0.02)
+        # The shapes come from robot_description (the model service carries no geometry); the hands from the model.
+        self.link_boxes = link_boxes(rospy.get_param("robot_description"), load_vertices)
+        self.hands = [(eef.parent_link, robot.touch_links(eef.parent_link)) for eef in robot.srdf.end_effectors]
+        self.hand_padding = hand_padding
         self.mirror = SceneMirror(
             shapes={},
             planning_frame=self.planning_frame,
             touch_links=lambda _link: [],
-            position_threshold=number_param("~position_threshold", 0.003),
-            angle_threshold=number_param("~angle_threshold", 0.05),
+            position_threshold=position_threshold,
+            angle_threshold=angle_threshold,
             grace=0.0,
         )
         self.static_states = []
@@ -120,12 +116,6 @@ class PerceptionNode:
         self.was_attached: set[str] = set()
         self.tf_buffer = tf2_ros.Buffer(cache_time=rospy.Duration(30.0))
         self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
-        if self.update_scene:
-            for service in ("get_planning_scene", "apply_planning_scene"):
-                rospy.loginfo("perception: waiting for %s", rospy.resolve_name(service))
-                rospy.wait_for_service(service)
-            self.get_scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
-            self.apply = rospy.ServiceProxy("apply_planning_scene", ApplyPlanningScene)
         self.detected_pub = rospy.Publisher("detected_objects", DetectedObjectArray, queue_size=1, latch=True)
         self.marker_pub = rospy.Publisher("detected_objects/markers", MarkerArray, queue_size=1, latch=True)
         self.lock = threading.Lock()
@@ -171,7 +161,7 @@ class PerceptionNode:
         attached: dict[str, str] = {}
         world_poses = {}
         if self.update_scene:
-            scene = self.get_scene().scene
+            scene = self.move_group.scene()
             attached = {a.object.id: a.link_name for a in scene.robot_state.attached_collision_objects}
             world_poses = {o.id: o.pose for o in scene.world.collision_objects}
         held: dict[str, tuple[float, float, float] | None] = {}
@@ -236,41 +226,8 @@ class PerceptionNode:
         updates = self.mirror.update(states, snapshot, time.monotonic())
         # An object attached in the scene that the tracker forgot is still held: never detach it here.
         updates.attached_objects = [a for a in updates.attached_objects if a.object.id not in attached]
-        if updates.empty():
-            return
-        diff = PlanningScene(is_diff=True)
-        diff.robot_state.is_diff = True
-        diff.world.collision_objects = updates.world_objects
-        diff.robot_state.attached_collision_objects = updates.attached_objects
-        response = self.apply(diff)
-        if not response.success:
-            rospy.logwarn("perception: apply_planning_scene failed: %s", response.error_code.message)
-
-    def spin(self) -> None:
-        period = 1.0 / self.rate
-        while not rospy.is_shutdown():
-            start = time.monotonic()
-            try:
-                self.cycle()
-            except (rospy.ServiceException, rospy.ROSException, tf2_ros.TransformException, ValueError) as err:
-                if rospy.is_shutdown():
-                    break
-                rospy.logwarn_throttle(5.0, f"perception: {err}")
-            time.sleep(max(0.0, period - (time.monotonic() - start)))
-
-
-def main() -> int:
-    rospy.init_node("perception")
-    try:
-        node = PerceptionNode()
-    except (ValueError, KeyError, OSError, yaml.YAMLError, SixdofCommanderError) as err:
-        rospy.logfatal("perception: %s", err)
-        return 1
-    except rospy.ROSInterruptException:
-        return 0
-    node.spin()
-    return 0
+        self.move_group.apply(updates)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run("perception", PerceptionNode, (tf2_ros.TransformException, ValueError)))

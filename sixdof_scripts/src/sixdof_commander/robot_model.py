@@ -4,7 +4,9 @@ The model comes from move_group's `get_robot_model` service (`model_from_respons
 RobotModel is the project's only URDF/SRDF reader, so the commander agrees with the planner, the simulator and
 rviz on joint order, limits (a continuous joint: `bounded` False, nominal limits -pi..pi) and groups, as
 moveit_commander gets them from MoveIt's C++ RobotModel. `parse_urdf` / `parse_srdf` read files for offline unit
-tests only, following the same conventions.
+tests only, following the same conventions: they build the models of the pure-logic tests (goals, grasp reach,
+moveit_commander helpers) that run without a move_group; no node or API path calls them (scene_mirror and the
+perception node ask move_group too, through sixdof_bringup.scene_node).
 
 Only what the commander needs: which joints a group moves (in order), their limits, the group's tip and
 end-effector links, the named states, and fixed offsets between links (link6 -> tcp).

@@ -1,7 +1,9 @@
 """Plain-numpy kinematics and trajectory helpers of the commander (no ROS communication, unit-testable).
 
-Forward kinematics and the geometric Jacobian of a group from the parsed URDF, clamping a state into the
-joint limits, and an iterative parabolic time parameterization of a joint path.
+Forward kinematics and the geometric Jacobian of a group from the robot model move_group serves
+(get_robot_model: joint origins, axes and types as the core's RobotModel reads them; the rostest
+robot_model_query checks the Jacobian against finite differences of move_group's compute_fk), clamping a state
+into the joint limits, and an iterative parabolic time parameterization of a joint path.
 """
 
 from __future__ import annotations

@@ -2,7 +2,8 @@
 """rostest: the commander's robot model comes from move_group's get_robot_model and agrees, on the shared
 joint-kinds fixture, with what sixdof_core, sixdof_sim and sixdof_rviz test (test_joint_kinds): the link and
 joint order, a continuous joint unbounded with the nominal -pi..pi, prismatic limits, the mimic finger, the fixed
-mount link and the link without geometry or inertia, groups, named states and the end effector."""
+mount link and the link without geometry or inertia, groups, named states and the end effector; and that the
+Jacobian computed from that model (get_jacobian_matrix) is the derivative of move_group's forward kinematics."""
 
 import math
 import unittest
@@ -11,8 +12,13 @@ import numpy as np
 import rospy
 import rostest
 from moveit_commander import RobotCommander
+from sixdof_commander import MoveGroup
 from sixdof_commander._ros import query_robot_model
 from sixdof_commander.robot_model import resolve_group
+from sixdof_commander.transforms import matrix_from_pose
+
+from sixdof_msgs.msg import RobotState
+from sixdof_msgs.srv import GetPositionFK
 
 LINKS = ["mount", "base_link", "turntable", "carriage", "head", "sensor_frame", "left_finger", "right_finger"]
 
@@ -51,6 +57,34 @@ class RobotModelQuery(unittest.TestCase):
         self.assertEqual(self.urdf.joints["sensor_joint"].type, "fixed")
         # The lift's origin as the URDF gives it, in the turntable frame.
         np.testing.assert_allclose(self.urdf.joints["lift"].origin[:3, 3], [0.1, 0.0, 0.05], atol=1e-12)
+
+    def test_jacobian_is_the_derivative_of_move_groups_forward_kinematics(self):
+        # Continuous, prismatic and revolute columns, at a point off the tip link's origin.
+        arm = MoveGroup("arm", wait_for_servers=60.0)
+        fk = rospy.ServiceProxy("compute_fk", GetPositionFK)
+        point = np.array([0.1, 0.02, -0.03, 1.0])
+        names = arm.get_active_joints()
+
+        def pose(values):
+            # No joint_states here: the state names every variable (the gripper's at 0).
+            state = RobotState(is_diff=False)
+            state.joint_state.name, state.joint_state.position = [*names, "finger_left"], [*values, 0.0]
+            response = fk(fk_link_names=["head"], robot_state=state)
+            self.assertEqual(response.error_code.val, response.error_code.SUCCESS, response.error_code.message)
+            return matrix_from_pose(response.pose_stamped[0].pose)
+
+        step = 1e-6
+        for values in ([0.0, 0.1, 0.0], [2.5, 0.27, -1.2], [-3.0, 0.05, 1.4]):
+            jacobian = arm.get_jacobian_matrix(values, list(point[:3]))
+            self.assertEqual(jacobian.shape, (6, 3))
+            base = pose(values)
+            for column in range(3):
+                shifted = list(values)
+                shifted[column] += step
+                moved = pose(shifted)
+                np.testing.assert_allclose(jacobian[:3, column], (moved @ point - base @ point)[:3] / step, atol=1e-5)
+                spin = (moved[:3, :3] - base[:3, :3]) / step @ base[:3, :3].T
+                np.testing.assert_allclose(jacobian[3:, column], [spin[2, 1], spin[0, 2], spin[1, 0]], atol=1e-5)
 
     def test_groups_states_and_end_effector(self):
         arm = resolve_group(self.urdf, self.srdf, "arm")

@@ -70,6 +70,10 @@ class ArmDriver:
 
     Motions return True on success and False on planning/execution failure; `last_failure` then says
     what failed. Misuse raises SixdofCommanderError.
+
+    The gripper is optional: when move_group's model has no group `gripper_group`, `gripper` is None, the arm
+    motions work and the gripper methods (gripper_open/close, grasp, pick, place, grasp_spec) raise
+    SixdofCommanderError naming the missing group.
     """
 
     def __init__(
@@ -100,11 +104,17 @@ class ArmDriver:
         self.arm = MoveGroup(group_name, ns=ns, wait_for_servers=wait_for_servers)
         self.arm.set_max_velocity_scaling_factor(velocity)
         self.arm.set_max_acceleration_scaling_factor(acceleration)
-        self.gripper = Gripper(ns=ns, group_name=gripper_group, wait_for_servers=wait_for_servers)
+        groups = self.arm.semantic_description.groups
+        self._no_gripper = "" if gripper_group in groups else (
+            f"the robot has no gripper: its SRDF has no group '{gripper_group}' (groups: {sorted(groups)})"
+        )
+        self.gripper: Gripper | None = None
+        if not self._no_gripper:
+            self.gripper = Gripper(ns=ns, group_name=gripper_group, wait_for_servers=wait_for_servers)
         self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
         self.cartesian_step = 0.005
         self.last_failure = ""
-        self._spec = self._grasp_spec(gripper_group)
+        self._spec = self._grasp_spec(gripper_group) if self.gripper is not None else None
         self._object_state = None
         self._held: _Held | None = None
         self._object_in_tcp: np.ndarray | None = None
@@ -115,7 +125,13 @@ class ArmDriver:
     def grasp_spec(self) -> GraspSpec:
         """The gripper's grasp geometry (tcp in the tip link, finger axis, opening) read from the URDF/SRDF,
         for callers that grasp objects located by other means than the simulator (e.g. a camera)."""
-        return self._spec
+        return self._require_gripper("grasp_spec")[1]
+
+    def _require_gripper(self, what: str) -> tuple[Gripper, GraspSpec]:
+        """The gripper and its grasp geometry; SixdofCommanderError naming the missing group on a gripperless robot."""
+        if self.gripper is None or self._spec is None:
+            raise SixdofCommanderError(f"ArmDriver.{what}: {self._no_gripper}")
+        return self.gripper, self._spec
 
     def _grasp_spec(self, gripper_group: str) -> GraspSpec:
         urdf, srdf = self.arm.robot_description, self.arm.semantic_description
@@ -168,15 +184,16 @@ class ArmDriver:
 
     def gripper_open(self) -> bool:
         """Open the gripper; True when the fingers reached the 'open' position."""
-        result = self.gripper.open()
+        result = self._require_gripper("gripper_open")[0].open()
         if not result.reached_goal:
             return self._fail(f"gripper did not open (position {result.position:.4f}, stalled {result.stalled})")
         return True
 
     def gripper_close(self) -> bool:
         """Close the gripper; True when it stopped on something (did not close on empty air)."""
-        result = self.gripper.close()
-        if result.position <= self.gripper.close_position + 0.001:
+        gripper = self._require_gripper("gripper_close")[0]
+        result = gripper.close()
+        if result.position <= gripper.close_position + 0.001:
             return self._fail(f"gripper closed on nothing (position {result.position:.4f})")
         return True
 
@@ -233,12 +250,13 @@ class ArmDriver:
     # Pick and place, in the paper's stages ------------------------------------------------------------
     def grasp(self, object_name: str) -> bool:
         """'pick pose': open, move above the object, descend straight and close the gripper on it."""
+        _, spec = self._require_gripper("grasp")
         if self._held is not None:
             raise SixdofCommanderError(f"already holding '{self._held.name}': place it first")
         state = self.get_object_state(object_name)
         geometry = object_geometry(matrix_from_pose(state.object.pose), state.object.shape)
-        tcp, _ = grasp_tcp_pose(geometry, self._spec)
-        grasp_tip = tip_pose(tcp, self._spec)
+        tcp, _ = grasp_tcp_pose(geometry, spec)
+        grasp_tip = tip_pose(tcp, spec)
         if not self.gripper_open():
             return False
         if not self.moveto_pose(pose_from_matrix(raised(grasp_tip, self.approach_distance))):
@@ -257,13 +275,14 @@ class ArmDriver:
 
     def lift(self) -> bool:
         """'after pick pose': lift the grasped object straight up by the approach distance."""
+        _, spec = self._require_gripper("lift")
         held = self._require_held("lift")
         # Leaving the support surface: the object starts in contact with it.
         if not self.move_straight(raised(self._current_tip(), self.approach_distance), "lift", avoid_collisions=False):
             return False
         # Where the object really sits in the hand (it may have shifted while closing and lifting).
         obj = matrix_from_pose(self.get_object_state(held.name).object.pose)
-        tcp = self._current_tip() @ self._spec.tcp_in_tip
+        tcp = self._current_tip() @ spec.tcp_in_tip
         self._object_in_tcp = np.linalg.inv(tcp) @ obj[:, 3]
         return True
 
@@ -273,12 +292,13 @@ class ArmDriver:
 
     def release_at(self, position: Sequence[float]) -> bool:
         """'place pose': carry the held object above position [x, y, z] (its centre), descend and open."""
+        _, spec = self._require_gripper("place")
         held = self._require_held("place")
         target = self._check_position(position, held)
         if self._object_in_tcp is None:
             raise SixdofCommanderError("place: lift() the object first (its position in the hand is unknown)")
-        tcp = place_tcp_pose(target, self._object_in_tcp, self._spec.clearance)
-        place_tip = tip_pose(tcp, self._spec)
+        tcp = place_tcp_pose(target, self._object_in_tcp, spec.clearance)
+        place_tip = tip_pose(tcp, spec)
         if not self.moveto_pose(pose_from_matrix(raised(place_tip, self.approach_distance))):
             return False
         if not self.move_straight(place_tip, "place descent", avoid_collisions=False):

@@ -11,24 +11,10 @@
 namespace sixdof_planning {
 
 namespace {
-const char* typeName(sixdof_core::JointType type) {
-  switch (type) {
-    case sixdof_core::JointType::kRevolute:
-      return "revolute";
-    case sixdof_core::JointType::kContinuous:
-      return "continuous";
-    case sixdof_core::JointType::kPrismatic:
-      return "prismatic";
-    case sixdof_core::JointType::kFixed:
-      break;
-  }
-  return "fixed";
-}
-
 sixdof_msgs::RobotModelJoint toMsg(const sixdof_core::JointModel& joint) {
   sixdof_msgs::RobotModelJoint msg;
   msg.name = joint.name;
-  msg.type = typeName(joint.type);
+  msg.type = sixdof_core::toString(joint.type);
   msg.parent_link = joint.parent_link;
   msg.child_link = joint.child_link;
   msg.origin = eigenToPose(joint.origin);

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 
 #include "../test/test_collision_urdf_arm.h"
@@ -79,17 +78,7 @@ int main(int argc, char** argv) {
   }
   scene.setAllowed("base_link", "table", true);  // the robot stands on the table
 
-  std::mt19937 rng(42);
-  std::vector<std::vector<Eigen::Isometry3d>> states;
-  for (int k = 0; k < 4096; ++k) {
-    std::map<std::string, double> values;
-    for (const auto& [name, joint] : arm.model->joints_) {
-      if (joint->limits && !joint->mimic) {
-        values[name] = std::uniform_real_distribution<double>(joint->limits->lower, joint->limits->upper)(rng);
-      }
-    }
-    states.push_back(arm.poses(values));
-  }
+  const std::vector<std::vector<Eigen::Isometry3d>> states = arm.randomPoses(4096, 42);
   long colliding = 0;
   for (const auto& s : states) colliding += scene.isColliding(s);
 

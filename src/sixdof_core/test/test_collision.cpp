@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <random>
 #include <thread>
 
 #include "sixdof_core/collision.h"
@@ -177,17 +176,9 @@ TEST(CollisionScene, HomeIsFreeFoldedArmCollides) {
 }
 
 void expectQueriesAgree(const sixdof_test::UrdfArm& arm, const CollisionScene& scene) {
-  std::mt19937 rng(7);
   int colliding = 0;
   const int n = 1000;
-  for (int k = 0; k < n; ++k) {
-    std::map<std::string, double> values;
-    for (const auto& [name, joint] : arm.model->joints_) {
-      if (joint->limits && !joint->mimic) {
-        values[name] = std::uniform_real_distribution<double>(joint->limits->lower, joint->limits->upper)(rng);
-      }
-    }
-    const auto poses = arm.poses(values);
+  for (const auto& poses : arm.randomPoses(n, 7)) {
     const bool hit = scene.isColliding(poses);
     colliding += hit;
     EXPECT_EQ(hit, scene.checkCollision(poses).colliding);
@@ -597,17 +588,7 @@ TEST(CollisionScene, ConstQueriesAreThreadSafe) {
   ASSERT_TRUE(scene.addWorldObject(object("table", box(1.2, 1.2, 0.05), at(0.3, 0, -0.025))).ok());
   ASSERT_TRUE(scene.addWorldObject(object("cube", mesh(writeCubeObj("thread_cube.obj")), at(0.3, 0.2, 0.3))).ok());
   ASSERT_TRUE(scene.setAllowed("base_link", "table", true).ok());
-  std::mt19937 rng(3);
-  std::vector<std::vector<Eigen::Isometry3d>> states;
-  for (int k = 0; k < 300; ++k) {
-    std::map<std::string, double> values;
-    for (const auto& [name, joint] : arm.model->joints_) {
-      if (joint->limits && !joint->mimic) {
-        values[name] = std::uniform_real_distribution<double>(joint->limits->lower, joint->limits->upper)(rng);
-      }
-    }
-    states.push_back(arm.poses(values));
-  }
+  const std::vector<std::vector<Eigen::Isometry3d>> states = arm.randomPoses(300, 3);
   std::vector<char> expected;
   for (const auto& s : states) expected.push_back(scene.isColliding(s));
   const CollisionScene& shared = scene;

@@ -4,6 +4,7 @@
 #include <functional>
 #include <stdexcept>
 #include <map>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,6 +71,22 @@ struct UrdfArm {
       }
     };
     visit(model->getRoot());
+  }
+
+  // `count` sets of link poses at joint values drawn uniformly within the limits (mimic joints follow), from `seed`.
+  std::vector<std::vector<Eigen::Isometry3d>> randomPoses(int count, unsigned seed) const {
+    std::mt19937 rng(seed);
+    std::vector<std::vector<Eigen::Isometry3d>> states;
+    for (int k = 0; k < count; ++k) {
+      std::map<std::string, double> values;
+      for (const auto& [name, joint] : model->joints_) {
+        if (joint->limits && !joint->mimic) {
+          values[name] = std::uniform_real_distribution<double>(joint->limits->lower, joint->limits->upper)(rng);
+        }
+      }
+      states.push_back(poses(values));
+    }
+    return states;
   }
 
   // World poses of all links (in `order`) for the given joint values (missing joints = 0, mimics follow).

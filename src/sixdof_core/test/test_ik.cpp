@@ -15,12 +15,6 @@
 namespace sixdof_core {
 namespace {
 
-using sixdof_test::armModel;
-using sixdof_test::armResolver;
-using sixdof_test::kArmUrdf;
-using sixdof_test::kDataDir;
-using sixdof_test::urModel;
-
 constexpr double kPoseTolerance = 1e-5;
 
 // The provisional URDF writes pi/2 as 1.5708, so its wrist axes meet only to 3e-7 m and the closed

@@ -9,9 +9,6 @@
 namespace sixdof_core {
 namespace {
 
-using sixdof_test::armModel;
-using sixdof_test::urModel;
-
 // The provisional URDF writes pi/2 as 1.5708: hand-computed poses agree to this.
 constexpr double kHandTolerance = 1e-5;
 

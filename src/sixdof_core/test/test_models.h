@@ -5,27 +5,28 @@
 
 #include "sixdof_core/robot_model.h"
 
-namespace sixdof_test {
+// In namespace sixdof_core, where the tests are, so that they name these without a using-declaration.
+namespace sixdof_core {
 
 inline const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
 inline const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf";
 
 // The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
-inline sixdof_core::PackageResolver armResolver() {
-  return sixdof_core::PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}});
+inline PackageResolver armResolver() {
+  return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}});
 }
 
-inline sixdof_core::RobotModelConstPtr armModel() {
-  return sixdof_core::RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver());
+inline RobotModelConstPtr armModel() {
+  return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver());
 }
 
 // test/data -> sixdof_core -> src: the folder that holds the sixdof_core package (the UR-like meshes).
-inline sixdof_core::PackageResolver testResolver() {
-  return sixdof_core::PackageResolver::fromSearchRoots({kDataDir + "/../../.."});
+inline PackageResolver testResolver() {
+  return PackageResolver::fromSearchRoots({kDataDir + "/../../.."});
 }
 
-inline sixdof_core::RobotModelConstPtr urModel() {
-  return sixdof_core::RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf", testResolver());
+inline RobotModelConstPtr urModel() {
+  return RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf", testResolver());
 }
 
-}  // namespace sixdof_test
+}  // namespace sixdof_core

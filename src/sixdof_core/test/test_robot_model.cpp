@@ -10,12 +10,6 @@
 namespace sixdof_core {
 namespace {
 
-using sixdof_test::armModel;
-using sixdof_test::armResolver;
-using sixdof_test::kArmUrdf;
-using sixdof_test::kDataDir;
-using sixdof_test::testResolver;
-
 // Expects constructing the arm model with `srdf` to throw a RobotModelError mentioning `needle`.
 void expectSrdfError(const std::string& srdf, const std::string& needle) {
   const std::string urdf = readTextFile(kArmUrdf);

@@ -171,29 +171,39 @@ TEST(Camera, ClipRangeAndSeededNoise) {
   noisy.name = "noisy";
   noisy.depth_noise_stddev = 0.01;
   noisy.seed = 7;
-  Scene s({near_cut, far_cut, noisy});
+  // Depth-proportional noise alone: its standard deviation 0.0111 * depth^2 = 0.01 m at the box's face.
+  CameraSpec quadratic = frontCamera();
+  quadratic.name = "quadratic";
+  quadratic.depth_noise_quadratic = 0.01 / (kFace * kFace);
+  quadratic.seed = 7;
+  Scene s({near_cut, far_cut, noisy, quadratic});
   CameraFrame f;
   for (size_t i : {0u, 1u}) {
     s.renderer.render(i, &f);
     EXPECT_TRUE(std::isnan(depthAt(f, 320, 240))) << s.renderer.cameras()[i].name;
     EXPECT_GT(rgbAt(f, 320, 240)[0], 200);  // the colour image still shows the box
   }
-  s.renderer.render(2, &f);
-  double sum = 0.0, sum2 = 0.0;
-  int n = 0;
-  for (int v = 200; v < 280; ++v) {
-    for (int u = 290; u < 350; ++u) {
-      const double e = depthAt(f, u, v) - kFace;
-      sum += e, sum2 += e * e, ++n;
+  std::vector<float> first_noisy;  // camera 2's first frame
+  for (size_t i : {2u, 3u}) {
+    s.renderer.render(i, &f);
+    if (i == 2u) first_noisy = f.depth;
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (int v = 200; v < 280; ++v) {
+      for (int u = 290; u < 350; ++u) {
+        const double e = depthAt(f, u, v) - kFace;
+        sum += e, sum2 += e * e, ++n;
+      }
     }
+    EXPECT_NEAR(sum / n, 0.0, 1e-3) << s.renderer.cameras()[i].name;
+    EXPECT_NEAR(std::sqrt(sum2 / n), 0.01, 1e-3) << s.renderer.cameras()[i].name;
   }
-  EXPECT_NEAR(sum / n, 0.0, 1e-3);
-  EXPECT_NEAR(std::sqrt(sum2 / n), 0.01, 1e-3);
   // The same seed and frame index: the same noise.
   Scene again({near_cut, far_cut, noisy});
   CameraFrame g;
   again.renderer.render(2, &g);
-  EXPECT_EQ(std::memcmp(f.depth.data(), g.depth.data(), 4 * f.depth.size()), 0);
+  ASSERT_EQ(first_noisy.size(), g.depth.size());
+  EXPECT_EQ(std::memcmp(first_noisy.data(), g.depth.data(), 4 * g.depth.size()), 0);
 }
 
 TEST(Camera, CameraOnALinkFollowsIt) {
@@ -246,7 +256,8 @@ TEST(CameraConfig, ParsesEveryKey) {
   const WorldSpec spec = parseWorldYaml(R"(
 cameras:
   - {name: top, position: [0.5, 0, 1], rpy: [0, 1.5707963267948966, 0], width: 320, height: 240,
-     horizontal_fov_deg: 90, rate: 30, near: 0.2, far: 3, depth_noise_stddev: 0.002, seed: 3}
+     horizontal_fov_deg: 90, rate: 30, near: 0.2, far: 3, depth_noise_stddev: 0.002, depth_noise_quadratic: 0.001,
+     seed: 3}
   - {name: wrist, parent: some_link, position: [0, 0, 0.05]}
 )");
   ASSERT_EQ(spec.cameras.size(), 2u);
@@ -262,6 +273,7 @@ cameras:
   EXPECT_EQ(top.near_clip, 0.2);
   EXPECT_EQ(top.far_clip, 3.0);
   EXPECT_EQ(top.depth_noise_stddev, 0.002);
+  EXPECT_EQ(top.depth_noise_quadratic, 0.001);
   EXPECT_EQ(top.seed, 3u);
   EXPECT_EQ(spec.cameras[1].parent_link, "some_link");
   EXPECT_EQ(spec.cameras[1].width, 640);  // defaults
@@ -278,6 +290,7 @@ TEST(CameraConfig, BadValuesNameTheKey) {
   expectRefused("{name: c, position: [0, 0, 1], near: 0}", "'near'");
   expectRefused("{name: c, position: [0, 0, 1], rate: 0}", "'rate'");
   expectRefused("{name: c, position: [0, 0, 1], depth_noise_stddev: -1}", "'depth_noise_stddev'");
+  expectRefused("{name: c, position: [0, 0, 1], depth_noise_quadratic: -0.001}", "'depth_noise_quadratic'");
   expectRefused("{name: c, position: [0, 0, 1], fov: 60}", "unknown key 'fov'");
   expectRefused("{name: 'my cam', position: [0, 0, 1]}", "'name'");
   expectRefused("{name: c}", "'position'");

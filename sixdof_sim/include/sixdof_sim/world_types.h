@@ -119,6 +119,8 @@ struct CameraSpec {
   double near_clip = 0.05;           // m: depth is NaN outside [near_clip, far_clip]
   double far_clip = 5.0;             // m
   double depth_noise_stddev = 0.0;   // m, Gaussian, added to every valid depth
+  // 1/m: the noise's standard deviation grows by this times depth^2 (stereo and structured-light sensors).
+  double depth_noise_quadratic = 0.0;
   std::uint64_t seed = 0;            // of the depth noise
 };
 

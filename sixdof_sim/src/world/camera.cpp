@@ -175,6 +175,9 @@ Result validateCameraSpec(const CameraSpec& c) {
   if (!(c.depth_noise_stddev >= 0.0) || !std::isfinite(c.depth_noise_stddev)) {
     return bad("'depth_noise_stddev' must be >= 0 (m), got " + text(c.depth_noise_stddev));
   }
+  if (!(c.depth_noise_quadratic >= 0.0) || !std::isfinite(c.depth_noise_quadratic)) {
+    return bad("'depth_noise_quadratic' must be >= 0 (1/m), got " + text(c.depth_noise_quadratic));
+  }
   return Result::success();
 }
 
@@ -432,6 +435,7 @@ struct CameraRenderer::Impl {
     const float near_clip = static_cast<float>(camera.near_clip);
     const float far_clip = static_cast<float>(camera.far_clip);
     const float noise = static_cast<float>(camera.depth_noise_stddev);
+    const float noise_quadratic = static_cast<float>(camera.depth_noise_quadratic);
 
     // Raw pointers: stores through the vectors' data would make the compiler reload them for every pixel.
     std::uint8_t* const rgb_out = frame->rgb.data();
@@ -488,14 +492,15 @@ struct CameraRenderer::Impl {
             if (depth >= near_clip && depth <= far_clip) depth_out[pixel] = depth;
           }
         }
-        if (noise > 0.0f) {
+        if (noise > 0.0f || noise_quadratic > 0.0f) {
           // Per strip and frame: the same noise whichever thread renders the strip.
           std::seed_seq strip_seed{seed, frame_index, static_cast<std::uint64_t>(strip)};
           std::mt19937 rng(strip_seed);
-          std::normal_distribution<float> gauss(0.0f, noise);
+          std::normal_distribution<float> gauss(0.0f, 1.0f);
           const size_t end = std::min<size_t>(static_cast<size_t>(v0 + kPacketSide), height) * width;
           for (size_t p = static_cast<size_t>(v0) * width; p < end; ++p) {
-            if (!std::isnan(depth_out[p])) depth_out[p] += gauss(rng);
+            const float depth = depth_out[p];
+            if (!std::isnan(depth)) depth_out[p] += gauss(rng) * (noise + noise_quadratic * depth * depth);
           }
         }
       }

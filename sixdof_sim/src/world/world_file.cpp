@@ -190,7 +190,7 @@ class Parser {
     const std::string named = context + " (" + spec.name + ")";
     checkKeys(node, named,
               {"name", "parent", "position", "rpy", "width", "height", "horizontal_fov_deg", "rate", "near", "far",
-               "depth_noise_stddev", "seed"});
+               "depth_noise_stddev", "depth_noise_quadratic", "seed"});
     if (node["parent"]) spec.parent_link = text(node["parent"], named, "parent");
     spec.pose = pose(node, named);
     auto pixels = [&](const char* key, int* out) {
@@ -209,6 +209,9 @@ class Parser {
     if (node["far"]) spec.far_clip = number(node["far"], named, "far");
     if (node["depth_noise_stddev"]) {
       spec.depth_noise_stddev = number(node["depth_noise_stddev"], named, "depth_noise_stddev");
+    }
+    if (node["depth_noise_quadratic"]) {
+      spec.depth_noise_quadratic = number(node["depth_noise_quadratic"], named, "depth_noise_quadratic");
     }
     if (node["seed"]) {
       const long long seed = integer(node["seed"], named, "seed");

@@ -247,6 +247,20 @@ class ArmDriver:
                 return False
             time.sleep(0.02)
 
+    def _scene_attach(self, name: str, attach: bool) -> bool:
+        """Attach (detach) the object in the planning scene, as the grasp fix did in the simulator. scene_mirror
+        does the same on its own once its grace period is over, so under load it can come first: the change then
+        being refused while the object already is attached (detached) is success."""
+        if attach:
+            done = self.scene.attach_object(name, self.arm.get_end_effector_link())
+        else:
+            done = self.scene.detach_object(name)
+        if done or (name in self.scene.get_attached_object_names()) == attach:
+            return True
+        return self._fail(
+            f"{'attaching' if attach else 'detaching'} '{name}' in the planning scene failed", self.scene.last_error
+        )
+
     # Pick and place, in the paper's stages ------------------------------------------------------------
     def grasp(self, object_name: str) -> bool:
         """'pick pose': open, move above the object, descend straight and close the gripper on it."""
@@ -267,9 +281,8 @@ class ArmDriver:
         if not self.gripper_close():
             return False
         self._wait_for_grasp_fix(object_name, attached=True)
-        if object_name in self.scene.get_known_object_names():
-            if not self.arm.attach_object(object_name):
-                return self._fail(f"attaching '{object_name}' in the planning scene failed", self.scene.last_error)
+        if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
+            return False
         self._held = _Held(name=object_name, height=geometry.height)
         return True
 
@@ -306,9 +319,8 @@ class ArmDriver:
         if not self.gripper_open():
             return False
         self._wait_for_grasp_fix(held.name, attached=False)
-        if held.name in self.scene.get_attached_object_names():
-            if not self.arm.detach_object(held.name):
-                return self._fail(f"detaching '{held.name}' in the planning scene failed", self.scene.last_error)
+        if held.name in self.scene.get_attached_object_names() and not self._scene_attach(held.name, False):
+            return False
         self._held = None
         self._object_in_tcp = None
         return True

@@ -73,6 +73,18 @@ SceneStatus setLinkValue(Body* body, const std::string& link_name, const char* w
   return status;
 }
 
+// addWorldObject/attachObject: the body's shapes are built (a failure's message starts with `what`), then it is
+// appended to `bodies`.
+SceneStatus appendBody(Body body, const char* what, std::vector<Body>* bodies) {
+  SceneStatus status = buildShapes(&body);
+  if (!status.ok()) {
+    status.message = std::string(what) + " " + status.message;
+    return status;
+  }
+  bodies->push_back(std::move(body));
+  return status;
+}
+
 // setPadding/setScale: the per-link setter applied to every link, up to the first failure.
 template <class SetLink>
 SceneStatus setEveryLink(const std::vector<std::string>& link_names, const SetLink& set_link) {
@@ -223,13 +235,8 @@ SceneStatus CollisionScene::addWorldObject(const WorldObject& object) {
   body.type = BodyType::kWorldObject;
   body.pose = object.pose;
   body.source = object.shapes;
-  SceneStatus status = buildShapes(&body);
-  if (!status.ok()) {
-    status.message = "world object " + status.message;
-    return status;
-  }
-  impl_->world.push_back(std::move(body));
-  impl_->rebuild();
+  const SceneStatus status = appendBody(std::move(body), "world object", &impl_->world);
+  if (status.ok()) impl_->rebuild();
   return status;
 }
 
@@ -245,12 +252,8 @@ SceneStatus CollisionScene::moveWorldObject(const std::string& id, const Eigen::
 }
 
 SceneStatus CollisionScene::removeWorldObject(const std::string& id) {
-  const int w = Impl::findBody(impl_->world, id);
-  if (w < 0) return error(SceneStatusCode::kUnknownName, "remove: unknown world object '" + id + "'");
-  impl_->world.erase(impl_->world.begin() + w);
-  impl_->acm.removeName(id);
-  impl_->rebuild();
-  return SceneStatus();
+  if (impl_->removeBody(&impl_->world, id)) return SceneStatus();
+  return error(SceneStatusCode::kUnknownName, "remove: unknown world object '" + id + "'");
 }
 
 void CollisionScene::clearWorld() {
@@ -296,13 +299,8 @@ SceneStatus CollisionScene::attachObject(const AttachedObject& object) {
   body.pose = object.pose_in_link;
   body.source = object.shapes;
   body.touch_links = object.touch_links;
-  SceneStatus status = buildShapes(&body);
-  if (!status.ok()) {
-    status.message = "attached object " + status.message;
-    return status;
-  }
-  impl_->attached.push_back(std::move(body));
-  impl_->rebuild();
+  const SceneStatus status = appendBody(std::move(body), "attached object", &impl_->attached);
+  if (status.ok()) impl_->rebuild();
   return status;
 }
 
@@ -349,12 +347,8 @@ SceneStatus CollisionScene::detachObject(const std::string& id, const Eigen::Iso
 }
 
 SceneStatus CollisionScene::removeAttachedObject(const std::string& id) {
-  const int a = Impl::findBody(impl_->attached, id);
-  if (a < 0) return error(SceneStatusCode::kUnknownName, "remove: unknown attached object '" + id + "'");
-  impl_->attached.erase(impl_->attached.begin() + a);
-  impl_->acm.removeName(id);
-  impl_->rebuild();
-  return SceneStatus();
+  if (impl_->removeBody(&impl_->attached, id)) return SceneStatus();
+  return error(SceneStatusCode::kUnknownName, "remove: unknown attached object '" + id + "'");
 }
 
 std::vector<std::string> CollisionScene::attachedObjectIds() const {

@@ -108,6 +108,17 @@ struct CollisionScene::Impl {
     return -1;
   }
 
+  // Removes the object `id` from `bodies` (world or attached) and from the allowed collision matrix; false when
+  // there is none.
+  bool removeBody(std::vector<detail::Body>* bodies, const std::string& id) {
+    const int index = findBody(*bodies, id);
+    if (index < 0) return false;
+    bodies->erase(bodies->begin() + index);
+    acm.removeName(id);
+    rebuild();
+    return true;
+  }
+
   bool pairAllowed(const detail::Body& a, const detail::Body& b) const;
 
   void rebuild();

@@ -168,23 +168,16 @@ void RobotModel::parseUrdf(const std::string& urdf_xml, const PackageResolver& r
       joint.child_link = ujoint.child_link_name;
       joint.origin = toIsometry(ujoint.parent_to_joint_origin_transform);
       joint.axis = Eigen::Vector3d(ujoint.axis.x, ujoint.axis.y, ujoint.axis.z);
-      switch (ujoint.type) {
-        case urdf::Joint::FIXED:
-          joint.type = JointType::kFixed;
-          break;
-        case urdf::Joint::REVOLUTE:
-          joint.type = JointType::kRevolute;
-          break;
-        case urdf::Joint::CONTINUOUS:
-          joint.type = JointType::kContinuous;
-          break;
-        case urdf::Joint::PRISMATIC:
-          joint.type = JointType::kPrismatic;
-          break;
-        default:
-          throw RobotModelError("URDF: joint '" + ujoint.name + "' has an unsupported type (only fixed, revolute, " +
-                                "continuous and prismatic joints are supported)");
+      static const std::map<int, JointType> kJointTypes = {{urdf::Joint::FIXED, JointType::kFixed},
+                                                           {urdf::Joint::REVOLUTE, JointType::kRevolute},
+                                                           {urdf::Joint::CONTINUOUS, JointType::kContinuous},
+                                                           {urdf::Joint::PRISMATIC, JointType::kPrismatic}};
+      const auto type = kJointTypes.find(ujoint.type);
+      if (type == kJointTypes.end()) {
+        throw RobotModelError("URDF: joint '" + ujoint.name + "' has an unsupported type (only fixed, revolute, " +
+                              "continuous and prismatic joints are supported)");
       }
+      joint.type = type->second;
       if (joint.type != JointType::kFixed) {
         if (joint.axis.norm() < 1e-9) throw RobotModelError("URDF: joint '" + ujoint.name + "' has a zero axis");
         joint.axis.normalize();

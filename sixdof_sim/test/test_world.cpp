@@ -298,20 +298,17 @@ TEST(WorldConstruction, BadInputIsNamed) {
   EXPECT_THROW(World(test::robotUrdf(), spec, options), WorldError);
   WorldSpec duplicate = spec;
   duplicate.objects.push_back(spec.objects.back());
-  try {
-    World world(test::robotUrdf(), duplicate, test::options(false));
-    FAIL() << "duplicate object accepted";
-  } catch (const WorldError& e) {
-    EXPECT_NE(std::string(e.what()).find("duplicate"), std::string::npos) << e.what();
-  }
-  try {
-    World world("<robot name='x'><link name='a'/><joint name='j' type='floating'><parent link='a'/>"
-                "<child link='b'/></joint><link name='b'/></robot>",
-                spec, test::options(false));
-    FAIL() << "floating joint accepted";
-  } catch (const WorldError& e) {
-    EXPECT_NE(std::string(e.what()).find("'j'"), std::string::npos) << e.what();
-  }
+  // The WorldError's message ("" when the world was built).
+  const auto error = [](const std::string& urdf, const WorldSpec& world_spec) {
+    return test::errorMessage<WorldError>([&] { World world(urdf, world_spec, test::options(false)); });
+  };
+  const std::string duplicate_error = error(test::robotUrdf(), duplicate);
+  EXPECT_NE(duplicate_error.find("duplicate"), std::string::npos) << "duplicate object accepted? " << duplicate_error;
+  const std::string floating_error = error(
+      "<robot name='x'><link name='a'/><joint name='j' type='floating'><parent link='a'/><child link='b'/></joint>"
+      "<link name='b'/></robot>",
+      spec);
+  EXPECT_NE(floating_error.find("'j'"), std::string::npos) << "floating joint accepted? " << floating_error;
   // Grasp fix requested without any configuration (a robot without the URDF block).
   const std::string plain_robot =
       "<robot name='r'><link name='a'/><joint name='j' type='revolute'><parent link='a'/><child link='b'/>"

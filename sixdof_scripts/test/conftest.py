@@ -1,10 +1,11 @@
-"""Shared fixtures: the fixture robot (test/data) parsed and resolved."""
+"""Shared fixtures: the fixture robot (test/data) read by the test-only offline_model and resolved."""
 
 from pathlib import Path
 
 import pytest
+from offline_model import parse_srdf, parse_urdf
 from sixdof_commander.goals import GoalBuilder
-from sixdof_commander.robot_model import parse_srdf, parse_urdf, resolve_group
+from sixdof_commander.robot_model import resolve_group
 
 DATA = Path(__file__).resolve().parent / "data"
 
@@ -15,8 +16,8 @@ def urdf():
 
 
 @pytest.fixture(scope="session")
-def srdf():
-    return parse_srdf((DATA / "fixture.srdf").read_text())
+def srdf(urdf):
+    return parse_srdf((DATA / "fixture.srdf").read_text(), urdf)
 
 
 @pytest.fixture(scope="session")

@@ -4,9 +4,9 @@ from xml.etree import ElementTree
 
 import numpy as np
 import pytest
+from offline_model import parse_urdf
 from sixdof_commander import SixdofCommanderError
 from sixdof_commander.gripper_reach import collision_points, gripper_reach
-from sixdof_commander.robot_model import parse_urdf
 from sixdof_commander.transforms import homogeneous
 
 # A tip link and one finger 0.06 m long whose joint is 0.06 m along the tip's z axis (the finger spans 0.06 to

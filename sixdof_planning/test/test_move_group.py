@@ -581,6 +581,23 @@ class MoveGroupTest(unittest.TestCase):
         self.assert_code(self.execute_trajectory(trajectory), MoveItErrorCodes.INVALID_MOTION_PLAN)
         self.assert_serving()
 
+    def test_36_cartesian_start_a_hair_past_a_limit(self) -> None:
+        # The home pose with the wrist flipped: joint4 at +pi, read a hair past it (under load the measured joint4
+        # read 3.1416). As for planning, the path starts on the limit, so the controller accepts its first point.
+        home = {"joint1": 0.0, "joint2": 0.487674, "joint3": 0.237739, "joint5": -0.833376, "joint6": -math.pi}
+        start = dict(home, joint4=math.pi + 5e-4)
+        pose = self.link_pose(dict(home, joint4=math.pi))
+        down = Pose(position=pose.position, orientation=pose.orientation)
+        down.position.z -= 0.03
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[down], max_step=0.005, avoid_collisions=True)
+        request.header.frame_id = "base_link"
+        request.start_state = robot_state(start)
+        response = self.cartesian(request)
+        self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
+        self.assertAlmostEqual(response.fraction, 1.0, delta=1e-9)
+        first = dict(zip(ARM, response.solution.joint_trajectory.points[0].positions, strict=True))
+        self.assertEqual(first["joint4"], math.pi)
+
 
 if __name__ == "__main__":
     rostest.rosrun(PKG, "test_move_group", MoveGroupTest, sys.argv)

@@ -6,10 +6,8 @@
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
-set +u
-# shellcheck disable=SC1091
+# shellcheck source=scripts/env.sh
 . scripts/env.sh
-set -u
 SIXDOF_BUILD_BENCHMARKS=ON scripts/build.sh
 out=bench/results.md
 mapfile -t benches < <(find install/lib -maxdepth 2 -type f -name '*_bench' -perm -u+x | sort)

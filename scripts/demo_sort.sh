@@ -10,10 +10,6 @@
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
-set +u
-# shellcheck disable=SC1091
-. scripts/env.sh
-set -u
 # shellcheck source=scripts/stack_lib.sh
 . scripts/stack_lib.sh
 

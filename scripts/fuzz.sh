@@ -4,10 +4,8 @@
 set -uo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
-set +u
-# shellcheck disable=SC1091
+# shellcheck source=scripts/env.sh
 . scripts/env.sh
-set -u
 # The tests package runs from its source folder (as colcon test runs it).
 export ROS_PACKAGE_PATH="$repo/test:${ROS_PACKAGE_PATH:-}"
 rostest --text test/ros/faults_headless.test fuzz_requests:="${1:-500}" fuzz_seed:="${2:-13}"

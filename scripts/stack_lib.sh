@@ -8,6 +8,10 @@
 #   stack_wait_ready [object [pid]]    wait until move_group answers (and the object is in the planning scene);
 #                                      fails at once when process group pid (the launch) has ended
 # The caller's EXIT trap must call stack_cleanup (stack_init installs one that does).
+# Sourcing it sources scripts/env.sh (the venv and the install space) first.
+
+# shellcheck source=scripts/env.sh
+. "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 
 stack_pids=()
 

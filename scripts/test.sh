@@ -7,10 +7,8 @@
 set -uo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
-set +u
-# shellcheck disable=SC1091
+# shellcheck source=scripts/env.sh
 . scripts/env.sh
-set -u
 status=0
 
 # The build gets the package selection (--packages-*) of the arguments, not test-only ones (--ctest-args ...).

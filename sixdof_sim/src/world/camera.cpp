@@ -1,14 +1,10 @@
 #include "sixdof_sim/camera.h"
 
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <embree3/rtcore.h>
 
 #include <algorithm>
-#include <assimp/Importer.hpp>
 #include <atomic>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -16,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "camera_meshes.h"
 #include "mesh_loader.h"
 #include "sixdof_core/robot_model.h"
 
@@ -25,9 +22,6 @@ namespace {
 // Share of a surface's colour lit regardless of its angle to the light: surfaces seen edge-on stay
 // recognisably coloured instead of going black.
 constexpr float kAmbient = 0.3f;
-// Cylinders are prisms of this many sides: the flats lie at most r (1 - cos(pi / n)) = 0.05 % of the
-// radius inside the true surface (0.01 mm at r = 2.5 cm).
-constexpr int kCylinderSides = 96;
 // The infinite ground plane as a square of this half size (m): beyond any sensible far clip.
 constexpr double kGroundHalfSize = 500.0;
 const Color kGroundColor{0.45, 0.45, 0.45, 1.0};
@@ -40,78 +34,6 @@ bool validName(const std::string& name) {
   if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
   return std::all_of(name.begin(), name.end(),
                      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-}
-
-struct TriangleMesh {
-  std::vector<float> vertices;  // x, y, z per vertex
-  std::vector<unsigned> indices;
-};
-
-TriangleMesh unitBox() {
-  TriangleMesh m;
-  for (int i = 0; i < 8; ++i) {
-    m.vertices.insert(m.vertices.end(), {(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f});
-  }
-  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
-               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
-  return m;
-}
-
-// Radius 1, length 1 along z, centred at the origin (URDF and SolidPrimitive cylinders).
-TriangleMesh unitCylinder() {
-  TriangleMesh m;
-  const unsigned n = kCylinderSides;
-  for (unsigned i = 0; i < n; ++i) {
-    const double a = 2.0 * M_PI * i / n;
-    const float x = static_cast<float>(std::cos(a)), y = static_cast<float>(std::sin(a));
-    m.vertices.insert(m.vertices.end(), {x, y, -0.5f, x, y, 0.5f});
-  }
-  m.vertices.insert(m.vertices.end(), {0.0f, 0.0f, -0.5f, 0.0f, 0.0f, 0.5f});
-  const unsigned bottom = 2 * n, top = 2 * n + 1;
-  for (unsigned i = 0; i < n; ++i) {
-    const unsigned j = (i + 1) % n;
-    m.indices.insert(m.indices.end(), {2 * i, 2 * j, 2 * i + 1, 2 * i + 1, 2 * j, 2 * j + 1});
-    m.indices.insert(m.indices.end(), {bottom, 2 * j, 2 * i, top, 2 * i + 1, 2 * j + 1});
-  }
-  return m;
-}
-
-// The square [-1, 1]^2 in the z = 0 plane.
-TriangleMesh unitSquare() {
-  TriangleMesh m;
-  m.vertices = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
-  m.indices = {0, 1, 2, 0, 2, 3};
-  return m;
-}
-
-// Every triangle of every mesh in the file, node transforms applied (as the file's viewers show it).
-TriangleMesh loadTriangles(const std::string& path) {
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
-  if (scene == nullptr || scene->mRootNode == nullptr) {
-    throw WorldError("mesh '" + path + "' cannot be read: " + importer.GetErrorString());
-  }
-  TriangleMesh out;
-  std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node, const aiMatrix4x4& parent) {
-    const aiMatrix4x4 transform = parent * node->mTransformation;
-    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
-      const aiMesh* mesh = scene->mMeshes[node->mMeshes[k]];
-      const auto base = static_cast<unsigned>(out.vertices.size() / 3);
-      for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-        const aiVector3D p = transform * mesh->mVertices[v];
-        out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
-      }
-      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-        const aiFace& face = mesh->mFaces[f];
-        if (face.mNumIndices != 3) continue;  // points and lines left by triangulation have no surface
-        for (unsigned corner = 0; corner < 3; ++corner) out.indices.push_back(base + face.mIndices[corner]);
-      }
-    }
-    for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], transform);
-  };
-  visit(scene->mRootNode, aiMatrix4x4());
-  if (out.indices.empty()) throw WorldError("mesh '" + path + "' has no triangles");
-  return out;
 }
 
 bool sameLook(const ObjectSpec& a, const ObjectSpec& b) {
@@ -273,7 +195,7 @@ struct CameraRenderer::Impl {
       p[3] = 1.0f;
       scene = commitShape(g);
     } else {
-      scene = triangleScene(loadTriangles(key));
+      scene = triangleScene(meshFileTriangles(key));
     }
     check("building shape '" + key + "'");
     return shapes.emplace(key, scene).first->second;

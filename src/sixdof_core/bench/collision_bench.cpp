@@ -7,6 +7,7 @@
 #include <string>
 
 #include "../test/test_collision_urdf_arm.h"
+#include "bench_paths.h"
 #include "sixdof_core/collision.h"
 
 namespace {
@@ -48,11 +49,8 @@ double rate(double seconds, F&& query) {
 
 int main(int argc, char** argv) {
   const double seconds = argc > 1 ? std::atof(argv[1]) : 2.0;
-  // Default: the description package next to this source tree.
-  std::string source(__FILE__);
-  const std::string repo = source.substr(0, source.rfind("/src/sixdof_core/"));
-  const std::string description = repo + "/sixdof_description";
-  const std::string urdf = argc > 2 ? argv[2] : description + "/urdf/sixdof.urdf";
+  const std::string description = sixdof_core::bench::descriptionDir();
+  const std::string urdf = argc > 2 ? argv[2] : sixdof_core::bench::defaultUrdf();
   if (!(seconds > 0.0)) {
     std::fprintf(stderr, "usage: collision_bench [seconds > 0] [urdf]\n");
     return 2;

@@ -13,7 +13,6 @@
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -21,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_paths.h"
 #include "sixdof_core/ik_analytic.h"
 #include "sixdof_core/ik_kdl.h"
 #include "sixdof_core/ik_numeric.h"
@@ -179,12 +179,9 @@ int runBenchmark(const std::string& urdf, const std::string& srdf, const std::st
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string source(__FILE__);
-  const std::string repo = source.substr(0, source.rfind("/src/sixdof_core/"));
-  const std::string description = repo + "/sixdof_description";
-  std::string urdf = description + "/urdf/sixdof.urdf";
-  std::string srdf = description + "/config/sixdof.srdf";
-  if (!std::filesystem::exists(srdf)) srdf = repo + "/src/sixdof_core/test/data/sixdof.srdf";
+  const std::string description = sixdof_core::bench::descriptionDir();
+  std::string urdf = sixdof_core::bench::defaultUrdf();
+  std::string srdf = sixdof_core::bench::defaultSrdf();
   std::string group = "arm", solvers = "analytic,numeric,kdl,kdl_single";
   int count = 10000;
   double timeout = 0.005;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "../test/test_collision_urdf_arm.h"
+#include "bench_paths.h"
 #include "sixdof_core/occupancy_map.h"
 
 namespace {
@@ -53,10 +54,8 @@ double percentile95(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   const int clouds = argc > 1 ? std::atoi(argv[1]) : 30;
-  std::string source(__FILE__);
-  const std::string repo = source.substr(0, source.rfind("/src/sixdof_core/"));
-  const std::string description = repo + "/sixdof_description";
-  const std::string urdf = argc > 2 ? argv[2] : description + "/urdf/sixdof.urdf";
+  const std::string description = sixdof_core::bench::descriptionDir();
+  const std::string urdf = argc > 2 ? argv[2] : sixdof_core::bench::defaultUrdf();
   if (clouds < 1) {
     std::fprintf(stderr, "usage: occupancy_bench [clouds >= 1] [urdf]\n");
     return 2;

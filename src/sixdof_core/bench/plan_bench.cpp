@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -17,11 +16,10 @@
 #include <ompl/util/Console.h>
 
 #include "../test/test_planning_table_top.h"
+#include "bench_paths.h"
 #include "sixdof_core/planning_context.h"
 
 namespace {
-
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
@@ -104,14 +102,9 @@ void print(const char* title, const Run& run) {
 
 int main(int argc, char** argv) {
   const int queries = argc > 1 ? std::atoi(argv[1]) : 100;
-  // Defaults: the description package next to this source tree; the SRDF of the core's test data until the
-  // description package ships one.
-  const std::string source(__FILE__);
-  const std::string repo = source.substr(0, source.rfind("/src/sixdof_core/"));
-  const std::string description = repo + "/sixdof_description";
-  const std::string urdf = argc > 2 ? argv[2] : description + "/urdf/sixdof.urdf";
-  std::string srdf = argc > 3 ? argv[3] : description + "/config/sixdof.srdf";
-  if (argc <= 3 && !exists(srdf)) srdf = repo + "/src/sixdof_core/test/data/sixdof.srdf";
+  const std::string description = sixdof_core::bench::descriptionDir();
+  const std::string urdf = argc > 2 ? argv[2] : sixdof_core::bench::defaultUrdf();
+  const std::string srdf = argc > 3 ? argv[3] : sixdof_core::bench::defaultSrdf();
   if (queries < 1) {
     std::fprintf(stderr, "usage: plan_bench [queries >= 1] [urdf] [srdf]\n");
     return 2;

@@ -12,9 +12,9 @@ import pytest
 from geometry_msgs.msg import Pose, Transform
 from moveit_commander import conversions
 from sixdof_commander import MoveItCommanderException, SixdofCommanderError
+from sixdof_commander.cartesian_path import _cartesian_arguments
 from sixdof_commander.exceptions import UnknownGroupError
 from sixdof_commander.kinematics import bounded, iterative_parabolic_times, jacobian, link_pose
-from sixdof_commander.move_group import _cartesian_arguments
 from sixdof_commander.robot_model import resolve_group
 
 import sixdof_msgs.msg

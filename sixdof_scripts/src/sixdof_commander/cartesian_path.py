@@ -1,0 +1,68 @@
+"""MoveGroup's Cartesian paths: compute_cartesian_path under both MoveIt signatures (compute_cartesian_path service)."""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Sequence
+
+import rospy
+from geometry_msgs.msg import Pose
+
+from sixdof_msgs.msg import Constraints, MoveItErrorCodes, RobotTrajectory
+
+from ._ros import SERVICE_TIMEOUT, call_service
+from .exceptions import SixdofCommanderError
+from .move_group_base import MoveGroupBase, error_code, has_constraints, refuse
+
+
+class CartesianPath(MoveGroupBase):
+    """MoveGroupCommander.compute_cartesian_path."""
+
+    def compute_cartesian_path(
+        self,
+        waypoints: Sequence[Pose],
+        eef_step: float,
+        *args: object,
+        path_constraints: Constraints | None = None,
+        **kwargs: object,
+    ) -> tuple[RobotTrajectory, float]:
+        """Straight-line path of the end-effector link through waypoints (Poses in the pose reference frame),
+        interpolated every eef_step metres: (trajectory, fraction of the path achieved; -1 on error).
+
+        Both MoveIt signatures: (waypoints, eef_step, avoid_collisions=True, path_constraints=None) (1.1.15 on) and
+        (waypoints, eef_step, jump_threshold, avoid_collisions=True) (before): a number (not a bool) in third
+        place is the jump threshold (0 = no jump check)."""
+        jump_threshold, avoid_collisions = _cartesian_arguments(args, kwargs)
+        if path_constraints is not None and has_constraints(path_constraints):
+            raise refuse("compute_cartesian_path(path_constraints=...)", "path constraints are not supported")
+        request = self._goal.cartesian_path_request(waypoints, eef_step, jump_threshold, avoid_collisions)
+        try:
+            response = call_service(self._cartesian_service, request, SERVICE_TIMEOUT)
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            self._last_error = error_code(MoveItErrorCodes.COMMUNICATION_FAILURE, f"compute_cartesian_path: {err}")
+            return RobotTrajectory(), -1.0
+        self._last_error = response.error_code
+        if response.error_code.val != MoveItErrorCodes.SUCCESS:
+            return response.solution, -1.0
+        return response.solution, response.fraction
+
+
+def _cartesian_arguments(args: tuple[object, ...], kwargs: dict[str, object]) -> tuple[float, bool]:
+    """(jump_threshold, avoid_collisions) from compute_cartesian_path's positional/keyword arguments after eef_step."""
+    unknown = sorted(set(kwargs) - {"jump_threshold", "avoid_collisions"})
+    if unknown:
+        raise SixdofCommanderError(f"compute_cartesian_path: unexpected keyword arguments {unknown}")
+    jump_threshold: object = kwargs.get("jump_threshold", 0.0)
+    avoid_collisions: object = kwargs.get("avoid_collisions", True)
+    rest = list(args)
+    if rest and not isinstance(rest[0], bool) and isinstance(rest[0], numbers.Real):
+        if "jump_threshold" in kwargs:
+            raise SixdofCommanderError("compute_cartesian_path: jump_threshold given twice")
+        jump_threshold = rest.pop(0)
+    if rest:
+        if "avoid_collisions" in kwargs:
+            raise SixdofCommanderError("compute_cartesian_path: avoid_collisions given twice")
+        avoid_collisions = rest.pop(0)
+    if rest:
+        raise SixdofCommanderError(f"compute_cartesian_path: too many positional arguments ({len(args) + 2})")
+    return jump_threshold, avoid_collisions

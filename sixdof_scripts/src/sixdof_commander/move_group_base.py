@@ -1,0 +1,59 @@
+"""What MoveGroup's parts share: the attributes MoveGroup.__init__ sets, error codes, and the refusal of the
+MoveGroupCommander methods sixdof does not offer."""
+
+from __future__ import annotations
+
+import numpy as np
+import rospy
+
+from sixdof_msgs.msg import Constraints, MoveItErrorCodes
+
+from ._ros import ActionClient, JointStateMonitor
+from .exceptions import MoveItCommanderException, SixdofCommanderError
+from .goals import GoalBuilder
+from .planning_scene import PlanningScene
+from .robot_model import Group, RobotDescription, SemanticDescription
+
+
+class MoveGroupBase:
+    """The state of one MoveGroup. MoveGroup.__init__ sets it; MoveGroup's parts (targets.py, planning_options.py,
+    path_constraints.py, current_state.py, cartesian_path.py, retiming.py), each a mixin, use it."""
+
+    _ns: str
+    _urdf: RobotDescription
+    _srdf: SemanticDescription
+    _group: Group
+    _planning_frame: str
+    _goal: GoalBuilder  # targets and planning parameters, and the requests built from them
+    _last_error: MoveItErrorCodes
+    _support_surface: str
+    _move_action: ActionClient
+    _execute_action: ActionClient
+    _plan_service: rospy.ServiceProxy
+    _fk_service: rospy.ServiceProxy
+    _ik_service: rospy.ServiceProxy
+    _cartesian_service: rospy.ServiceProxy
+    _retime_service: rospy.ServiceProxy
+    _joint_states: JointStateMonitor
+    _scene: PlanningScene
+    _rng: np.random.Generator
+
+
+def error_code(value: int, message: str, source: str = "sixdof_commander") -> MoveItErrorCodes:
+    """A MoveItErrorCodes message."""
+    code = MoveItErrorCodes()
+    code.val = value
+    code.message = message
+    code.source = source
+    return code
+
+
+def refuse(method: str, why: str) -> MoveItCommanderException:
+    """The error a MoveGroupCommander method sixdof does not offer raises."""
+    call = method if "(" in method else f"{method}()"
+    return SixdofCommanderError(f"{call} is not available on sixdof: {why}")
+
+
+def has_constraints(value: Constraints) -> bool:
+    """True when the Constraints message holds any constraint."""
+    return bool(value.joint_constraints or value.position_constraints or value.orientation_constraints)

@@ -11,8 +11,8 @@ import pytest
 import trimesh
 from conftest import urdf_chain
 
-from sixdof_description.generator import GRASP_FIX_BLOCK
 from sixdof_description.kinematics import fk, frame, pose_error, solve_ik
+from sixdof_description.urdf_writer import GRASP_FIX_BLOCK
 
 PI = math.pi
 # docs/design.md's joint table: origin xyz, rpy, axis, limits.

@@ -1,0 +1,198 @@
+"""The sixdof arm built from config/design.yaml: link solids and their mass properties, joints, KDL chains and
+the named states solved by IK."""
+
+from __future__ import annotations
+
+import io
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import PyKDL as kdl  # noqa: N813 (KDL's own name)
+import trimesh
+import yaml
+
+from sixdof_description import cad
+from sixdof_description.kinematics import JointSpec, chain, fk, frame, pose_error, solve_ik
+
+ARM_JOINTS = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
+GRIPPER_JOINTS = ("finger1_joint", "finger2_joint")
+LINKS = ("base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2")
+ROOT_LINK = "base_link"
+
+
+@dataclass
+class LinkModel:
+    name: str
+    visual: trimesh.Trimesh
+    collision: trimesh.Trimesh
+    mass: float
+    com: np.ndarray
+    inertia: np.ndarray  # about the centre of mass, link-frame axes
+
+
+@dataclass
+class Robot:
+    design: dict
+    joints: list[JointSpec]  # every URDF joint, parents before children
+    joint_params: dict  # per movable joint: velocity, effort, acceleration, damping, friction
+    links: dict
+    tcp_z: float
+    states: dict  # named arm states: name -> (joint values, frame, target pose)
+
+
+def load_design(path: Path) -> dict:
+    with open(path, encoding="utf-8") as f:
+        design = yaml.safe_load(f)
+    required = ("robot_name", "density", "joints", "links", "gripper", "mesh", "colours", "friction",
+                "controllers", "named_states", "gripper_states", "ik")
+    missing = [k for k in required if k not in design]
+    if missing:
+        raise cad.DesignError(f"{path}: missing design parameters {missing}")
+    if list(design["joints"]) != list(ARM_JOINTS):
+        raise cad.DesignError(f"{path}: joints must be exactly {list(ARM_JOINTS)} in order")
+    if float(design["density"]) <= 0.0:
+        raise cad.DesignError(f"{path}: density must be positive")
+    return design
+
+
+def mass_properties(mesh: trimesh.Trimesh, density: float) -> tuple[float, np.ndarray, np.ndarray]:
+    if not mesh.is_volume:
+        raise cad.DesignError("a link solid is not a closed volume; cannot compute its mass properties")
+    m = trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)
+    m.density = density
+    # Snapped to absolute grids (1 ug, 1 nm, 1e-12 kg m^2) so summation noise such as 1e-20 products of
+    # inertia never reaches the committed URDF.
+    return round(float(m.mass), 9), np.round(m.center_mass, 9) + 0.0, np.round(m.moment_inertia, 12) + 0.0
+
+
+def gripper_offsets(design: dict) -> dict:
+    g = design["gripper"]
+    pad_lo, pad_hi = cad.pad_span(g["finger"], g["pad"])
+    palm_z = float(g["palm"]["offset_z"])
+    finger_z = float(g["palm"]["height_z"])
+    tcp_z = round(palm_z + finger_z + (pad_lo + pad_hi) / 2.0, 9)
+    return {"palm_z": palm_z, "finger_z": finger_z, "tcp_z": tcp_z}
+
+
+def build_links(design: dict) -> dict:
+    mesh_p = design["mesh"]
+    fine = cad.Resolution(int(mesh_p["visual_segments"]), int(mesh_p["fillet_segments"]), True)
+    coarse = cad.Resolution(int(mesh_p["collision_segments"]), 1, False)
+    lp, g, j = design["links"], design["gripper"], design["joints"]
+
+    def solids(res: cad.Resolution) -> dict:
+        f1 = cad.finger(g["finger"], g["pad"], res)
+        return {
+            "base_link": cad.base_link(lp["base_link"], j["joint1"]["xyz"][2], res),
+            "link1": cad.link1(lp["link1"], j["joint2"]["xyz"][2], res),
+            "link2": cad.link2(lp["link2"], j["joint3"]["xyz"][2], res),
+            "link3": cad.link3(lp["link3"], j["joint4"]["xyz"][0], res),
+            "link4": cad.link4(lp["link4"], j["joint5"]["xyz"][0], res),
+            "link5": cad.link5(lp["link5"], j["joint6"]["xyz"][0], res),
+            "link6": cad.link6(lp["link6"], res),
+            "palm": cad.palm(g["palm"], res),
+            "finger1": f1,
+            "finger2": cad.mirror_finger(f1),
+        }
+
+    visual, rough = solids(fine), solids(coarse)
+    density = float(design["density"])
+    links = {}
+    for name in LINKS:
+        vis = cad.quantize(visual[name])
+        reloaded = trimesh.load(io.BytesIO(stl_bytes(vis)), file_type="stl")
+        if not reloaded.is_watertight:
+            raise cad.DesignError(f"{name}: the exported visual mesh is not closed (touching CSG operands?)")
+        mass, com, inertia = mass_properties(vis, density)
+        links[name] = LinkModel(name, vis, cad.collision_hull(rough[name]), mass, com, inertia)
+    return links
+
+
+def joint_specs(design: dict, offsets: dict) -> tuple[list[JointSpec], dict]:
+    specs, params = [], {}
+    for name in ARM_JOINTS:
+        p = design["joints"][name]
+        specs.append(JointSpec(name, tuple(p["xyz"]), tuple(p["rpy"]), tuple(p["axis"]), "revolute",
+                               float(p["lower"]), float(p["upper"])))
+        params[name] = p
+    fj = design["gripper"]["finger_joint"]
+    specs.append(JointSpec("palm_joint", (0.0, 0.0, offsets["palm_z"]), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), "fixed"))
+    for name, axis in (("finger1_joint", (0.0, 1.0, 0.0)), ("finger2_joint", (0.0, -1.0, 0.0))):
+        specs.append(JointSpec(name, (0.0, 0.0, offsets["finger_z"]), (0.0, 0.0, 0.0), axis, "prismatic",
+                               float(fj["lower"]), float(fj["upper"])))
+        params[name] = fj
+    specs.append(JointSpec("tcp_joint", (0.0, 0.0, offsets["tcp_z"]), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), "fixed"))
+    return specs, params
+
+
+JOINT_LINKS = {
+    "joint1": ("base_link", "link1"), "joint2": ("link1", "link2"), "joint3": ("link2", "link3"),
+    "joint4": ("link3", "link4"), "joint5": ("link4", "link5"), "joint6": ("link5", "link6"),
+    "palm_joint": ("link6", "palm"), "finger1_joint": ("palm", "finger1"), "finger2_joint": ("palm", "finger2"),
+    "tcp_joint": ("link6", "tcp"),
+}
+
+
+def rigid_body(link: LinkModel) -> kdl.RigidBodyInertia:
+    i = link.inertia
+    rot = kdl.RotationalInertia(i[0, 0], i[1, 1], i[2, 2], i[0, 1], i[0, 2], i[1, 2])
+    return kdl.RigidBodyInertia(link.mass, kdl.Vector(*link.com), rot)
+
+
+def arm_chain(robot: Robot, with_inertia: bool = False, tip: str = "link6") -> kdl.Chain:
+    specs = [s for s in robot.joints if s.name in ARM_JOINTS]
+    if tip == "tcp":
+        specs.append(next(s for s in robot.joints if s.name == "tcp_joint"))
+    if not with_inertia:
+        return chain(specs)
+    inertias = [rigid_body(robot.links[JOINT_LINKS[s.name][1]]) for s in specs]
+    # The gripper (palm + fingers, open) rides on link6 as one rigid body.
+    by_name = {s.name: s for s in robot.joints}
+    palm_frame = frame(by_name["palm_joint"].xyz, by_name["palm_joint"].rpy)
+    hand = inertias[5] + palm_frame * rigid_body(robot.links["palm"])
+    opening = float(robot.design["gripper_states"]["open"])
+    for fname, sign in (("finger1", 1.0), ("finger2", -1.0)):
+        fj = by_name[f"{fname}_joint"]
+        f_frame = palm_frame * kdl.Frame(kdl.Vector(fj.xyz[0], fj.xyz[1] + sign * opening, fj.xyz[2]))
+        hand = hand + f_frame * rigid_body(robot.links[fname])
+    inertias[5] = hand
+    return chain(specs, inertias)
+
+
+def solve_named_states(robot: Robot) -> dict:
+    ik = robot.design["ik"]
+    specs = [s for s in robot.joints if s.name in ARM_JOINTS]
+    lower, upper = [s.lower for s in specs], [s.upper for s in specs]
+    states = {}
+    for name, st in robot.design["named_states"].items():
+        if st["frame"] not in ("link6", "tcp"):
+            raise cad.DesignError(f"named state '{name}': frame must be link6 or tcp, got '{st['frame']}'")
+        kchain = arm_chain(robot, tip=st["frame"])
+        target = frame(st["xyz"], [math.radians(a) for a in st["rpy_deg"]])
+        result = solve_ik(kchain, lower, upper, target, st["seed"], tolerance=float(ik["tolerance"]),
+                          max_iterations=int(ik["max_iterations"]), restarts=int(ik["restarts"]),
+                          random_seed=int(ik["random_seed"]))
+        if not result.success:
+            raise cad.DesignError(
+                f"named state '{name}': {st['frame']} pose {st['xyz']} rpy {st['rpy_deg']} is unreachable "
+                f"(best error {result.position_error:.3g} m, {result.rotation_error:.3g} rad)")
+        q = np.round(result.q, 6)
+        perr, rerr = pose_error(fk(kchain, q), target)
+        if perr > 1e-5 or rerr > 1e-5:
+            raise cad.DesignError(f"named state '{name}': rounded solution misses the pose by {perr:.3g} m")
+        states[name] = q
+    return states
+
+
+def build_robot(design: dict) -> Robot:
+    offsets = gripper_offsets(design)
+    specs, params = joint_specs(design, offsets)
+    robot = Robot(design, specs, params, build_links(design), offsets["tcp_z"], {})
+    robot.states = solve_named_states(robot)
+    return robot
+
+
+def stl_bytes(mesh: trimesh.Trimesh) -> bytes:
+    return trimesh.exchange.stl.export_stl(mesh)

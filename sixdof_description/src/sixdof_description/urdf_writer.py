@@ -1,0 +1,103 @@
+"""urdf/sixdof.urdf of the designed arm."""
+
+from __future__ import annotations
+
+from sixdof_description.formatting import HEADER, exact, fmt, vec
+from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, JOINT_LINKS, LINKS, ROOT_LINK, Robot
+
+PACKAGE = "sixdof_description"
+
+GRASP_FIX_BLOCK = """  <gazebo>
+    <plugin name="gazebo_grasp_fix" filename="libgazebo_grasp_fix.so">
+      <arm>
+        <arm_name>arm</arm_name>
+        <palm_link>link6</palm_link>
+        <gripper_link>finger1</gripper_link>
+        <gripper_link>finger2</gripper_link>
+      </arm>
+      <forces_angle_tolerance>100</forces_angle_tolerance>
+      <update_rate>4</update_rate>
+      <grip_count_threshold>4</grip_count_threshold>
+      <max_grip_count>8</max_grip_count>
+      <release_tolerance>0.005</release_tolerance>
+      <disable_collisions_on_attach>false</disable_collisions_on_attach>
+      <contact_topic>__default_topic__</contact_topic>
+    </plugin>
+  </gazebo>
+"""
+
+
+def _material_name(rgba) -> str:
+    return "rgba_" + "_".join(f"{int(round(c * 100)):03d}" for c in rgba)
+
+
+def render_urdf(robot: Robot) -> str:
+    d = robot.design
+    colours = d["colours"]
+    out = ['<?xml version="1.0"?>', f"<!-- {HEADER} -->", f'<robot name="{d["robot_name"]}">']
+    materials = []
+    for name in LINKS:
+        mat = _material_name(colours[name])
+        if mat not in materials:
+            materials.append(mat)
+            out.append(f'  <material name="{mat}"><color rgba="{vec(colours[name])}"/></material>')
+    for name in LINKS:
+        link = robot.links[name]
+        i = link.inertia
+        mat = _material_name(colours[name])
+        # The root link is fixed to the world: no <inertial> (KDL cannot use one there and warns, as every
+        # robot_state_publisher would), as MoveIt users write their root links.
+        inertial = [] if name == ROOT_LINK else [
+            "    <inertial>",
+            f'      <origin xyz="{vec(link.com)}" rpy="0 0 0"/>',
+            f'      <mass value="{fmt(link.mass)}"/>',
+            f'      <inertia ixx="{fmt(i[0, 0])}" ixy="{fmt(i[0, 1])}" ixz="{fmt(i[0, 2])}" '
+            f'iyy="{fmt(i[1, 1])}" iyz="{fmt(i[1, 2])}" izz="{fmt(i[2, 2])}"/>',
+            "    </inertial>",
+        ]
+        out += [
+            f'  <link name="{name}">',
+            "    <visual>",
+            '      <origin xyz="0 0 0" rpy="0 0 0"/>',
+            f'      <geometry><mesh filename="package://{PACKAGE}/meshes/visual/{name}.stl"/></geometry>',
+            f'      <material name="{mat}"/>',
+            "    </visual>",
+            "    <collision>",
+            '      <origin xyz="0 0 0" rpy="0 0 0"/>',
+            f'      <geometry><mesh filename="package://{PACKAGE}/meshes/collision/{name}.stl"/></geometry>',
+            "    </collision>",
+            *inertial,
+            "  </link>",
+        ]
+    out.append('  <link name="tcp"/>')
+    for spec in robot.joints:
+        parent, child = JOINT_LINKS[spec.name]
+        out.append(f'  <joint name="{spec.name}" type="{spec.joint_type}">')
+        out.append(f'    <parent link="{parent}"/>')
+        out.append(f'    <child link="{child}"/>')
+        out.append(f'    <origin xyz="{vec(spec.xyz, exact)}" rpy="{vec(spec.rpy, exact)}"/>')
+        if spec.joint_type != "fixed":
+            p = robot.joint_params[spec.name]
+            out.append(f'    <axis xyz="{vec(spec.axis, exact)}"/>')
+            out.append(f'    <limit lower="{exact(spec.lower)}" upper="{exact(spec.upper)}" '
+                       f'velocity="{fmt(p["velocity"])}" effort="{fmt(p["effort"])}"/>')
+            out.append(f'    <dynamics damping="{fmt(p["damping"])}" friction="{fmt(p["friction"])}"/>')
+        if spec.name == "finger2_joint":
+            out.append('    <mimic joint="finger1_joint" multiplier="1" offset="0"/>')
+        out.append("  </joint>")
+    for name in (*ARM_JOINTS, *GRIPPER_JOINTS):
+        out += [
+            f'  <transmission name="{name}_transmission">',
+            "    <type>transmission_interface/SimpleTransmission</type>",
+            f'    <joint name="{name}"><hardwareInterface>hardware_interface/PositionJointInterface'
+            "</hardwareInterface></joint>",
+            f'    <actuator name="{name}_motor"><mechanicalReduction>1</mechanicalReduction></actuator>',
+            "  </transmission>",
+        ]
+    friction = d["friction"]
+    for name in LINKS:
+        f = friction.get(name, friction["default"])
+        out.append(f'  <gazebo reference="{name}"><mu1>{fmt(f["mu1"])}</mu1><mu2>{fmt(f["mu2"])}</mu2></gazebo>')
+    out.append(GRASP_FIX_BLOCK.rstrip("\n"))
+    out.append("</robot>")
+    return "\n".join(out) + "\n"

@@ -15,13 +15,13 @@ function(sixdof_add_executables prefix)
 endfunction()
 
 # sixdof_add_gtests(SOURCES <test/test_name.cpp>... LIBRARIES <library>... [DEFINITIONS <NAME="value">...]): one
-# plain gtest (no roscore) per source, named after it.
+# plain gtest (no roscore) per source, named after it. GTest's own main runs the tests: the sources have none.
 function(sixdof_add_gtests)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBRARIES;DEFINITIONS" ${ARGN})
   foreach(src ${ARG_SOURCES})
     get_filename_component(name ${src} NAME_WE)
     catkin_add_gtest(${name} ${src})
-    target_link_libraries(${name} ${ARG_LIBRARIES})
+    target_link_libraries(${name} ${ARG_LIBRARIES} GTest::gtest_main)
     target_compile_definitions(${name} PRIVATE ${ARG_DEFINITIONS})
   endforeach()
 endfunction()

@@ -73,9 +73,42 @@ SceneStatus setLinkValue(Body* body, const std::string& link_name, const char* w
   return status;
 }
 
-// addWorldObject/attachObject: the body's shapes are built (a failure's message starts with `what`), then it is
-// appended to `bodies`.
+// addWorldObject/attachObject: a new object's id is set and not yet the name of a link or another object.
+SceneStatus checkNewId(const char* what, const std::string& id, bool name_in_use) {
+  if (id.empty()) return error(SceneStatusCode::kInvalidValue, std::string(what) + ": empty id");
+  if (name_in_use) {
+    return error(SceneStatusCode::kDuplicateName, std::string(what) + " '" + id + "': name already in use");
+  }
+  return SceneStatus();
+}
+
+// moveWorldObject/attachWorldObject/detachObject (`op`): the object was found (`index` >= 0) and the pose that
+// places it (`pose_name`) is finite.
+SceneStatus checkObjectMove(int index, const char* op, const char* kind, const std::string& id, const char* pose_name,
+                            const Eigen::Isometry3d& pose) {
+  if (index < 0) return error(SceneStatusCode::kUnknownName, std::string(op) + ": unknown " + kind + " '" + id + "'");
+  if (!pose.matrix().allFinite()) {
+    return error(SceneStatusCode::kInvalidValue, std::string(op) + ": " + pose_name + " '" + id + "' is not finite");
+  }
+  return SceneStatus();
+}
+
+Body objectBody(const std::string& id, BodyType type, const Eigen::Isometry3d& pose,
+                const std::vector<PlacedShape>& shapes) {
+  Body body;
+  body.name = id;
+  body.type = type;
+  body.pose = pose;
+  body.source = shapes;
+  return body;
+}
+
+// addWorldObject/attachObject: the new object has shapes and a finite pose, then its shapes are built (messages
+// start with `what`) and it is appended to `bodies`.
 SceneStatus appendBody(Body body, const char* what, std::vector<Body>* bodies) {
+  const std::string object = std::string(what) + " '" + body.name + "'";
+  if (body.source.empty()) return error(SceneStatusCode::kInvalidShape, object + ": has no shapes");
+  if (!body.pose.matrix().allFinite()) return error(SceneStatusCode::kInvalidValue, object + ": pose is not finite");
   SceneStatus status = buildShapes(&body);
   if (!status.ok()) {
     status.message = std::string(what) + " " + status.message;
@@ -220,35 +253,21 @@ double CollisionScene::linkScale(const std::string& link_name) const {
 }
 
 SceneStatus CollisionScene::addWorldObject(const WorldObject& object) {
-  if (object.id.empty()) return error(SceneStatusCode::kInvalidValue, "world object: empty id");
-  if (impl_->knownName(object.id)) {
-    return error(SceneStatusCode::kDuplicateName, "world object '" + object.id + "': name already in use");
-  }
-  if (object.shapes.empty()) {
-    return error(SceneStatusCode::kInvalidShape, "world object '" + object.id + "': has no shapes");
-  }
-  if (!object.pose.matrix().allFinite()) {
-    return error(SceneStatusCode::kInvalidValue, "world object '" + object.id + "': pose is not finite");
-  }
-  Body body;
-  body.name = object.id;
-  body.type = BodyType::kWorldObject;
-  body.pose = object.pose;
-  body.source = object.shapes;
-  const SceneStatus status = appendBody(std::move(body), "world object", &impl_->world);
+  SceneStatus status = checkNewId("world object", object.id, impl_->knownName(object.id));
+  if (!status.ok()) return status;
+  status = appendBody(objectBody(object.id, BodyType::kWorldObject, object.pose, object.shapes), "world object",
+                      &impl_->world);
   if (status.ok()) impl_->rebuild();
   return status;
 }
 
 SceneStatus CollisionScene::moveWorldObject(const std::string& id, const Eigen::Isometry3d& pose) {
   const int w = Impl::findBody(impl_->world, id);
-  if (w < 0) return error(SceneStatusCode::kUnknownName, "move: unknown world object '" + id + "'");
-  if (!pose.matrix().allFinite()) {
-    return error(SceneStatusCode::kInvalidValue, "move: pose of '" + id + "' is not finite");
-  }
+  const SceneStatus status = checkObjectMove(w, "move", "world object", id, "pose of", pose);
+  if (!status.ok()) return status;
   impl_->world[w].pose = pose;
   impl_->rebuild();
-  return SceneStatus();
+  return status;
 }
 
 SceneStatus CollisionScene::removeWorldObject(const std::string& id) {
@@ -271,10 +290,8 @@ std::vector<std::string> CollisionScene::worldObjectIds() const {
 bool CollisionScene::hasWorldObject(const std::string& id) const { return Impl::findBody(impl_->world, id) >= 0; }
 
 SceneStatus CollisionScene::attachObject(const AttachedObject& object) {
-  if (object.id.empty()) return error(SceneStatusCode::kInvalidValue, "attached object: empty id");
-  if (impl_->knownName(object.id)) {
-    return error(SceneStatusCode::kDuplicateName, "attached object '" + object.id + "': name already in use");
-  }
+  SceneStatus status = checkNewId("attached object", object.id, impl_->knownName(object.id));
+  if (!status.ok()) return status;
   const int link = linkIndex(object.link_name);
   if (link < 0) {
     return error(SceneStatusCode::kUnknownName,
@@ -286,20 +303,10 @@ SceneStatus CollisionScene::attachObject(const AttachedObject& object) {
                    "attached object '" + object.id + "': unknown touch link '" + touch + "'");
     }
   }
-  if (object.shapes.empty()) {
-    return error(SceneStatusCode::kInvalidShape, "attached object '" + object.id + "': has no shapes");
-  }
-  if (!object.pose_in_link.matrix().allFinite()) {
-    return error(SceneStatusCode::kInvalidValue, "attached object '" + object.id + "': pose is not finite");
-  }
-  Body body;
-  body.name = object.id;
-  body.type = BodyType::kAttachedObject;
+  Body body = objectBody(object.id, BodyType::kAttachedObject, object.pose_in_link, object.shapes);
   body.link = link;
-  body.pose = object.pose_in_link;
-  body.source = object.shapes;
   body.touch_links = object.touch_links;
-  const SceneStatus status = appendBody(std::move(body), "attached object", &impl_->attached);
+  status = appendBody(std::move(body), "attached object", &impl_->attached);
   if (status.ok()) impl_->rebuild();
   return status;
 }
@@ -308,10 +315,8 @@ SceneStatus CollisionScene::attachWorldObject(const std::string& id, const std::
                                               const Eigen::Isometry3d& link_pose,
                                               const std::vector<std::string>& touch_links) {
   const int w = Impl::findBody(impl_->world, id);
-  if (w < 0) return error(SceneStatusCode::kUnknownName, "attach: unknown world object '" + id + "'");
-  if (!link_pose.matrix().allFinite()) {
-    return error(SceneStatusCode::kInvalidValue, "attach: link pose for '" + id + "' is not finite");
-  }
+  SceneStatus status = checkObjectMove(w, "attach", "world object", id, "link pose for", link_pose);
+  if (!status.ok()) return status;
   AttachedObject object;
   object.id = id;
   object.link_name = link_name;
@@ -321,7 +326,7 @@ SceneStatus CollisionScene::attachWorldObject(const std::string& id, const std::
   // Take it out of the world first (its id must be free), restoring it if attaching fails.
   Body saved = std::move(impl_->world[w]);
   impl_->world.erase(impl_->world.begin() + w);
-  SceneStatus status = attachObject(object);
+  status = attachObject(object);
   if (!status.ok()) {
     impl_->world.insert(impl_->world.begin() + w, std::move(saved));
     impl_->rebuild();
@@ -331,10 +336,8 @@ SceneStatus CollisionScene::attachWorldObject(const std::string& id, const std::
 
 SceneStatus CollisionScene::detachObject(const std::string& id, const Eigen::Isometry3d& link_pose) {
   const int a = Impl::findBody(impl_->attached, id);
-  if (a < 0) return error(SceneStatusCode::kUnknownName, "detach: unknown attached object '" + id + "'");
-  if (!link_pose.matrix().allFinite()) {
-    return error(SceneStatusCode::kInvalidValue, "detach: link pose for '" + id + "' is not finite");
-  }
+  const SceneStatus status = checkObjectMove(a, "detach", "attached object", id, "link pose for", link_pose);
+  if (!status.ok()) return status;
   Body body = std::move(impl_->attached[a]);
   impl_->attached.erase(impl_->attached.begin() + a);
   body.type = BodyType::kWorldObject;

@@ -229,8 +229,3 @@ TEST(CartesianPath, MoveItArgumentOrder) {
 }
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -661,8 +661,3 @@ TEST(MeshLoader, CachesAndReportsErrors) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

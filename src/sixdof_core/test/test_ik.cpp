@@ -360,8 +360,3 @@ TEST(IkBudget, UnreachableTargetsReportTheExhaustedBudget) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

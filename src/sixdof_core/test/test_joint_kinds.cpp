@@ -10,11 +10,10 @@
 
 #include "sixdof_core/kinematics.h"
 #include "sixdof_core/robot_model.h"
+#include "test_models.h"
 
 namespace sixdof_core {
 namespace {
-
-const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
 
 RobotModelConstPtr fixture() {
   return RobotModel::fromFiles(kDataDir + "/joint_kinds.urdf", kDataDir + "/joint_kinds.srdf");
@@ -60,11 +59,7 @@ TEST(JointKinds, ContinuousIsUnboundedWithNominalPlusMinusPi) {
   EXPECT_DOUBLE_EQ(lift.limits.lower, 0.0);
   EXPECT_DOUBLE_EQ(lift.limits.upper, 0.3);
   // A continuous joint beyond pi is within bounds; a prismatic one beyond its limit is not.
-  RobotState state(model);
-  state.setJointPosition("spin", 4.0);
-  EXPECT_TRUE(state.satisfiesBounds());
-  state.setJointPosition("lift", 0.31);
-  EXPECT_FALSE(state.satisfiesBounds());
+  expectBoundsCheck(model, "spin", 4.0, "lift", 0.31);
 }
 
 TEST(JointKinds, LinksWithoutGeometryOrInertia) {
@@ -126,8 +121,3 @@ TEST(JointKinds, WithoutSrdfTheModelHasNoSemantics) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -152,8 +152,3 @@ TEST(Rpy, FixedAxesLikeTf2SetRpy) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -1,6 +1,8 @@
 #pragma once
 // Test helper: the fixture robots of the model, kinematics and IK tests (the sixdof arm with test/data/sixdof.srdf,
 // the UR-like arm of test/data), so each test file names them instead of loading them its own way.
+#include <gtest/gtest.h>
+
 #include <string>
 
 #include "sixdof_core/robot_model.h"
@@ -27,6 +29,17 @@ inline PackageResolver testResolver() {
 
 inline RobotModelConstPtr urModel() {
   return RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf", testResolver());
+}
+
+// RobotState::satisfiesBounds on a model's joint kinds: the continuous joint `multi_turn` set to `far` (past pi)
+// stays within bounds, the bounded joint `bounded` set to `past` (beyond its limit) does not.
+inline void expectBoundsCheck(const RobotModelConstPtr& model, const std::string& multi_turn, double far,
+                              const std::string& bounded, double past) {
+  RobotState state(model);
+  state.setJointPosition(multi_turn, far);
+  EXPECT_TRUE(state.satisfiesBounds()) << multi_turn << " = " << far;
+  state.setJointPosition(bounded, past);
+  EXPECT_FALSE(state.satisfiesBounds()) << bounded << " = " << past;
 }
 
 }  // namespace sixdof_core

@@ -238,8 +238,3 @@ TEST(CollisionSceneOccupancy, ArmMeshesCollideWithCells) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -77,6 +77,13 @@ World planar(double lo = -1.0, double hi = 1.0) {
   return w;
 }
 
+// The plane with a pillar around the origin, for the start and goal checks.
+World pillarWorld() {
+  World w = planar();
+  w.addBox2("pillar", -0.2, -0.2, 0.2, 0.2);
+  return w;
+}
+
 World sixDof() {
   World w;
   for (int i = 1; i <= 6; ++i) w.joints.push_back({"joint" + std::to_string(i), -M_PI, M_PI, false});
@@ -112,6 +119,12 @@ void expectValidPath(const World& w, const PlanningResult& r, double max_step = 
                                          << w.explain(wrapped, 0.0);
     }
   }
+}
+
+// A failed plan: its status, and a message that names the problem.
+void expectFailure(const PlanningResult& r, PlanningStatus status, const std::string& needle) {
+  EXPECT_EQ(r.status, status) << r.message;
+  EXPECT_NE(r.message.find(needle), std::string::npos) << r.message;
 }
 
 class PlanningTest : public ::testing::Test {
@@ -214,46 +227,38 @@ TEST_F(PlanningTest, ContinuousJointTakesTheShortWayRound) {
 }
 
 TEST_F(PlanningTest, InvalidStartIsReportedWithTheReason) {
-  World w = planar();
-  w.addBox2("pillar", -0.2, -0.2, 0.2, 0.2);
+  World w = pillarWorld();
   PlanningProblem p = w.problem(vec({0.0, 0.1}), vec({0.8, 0.8}));
   PlanningResult r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidStart);
-  EXPECT_NE(r.message.find("inside box pillar"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidStart, "inside box pillar");
   EXPECT_TRUE(r.path.empty());
 
   p.start = vec({1.5, 0.0});
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidStart);
-  EXPECT_NE(r.message.find("x = 1.5 is outside its bounds"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidStart, "x = 1.5 is outside its bounds");
 }
 
 TEST_F(PlanningTest, GoalInCollision) {
-  World w = planar();
-  w.addBox2("pillar", -0.2, -0.2, 0.2, 0.2);
+  World w = pillarWorld();
   PlanningProblem p = w.problem(vec({-0.8, -0.8}), vec({0.1, 0.0}));
   PlanningResult r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kGoalInCollision);
-  EXPECT_NE(r.message.find("inside box pillar"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kGoalInCollision, "inside box pillar");
 
   p.joint_goal.reset();
   p.goal_states = {vec({0.1, 0.0}), vec({-0.1, 0.1})};
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kGoalInCollision) << r.message;
-  EXPECT_NE(r.message.find("inside box pillar"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kGoalInCollision, "inside box pillar");
 }
 
 TEST_F(PlanningTest, GoalOutOfBoundsIsInvalidGoal) {
   World w = planar();
   PlanningProblem p = w.problem(vec({-0.8, -0.8}), vec({0.5, 1.2}));
   const PlanningResult r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidGoal);
-  EXPECT_NE(r.message.find("y = 1.2"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidGoal, "y = 1.2");
 }
 
 TEST_F(PlanningTest, JointGoalToleranceReachesAValidStateNearAnInvalidTarget) {
-  World w = planar();
-  w.addBox2("pillar", -0.2, -0.2, 0.2, 0.2);
+  World w = pillarWorld();
   PlanningProblem p = w.problem(vec({-0.8, -0.8}), vec({0.15, 0.0}));
   p.joint_goal->tolerance = vec({0.2, 0.2});
   const PlanningResult r = plan(p);
@@ -262,8 +267,7 @@ TEST_F(PlanningTest, JointGoalToleranceReachesAValidStateNearAnInvalidTarget) {
 }
 
 TEST_F(PlanningTest, GoalStatesReachOneOfTheValidOnes) {
-  World w = planar();
-  w.addBox2("pillar", -0.2, -0.2, 0.2, 0.2);
+  World w = pillarWorld();
   PlanningProblem p = w.problem(vec({-0.8, -0.8}), vec({0, 0}));
   p.joint_goal.reset();
   p.goal_states = {vec({0.0, 0.0}), vec({0.7, 0.6}), vec({0.6, -0.7})};
@@ -273,8 +277,7 @@ TEST_F(PlanningTest, GoalStatesReachOneOfTheValidOnes) {
 }
 
 TEST_F(PlanningTest, SampledGoals) {
-  World w = planar();
-  w.addBox2("pillar", -0.2, -0.2, 0.2, 0.2);
+  World w = pillarWorld();
   PlanningProblem p = w.problem(vec({-0.8, -0.8}), vec({0, 0}));
   p.joint_goal.reset();
 
@@ -287,8 +290,7 @@ TEST_F(PlanningTest, SampledGoals) {
     return true;
   }};
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kGoalInCollision) << r.message;
-  EXPECT_NE(r.message.find("inside box pillar"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kGoalInCollision, "inside box pillar");
 
   // An "IK" that fails every other call and alternates between two solutions of a pose.
   int calls = 0;
@@ -307,8 +309,7 @@ TEST_F(PlanningTest, SampledGoals) {
     return true;
   }};
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidRequest);
-  EXPECT_NE(r.message.find("has 3 values for 2 joints"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidRequest, "has 3 values for 2 joints");
 }
 
 TEST_F(PlanningTest, UnreachableGoalTimesOut) {
@@ -344,8 +345,7 @@ TEST_F(PlanningTest, MalformedRequestsAreRejected) {
   p = good;
   p.start = vec({NAN, 0.0});
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidRequest);
-  EXPECT_NE(r.message.find("NaN"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidRequest, "NaN");
 
   p = good;
   p.joint_goal->target = vec({0.0, NAN});
@@ -358,8 +358,7 @@ TEST_F(PlanningTest, MalformedRequestsAreRejected) {
   p = good;
   p.joints[1].lower = 2.0;
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidRequest);
-  EXPECT_NE(r.message.find("joint y has invalid bounds"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidRequest, "joint y has invalid bounds");
 
   p = good;
   p.is_valid = nullptr;
@@ -384,8 +383,7 @@ TEST_F(PlanningTest, MalformedRequestsAreRejected) {
   p = good;
   p.options.planner_params = {{"no_such_param", "1"}};
   r = plan(p);
-  EXPECT_EQ(r.status, PlanningStatus::kInvalidRequest);
-  EXPECT_NE(r.message.find("no_such_param"), std::string::npos) << r.message;
+  expectFailure(r, PlanningStatus::kInvalidRequest, "no_such_param");
 
   p = good;
   p.options.planner_params = {{"range", "0.1"}};
@@ -460,8 +458,3 @@ TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -176,8 +176,3 @@ TEST_F(PlanningContextTest, CartesianDescentStopsAtTheTable) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -11,14 +11,17 @@ namespace sixdof_core {
 namespace {
 
 // Expects constructing the arm model with `srdf` to throw a RobotModelError mentioning `needle`.
-void expectSrdfError(const std::string& srdf, const std::string& needle) {
-  const std::string urdf = readTextFile(kArmUrdf);
+void expectModelError(const std::string& urdf, const std::string& srdf, const std::string& needle) {
   try {
     RobotModel model(urdf, srdf, armResolver());
-    ADD_FAILURE() << "no error for SRDF: " << srdf;
+    ADD_FAILURE() << "no error for URDF/SRDF:\n" << urdf << "\n" << srdf;
   } catch (const RobotModelError& e) {
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "message: " << e.what();
   }
+}
+
+void expectSrdfError(const std::string& srdf, const std::string& needle) {
+  expectModelError(readTextFile(kArmUrdf), srdf, needle);
 }
 
 std::string srdfWith(const std::string& body) { return "<robot name=\"sixdof\">" + body + "</robot>"; }
@@ -171,16 +174,12 @@ TEST(RobotModel, MeshesResolveThroughPackagePaths) {
 }
 
 TEST(RobotModel, ContinuousJointsAreUnbounded) {
-  const auto model = RobotModel::fromFiles(kDataDir + "/ur_like.urdf", kDataDir + "/ur_like.srdf", testResolver());
+  const auto model = urModel();
   const JointModel& pan = model->joint("shoulder_pan_joint");
   EXPECT_EQ(pan.type, JointType::kContinuous);
   EXPECT_FALSE(pan.limits.bounded);
   EXPECT_TRUE(pan.isMultiTurn());
-  RobotState state(model);
-  state.setJointPosition("shoulder_pan_joint", 10.0);
-  EXPECT_TRUE(state.satisfiesBounds());
-  state.setJointPosition("elbow_joint", 3.5);
-  EXPECT_FALSE(state.satisfiesBounds());
+  expectBoundsCheck(model, "shoulder_pan_joint", 10.0, "elbow_joint", 3.5);
 }
 
 TEST(RobotState, MimicJointsAndNamedStates) {
@@ -269,29 +268,14 @@ TEST(RobotModelErrors, UrdfProblemsAreNamed) {
   const std::string two_roots =
       "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>"
       "<joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"nolink\"/></joint></robot>";
-  try {
-    RobotModel model(two_roots, "<robot name=\"x\"/>");
-    ADD_FAILURE() << "URDF with a joint to an unknown link must not load";
-  } catch (const RobotModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("nolink"), std::string::npos) << e.what();
-  }
+  expectModelError(two_roots, "<robot name=\"x\"/>", "nolink");
   const std::string bad_mimic =
       "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/>"
       "<joint name=\"j\" type=\"prismatic\"><parent link=\"a\"/><child link=\"b\"/><axis xyz=\"1 0 0\"/>"
       "<limit lower=\"0\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"ghost\"/></joint></robot>";
-  try {
-    RobotModel model(bad_mimic, "<robot name=\"x\"/>");
-    ADD_FAILURE() << "URDF with a mimic of an unknown joint must not load";
-  } catch (const RobotModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("mimics unknown joint 'ghost'"), std::string::npos) << e.what();
-  }
+  expectModelError(bad_mimic, "<robot name=\"x\"/>", "mimics unknown joint 'ghost'");
   EXPECT_THROW(readTextFile("/nonexistent/file.urdf"), RobotModelError);
 }
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

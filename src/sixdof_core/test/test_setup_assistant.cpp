@@ -437,8 +437,3 @@ TEST(SetupAssistant, DescribeOnlyNeedsNoSrdfOut) {
   EXPECT_NE(readTextFile(run.describe_path).find("robot: \"ur_like\""), std::string::npos);
   std::remove(run.describe_path.c_str());
 }
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

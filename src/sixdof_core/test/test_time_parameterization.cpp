@@ -260,8 +260,3 @@ TEST(TimeParameterization, RejectsInvalidInput) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

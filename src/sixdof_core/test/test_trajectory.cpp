@@ -120,8 +120,3 @@ TEST(Trajectory, SamplingATimeParameterizedTrajectoryStaysWithinLimits) {
 
 }  // namespace
 }  // namespace sixdof_core
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -55,13 +55,17 @@ struct CollisionRequest {
   std::size_t max_pairs = 0;
 };
 
-// One contact between two bodies. The normal points from body1 towards body2. With a non-convex mesh
-// involved, FCL reports triangle-level contacts whose depth is only indicative.
-struct Contact {
+// The two bodies a contact or a distance is between (links, attached or world objects).
+struct BodyPair {
   std::string body1;
   std::string body2;
   BodyType type1 = BodyType::kRobotLink;
   BodyType type2 = BodyType::kRobotLink;
+};
+
+// One contact between two bodies. The normal points from body1 towards body2. With a non-convex mesh
+// involved, FCL reports triangle-level contacts whose depth is only indicative.
+struct Contact : BodyPair {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   double depth = 0.0;
@@ -75,13 +79,9 @@ struct CollisionReport {
 // Signed minimum distance over the pairs in scope: negative = the deepest penetration among colliding
 // pairs. point1/point2 are the closest points (world frame) on body1/body2; for a penetrating pair
 // both are the deepest contact point.
-struct DistanceReport {
+struct DistanceReport : BodyPair {
   bool found = false;  // false when no pair is in scope (e.g. an empty world)
   double distance = std::numeric_limits<double>::infinity();
-  std::string body1;
-  std::string body2;
-  BodyType type1 = BodyType::kRobotLink;
-  BodyType type2 = BodyType::kRobotLink;
   Eigen::Vector3d point1 = Eigen::Vector3d::Zero();
   Eigen::Vector3d point2 = Eigen::Vector3d::Zero();
 };

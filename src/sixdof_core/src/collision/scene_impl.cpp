@@ -18,6 +18,18 @@ using detail::ShapePose;
 using detail::worldAabb;
 using detail::WorldShapeTag;
 
+namespace {
+
+// A contact or a distance report names its two bodies as the query found them.
+void setBodies(const Body& b1, const Body& b2, BodyPair* pair) {
+  pair->body1 = b1.name;
+  pair->body2 = b2.name;
+  pair->type1 = b1.type;
+  pair->type2 = b2.type;
+}
+
+}  // namespace
+
 bool CollisionScene::Impl::pairAllowed(const Body& a, const Body& b) const {
   if (a.type != BodyType::kWorldObject && b.type != BodyType::kWorldObject && a.link == b.link) return true;
   if (a.type == BodyType::kAttachedObject &&
@@ -112,10 +124,7 @@ void CollisionScene::Impl::record(Query* q, const Body& b1, const Body& b2, cons
   for (const auto& c : contacts) {
     if (*pair_count >= q->request->max_contacts_per_pair) break;
     Contact out;
-    out.body1 = b1.name;
-    out.body2 = b2.name;
-    out.type1 = b1.type;
-    out.type2 = b2.type;
+    setBodies(b1, b2, &out);
     out.position = c.pos;
     out.normal = c.normal;
     out.depth = c.penetration_depth;
@@ -247,10 +256,7 @@ void CollisionScene::Impl::consider(DistanceReport* report, const PairDistance& 
   if (d.distance >= report->distance) return;
   report->found = true;
   report->distance = d.distance;
-  report->body1 = b1.name;
-  report->body2 = b2.name;
-  report->type1 = b1.type;
-  report->type2 = b2.type;
+  setBodies(b1, b2, report);
   report->point1 = d.p1;
   report->point2 = d.p2;
 }

@@ -1,5 +1,6 @@
 #include "sixdof_planning/query_robot_model_service_capability.h"
 
+#include <sixdof_core/mesh_loader.h>
 #include <sixdof_core/robot_model.h>
 #include <sixdof_msgs/GetRobotModel.h>
 
@@ -35,6 +36,76 @@ sixdof_msgs::RobotModelJoint toMsg(const sixdof_core::JointModel& joint) {
   }
   return msg;
 }
+
+sixdof_msgs::RobotModelGroup toMsg(const sixdof_core::JointGroup& group) {
+  sixdof_msgs::RobotModelGroup msg;
+  msg.name = group.name;
+  msg.active_joints = group.active_joints;
+  msg.joints = group.joints;
+  msg.links = group.links;
+  msg.subgroups = group.subgroups;
+  msg.chain_base_link = group.chain_base;
+  msg.chain_tip_link = group.chain_tip;
+  return msg;
+}
+
+sixdof_msgs::RobotModelGroupState toMsg(const sixdof_core::GroupState& state) {
+  sixdof_msgs::RobotModelGroupState msg;
+  msg.group = state.group;
+  msg.name = state.name;
+  for (const auto& [joint, value] : state.values) {
+    msg.joint_names.push_back(joint);
+    msg.positions.push_back(value);
+  }
+  return msg;
+}
+
+sixdof_msgs::RobotModelEndEffector toMsg(const sixdof_core::EndEffector& eef) {
+  sixdof_msgs::RobotModelEndEffector msg;
+  msg.name = eef.name;
+  msg.parent_link = eef.parent_link;
+  msg.group = eef.group;
+  msg.parent_group = eef.parent_group;
+  return msg;
+}
+
+// Every item of `items` as its message, appended to `out` in the model's order.
+template <class Items, class Msg>
+void appendMsgs(const Items& items, std::vector<Msg>* out) {
+  for (const auto& item : items) out->push_back(toMsg(item));
+}
+
+// A primitive in SolidPrimitive's dimension order (BOX x y z, SPHERE radius, CYLINDER height radius).
+shape_msgs::SolidPrimitive primitiveMsg(const sixdof_core::Shape& shape) {
+  using Type = sixdof_core::ShapeType;
+  shape_msgs::SolidPrimitive msg;
+  if (shape.type == Type::kBox) {
+    msg.type = shape_msgs::SolidPrimitive::BOX;
+    msg.dimensions = {shape.box_size.x(), shape.box_size.y(), shape.box_size.z()};
+  } else if (shape.type == Type::kSphere) {
+    msg.type = shape_msgs::SolidPrimitive::SPHERE;
+    msg.dimensions = {shape.radius};
+  } else {
+    msg.type = shape_msgs::SolidPrimitive::CYLINDER;
+    msg.dimensions = {shape.length, shape.radius};
+  }
+  return msg;
+}
+
+shape_msgs::Mesh meshMsg(const sixdof_core::MeshData& mesh) {
+  shape_msgs::Mesh msg;
+  msg.vertices.resize(mesh.vertices.size());
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    msg.vertices[i].x = mesh.vertices[i].x();
+    msg.vertices[i].y = mesh.vertices[i].y();
+    msg.vertices[i].z = mesh.vertices[i].z();
+  }
+  msg.triangles.resize(mesh.triangles.size());
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    for (size_t k = 0; k < 3; ++k) msg.triangles[i].vertex_indices[k] = static_cast<uint32_t>(mesh.triangles[i][k]);
+  }
+  return msg;
+}
 }  // namespace
 
 void describeRobotModel(const sixdof_core::RobotModel& model, sixdof_msgs::GetRobotModelResponse* response) {
@@ -44,42 +115,47 @@ void describeRobotModel(const sixdof_core::RobotModel& model, sixdof_msgs::GetRo
   response->planning_frame =
       model.virtualJoints().empty() ? model.rootLink() : model.virtualJoints().front().parent_frame;
   for (const auto& link : model.links()) response->link_names.push_back(link.name);
-  for (const auto& joint : model.joints()) response->joints.push_back(toMsg(joint));
+  appendMsgs(model.joints(), &response->joints);
   response->variable_names = model.variableNames();
-  for (const auto& group : model.groups()) {
-    sixdof_msgs::RobotModelGroup msg;
-    msg.name = group.name;
-    msg.active_joints = group.active_joints;
-    msg.joints = group.joints;
-    msg.links = group.links;
-    msg.subgroups = group.subgroups;
-    msg.chain_base_link = group.chain_base;
-    msg.chain_tip_link = group.chain_tip;
-    response->groups.push_back(msg);
-  }
-  for (const auto& state : model.groupStates()) {
-    sixdof_msgs::RobotModelGroupState msg;
-    msg.group = state.group;
-    msg.name = state.name;
-    for (const auto& [joint, value] : state.values) {
-      msg.joint_names.push_back(joint);
-      msg.positions.push_back(value);
-    }
-    response->group_states.push_back(msg);
-  }
-  for (const auto& eef : model.endEffectors()) {
-    sixdof_msgs::RobotModelEndEffector msg;
-    msg.name = eef.name;
-    msg.parent_link = eef.parent_link;
-    msg.group = eef.group;
-    msg.parent_group = eef.parent_group;
-    response->end_effectors.push_back(msg);
-  }
+  appendMsgs(model.groups(), &response->groups);
+  appendMsgs(model.groupStates(), &response->group_states);
+  appendMsgs(model.endEffectors(), &response->end_effectors);
 }
 
-bool QueryRobotModelService::handle(sixdof_msgs::GetRobotModelRequest& /*request*/,
+std::string describeCollisionGeometry(const sixdof_core::RobotModel& model,
+                                      std::vector<sixdof_msgs::RobotModelLinkGeometry>* geometries) {
+  std::vector<sixdof_msgs::RobotModelLinkGeometry> out;
+  for (const auto& link : model.collisionGeometry()) {
+    sixdof_msgs::RobotModelLinkGeometry msg;
+    msg.link_name = link.link_name;
+    for (const auto& placed : link.shapes) {
+      if (placed.shape.type != sixdof_core::ShapeType::kMesh) {
+        msg.primitives.push_back(primitiveMsg(placed.shape));
+        msg.primitive_poses.push_back(eigenToPose(placed.origin));
+        continue;
+      }
+      // The loader the collision scene builds the link's FCL mesh with (cached: no second read of the file).
+      const auto loaded = sixdof_core::loadMesh(placed.shape.mesh_path, placed.shape.mesh_scale);
+      if (!loaded.ok()) return "link '" + link.link_name + "': " + loaded.message;
+      msg.meshes.push_back(meshMsg(*loaded.mesh));
+      msg.mesh_poses.push_back(eigenToPose(placed.origin));
+    }
+    out.push_back(std::move(msg));
+  }
+  *geometries = std::move(out);
+  return "";
+}
+
+bool QueryRobotModelService::handle(sixdof_msgs::GetRobotModelRequest& request,
                                     sixdof_msgs::GetRobotModelResponse& response) {
   describeRobotModel(*context_->model(), &response);
+  if (request.include_collision_geometry) {
+    const std::string error = describeCollisionGeometry(*context_->model(), &response.link_geometries);
+    if (!error.empty()) {
+      response.error_code = makeError(ErrorCode::FAILURE, "collision geometry: " + error, service_);
+      return true;
+    }
+  }
   response.error_code = makeSuccess(service_);
   return true;
 }

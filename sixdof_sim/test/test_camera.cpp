@@ -315,8 +315,3 @@ TEST(CameraConfig, UnknownParentLinkRefusedByTheRenderer) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

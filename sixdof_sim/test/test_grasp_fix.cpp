@@ -474,8 +474,3 @@ INSTANTIATE_TEST_SUITE_P(SoakFailures, CylinderGrasp,
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -54,12 +54,24 @@ GripperUpdate run(GripperController& c, Finger& f, double& now, double max_time)
   return u;
 }
 
-TEST(GripperController, ReachesTheTargetAndSucceeds) {
-  GripperController c(fingerConfig(true));
+// A controller and its finger from time 0.
+struct Rig {
+  explicit Rig(bool allow_stalling) : c(fingerConfig(allow_stalling)) {}
+
+  // Sends `goal` now and steps until it finishes or 5 s have passed: the last update.
+  GripperUpdate runGoal(const GripperGoal& goal) {
+    EXPECT_TRUE(c.setGoal(goal, now).ok());
+    return run(c, f, now, 5.0);
+  }
+
+  GripperController c;
   Finger f;
   double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.01, 5.0}, now).ok());
-  GripperUpdate u = run(c, f, now, 5.0);
+};
+
+TEST(GripperController, ReachesTheTargetAndSucceeds) {
+  Rig rig(true);
+  const GripperUpdate u = rig.runGoal({0.01, 5.0});
   EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.reached_goal);
   EXPECT_FALSE(u.stalled);
@@ -68,59 +80,47 @@ TEST(GripperController, ReachesTheTargetAndSucceeds) {
 }
 
 TEST(GripperController, ClosingOnAnObjectStallsAndSucceedsWhenStallingIsAllowed) {
-  GripperController c(fingerConfig(true));
-  Finger f;
-  f.obstacle = 0.02;  // a 4 cm cube
-  double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
-  GripperUpdate u = run(c, f, now, 5.0);
+  Rig rig(true);
+  rig.f.obstacle = 0.02;  // a 4 cm cube
+  GripperUpdate u = rig.runGoal({0.0, 0.0});
   EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.stalled);
   EXPECT_FALSE(u.reached_goal);
   EXPECT_NEAR(u.position, 0.02, 1e-12);
   // Reached the cube after 0.4 s, then stall_timeout without movement.
-  EXPECT_NEAR(now, 0.4 + 0.2, 0.01);
+  EXPECT_NEAR(rig.now, 0.4 + 0.2, 0.01);
   // max_effort 0 means the URDF effort limit, and the grip keeps squeezing after the goal ended.
   EXPECT_DOUBLE_EQ(u.command_max_effort, 20.0);
-  u = c.update(now + 1.0, f.q);
+  u = rig.c.update(rig.now + 1.0, rig.f.q);
   EXPECT_DOUBLE_EQ(u.command_position, 0.0);
 }
 
 TEST(GripperController, AFingerJitteringOnAnObjectStalls) {
   // As measured in the simulator: a 20 um jitter each 1 ms step is a velocity of +-0.02 m/s, 20 times the
   // stall threshold, while the finger goes nowhere.
-  GripperController c(fingerConfig(true));
-  Finger f;
-  f.obstacle = 0.02;
-  f.jitter = 2e-5;
-  double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
-  const GripperUpdate u = run(c, f, now, 5.0);
+  Rig rig(true);
+  rig.f.obstacle = 0.02;
+  rig.f.jitter = 2e-5;
+  const GripperUpdate u = rig.runGoal({0.0, 0.0});
   EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.stalled);
-  EXPECT_NEAR(now, 0.4 + 0.2, 0.01);
+  EXPECT_NEAR(rig.now, 0.4 + 0.2, 0.01);
 }
 
 TEST(GripperController, AFingerMovingSlowlyButSteadilyIsNotStalled) {
   // Twice the threshold speed: 2 mm/s towards a target 4 mm away takes 2 s, ten stall timeouts.
-  GripperController c(fingerConfig(false));
-  Finger f;
-  f.speed = 0.002;
-  double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.036, 0.0}, now).ok());
-  const GripperUpdate u = run(c, f, now, 5.0);
+  Rig rig(false);
+  rig.f.speed = 0.002;
+  const GripperUpdate u = rig.runGoal({0.036, 0.0});
   EXPECT_TRUE(u.reached_goal);
   EXPECT_FALSE(u.stalled);
   EXPECT_EQ(u.state, GoalState::kSucceeded);
 }
 
 TEST(GripperController, StallAbortsWhenStallingIsNotAllowed) {
-  GripperController c(fingerConfig(false));
-  Finger f;
-  f.obstacle = 0.02;
-  double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
-  GripperUpdate u = run(c, f, now, 5.0);
+  Rig rig(false);
+  rig.f.obstacle = 0.02;
+  const GripperUpdate u = rig.runGoal({0.0, 0.0});
   EXPECT_EQ(u.state, GoalState::kAborted);
   EXPECT_TRUE(u.stalled);
 }
@@ -137,24 +137,21 @@ TEST(GripperController, RejectsBadGoals) {
 }
 
 TEST(GripperController, CancelHoldsTheActualPositionAndPreemptionRestartsTheStallClock) {
-  GripperController c(fingerConfig(true));
-  Finger f;
-  double now = 0.0;
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
-  run(c, f, now, 0.1);
-  c.cancel(f.q);
-  EXPECT_EQ(c.state(), GoalState::kCanceled);
-  const double held = f.q;
-  GripperUpdate u = c.update(now, f.q);
+  Rig rig(true);
+  ASSERT_TRUE(rig.c.setGoal({0.0, 0.0}, rig.now).ok());
+  run(rig.c, rig.f, rig.now, 0.1);
+  rig.c.cancel(rig.f.q);
+  EXPECT_EQ(rig.c.state(), GoalState::kCanceled);
+  const double held = rig.f.q;
+  GripperUpdate u = rig.c.update(rig.now, rig.f.q);
   EXPECT_DOUBLE_EQ(u.command_position, held);
   EXPECT_FALSE(u.finished);
 
   // A new goal while one is active replaces it.
-  ASSERT_TRUE(c.setGoal({0.0, 0.0}, now).ok());
-  ASSERT_TRUE(c.setGoal({0.03, 0.0}, now).ok());
-  u = run(c, f, now, 5.0);
+  ASSERT_TRUE(rig.c.setGoal({0.0, 0.0}, rig.now).ok());
+  u = rig.runGoal({0.03, 0.0});
   EXPECT_TRUE(u.reached_goal);
-  EXPECT_NEAR(f.q, 0.03, 0.001);
+  EXPECT_NEAR(rig.f.q, 0.03, 0.001);
 }
 
 TEST(GripperController, BadConfigThrows) {
@@ -171,8 +168,3 @@ TEST(GripperController, BadConfigThrows) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -113,8 +113,3 @@ TEST(JointTrajectory, RejectsInconsistentKnots) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -80,8 +80,3 @@ TEST(JointKinds, MovingLinkWithoutInertiaIsOneLineNamingIt) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -393,8 +393,3 @@ TEST(TrajectoryControllerNoState, GoalBeforeAnyUpdateIsRejected) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -326,8 +326,3 @@ TEST(WorldConstruction, BadInputIsNamed) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -203,8 +203,3 @@ TEST(WorldFile, MissingFileAndRelativeMeshes) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -124,8 +124,3 @@ TEST(Contacts, PenetrationIsResolvedWithoutLaunchingTheObject) {
 
 }  // namespace
 }  // namespace sixdof_sim
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -41,22 +41,23 @@ class Parser {
     }
   }
 
-  double number(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be a number");
+  // A scalar of type T (`expected` says what it must be in the message).
+  template <typename T>
+  T scalar(const YAML::Node& node, const std::string& context, const std::string& key, const char* expected) const {
+    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be " + expected);
     try {
-      return node.as<double>();
+      return node.as<T>();
     } catch (const YAML::Exception&) {
-      fail(node, context, "'" + key + "' must be a number, got '" + node.Scalar() + "'");
+      fail(node, context, "'" + key + "' must be " + expected + ", got '" + node.Scalar() + "'");
     }
   }
 
+  double number(const YAML::Node& node, const std::string& context, const std::string& key) const {
+    return scalar<double>(node, context, key, "a number");
+  }
+
   bool boolean(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be true or false");
-    try {
-      return node.as<bool>();
-    } catch (const YAML::Exception&) {
-      fail(node, context, "'" + key + "' must be true or false, got '" + node.Scalar() + "'");
-    }
+    return scalar<bool>(node, context, key, "true or false");
   }
 
   std::string text(const YAML::Node& node, const std::string& context, const std::string& key) const {
@@ -65,12 +66,7 @@ class Parser {
   }
 
   long long integer(const YAML::Node& node, const std::string& context, const std::string& key) const {
-    if (!node.IsScalar()) fail(node, context, "'" + key + "' must be an integer");
-    try {
-      return node.as<long long>();
-    } catch (const YAML::Exception&) {
-      fail(node, context, "'" + key + "' must be an integer, got '" + node.Scalar() + "'");
-    }
+    return scalar<long long>(node, context, key, "an integer");
   }
 
   std::vector<double> numbers(const YAML::Node& node, const std::string& context, const std::string& key,

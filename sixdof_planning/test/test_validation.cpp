@@ -242,8 +242,3 @@ TEST_F(ValidationTest, FramesAreThePlanningFrameItsParentOrALink) {
 
 }  // namespace
 }  // namespace sixdof_planning
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -237,8 +237,3 @@ TEST(TrajectoryAnimation, LoopingTrajectoryGivesWayAfterOneLoop) {
 
 }  // namespace
 }  // namespace sixdof_rviz
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -1,5 +1,6 @@
 #include "sixdof_planning/conversions.h"
 
+#include <shape_msgs/SolidPrimitive.h>
 #include <tf2_eigen/tf2_eigen.h>
 
 namespace sixdof_planning {
@@ -16,6 +17,19 @@ Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose) {
 }
 
 geometry_msgs::Pose eigenToPose(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
+
+std::optional<sixdof_core::ShapeType> primitiveType(uint8_t msg_type) {
+  switch (msg_type) {
+    case shape_msgs::SolidPrimitive::BOX:
+      return sixdof_core::ShapeType::kBox;
+    case shape_msgs::SolidPrimitive::SPHERE:
+      return sixdof_core::ShapeType::kSphere;
+    case shape_msgs::SolidPrimitive::CYLINDER:
+      return sixdof_core::ShapeType::kCylinder;
+    default:
+      return std::nullopt;
+  }
+}
 
 sensor_msgs::JointState toJointState(const sixdof_core::RobotState& state) {
   sensor_msgs::JointState msg;

@@ -10,6 +10,8 @@
 
 #include <shape_msgs/SolidPrimitive.h>
 
+#include <sixdof_core/primitive_dimensions.h>
+
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/validation.h"
 
@@ -161,18 +163,15 @@ ErrorCode SceneStore::toShapes(const CollisionObject& object, const std::string&
     const auto& primitive = object.primitives[i];
     sixdof_core::PlacedShape placed;
     placed.origin = poseToEigen(object.primitive_poses[i]);
-    if (primitive.type == shape_msgs::SolidPrimitive::BOX) {
-      placed.shape.type = sixdof_core::Shape::Type::kBox;
-      placed.shape.box_size =
-          Eigen::Vector3d(primitive.dimensions[0], primitive.dimensions[1], primitive.dimensions[2]);
-    } else if (primitive.type == shape_msgs::SolidPrimitive::SPHERE) {
-      placed.shape.type = sixdof_core::Shape::Type::kSphere;
-      placed.shape.radius = primitive.dimensions[0];
-    } else {
-      placed.shape.type = sixdof_core::Shape::Type::kCylinder;
-      placed.shape.length = primitive.dimensions[0];
-      placed.shape.radius = primitive.dimensions[1];
+    // validateCollisionObject has checked the type and the number of dimensions.
+    const std::optional<sixdof_core::ShapeType> type = primitiveType(primitive.type);
+    const std::optional<sixdof_core::Shape> shape =
+        type ? sixdof_core::primitiveShape(*type, primitive.dimensions) : std::nullopt;
+    if (!shape) {
+      return makeError(ErrorCode::INVALID_REQUEST,
+                       "primitive " + std::to_string(i) + " of '" + object.id + "' is not a valid primitive", source);
     }
+    placed.shape = *shape;
     shapes->push_back(placed);
   }
   for (size_t i = 0; i < object.meshes.size(); ++i) {

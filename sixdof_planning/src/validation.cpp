@@ -5,6 +5,9 @@
 #include <sstream>
 
 #include <shape_msgs/SolidPrimitive.h>
+#include <sixdof_core/primitive_dimensions.h>
+
+#include "sixdof_planning/conversions.h"
 
 namespace sixdof_planning {
 
@@ -177,23 +180,14 @@ ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, co
   for (size_t i = 0; i < object.primitives.size(); ++i) {
     const auto& primitive = object.primitives[i];
     const std::string pname = name + " primitives[" + std::to_string(i) + "]";
-    size_t expected = 0;
-    switch (primitive.type) {
-      case shape_msgs::SolidPrimitive::BOX:
-        expected = 3;
-        break;
-      case shape_msgs::SolidPrimitive::SPHERE:
-        expected = 1;
-        break;
-      case shape_msgs::SolidPrimitive::CYLINDER:
-        expected = 2;
-        break;
-      default:
-        return makeError(ErrorCode::INVALID_REQUEST,
-                         pname + " has unsupported type " + std::to_string(static_cast<int>(primitive.type)) +
-                             " (BOX, SPHERE and CYLINDER are supported)",
-                         source);
+    const std::optional<sixdof_core::ShapeType> type = primitiveType(primitive.type);
+    if (!type) {
+      return makeError(ErrorCode::INVALID_REQUEST,
+                       pname + " has unsupported type " + std::to_string(static_cast<int>(primitive.type)) +
+                           " (BOX, SPHERE and CYLINDER are supported)",
+                       source);
     }
+    const size_t expected = sixdof_core::primitiveDimensionCount(*type);
     if (primitive.dimensions.size() != expected) {
       return makeError(ErrorCode::INVALID_REQUEST,
                        pname + " needs " + std::to_string(expected) + " dimensions, got " +

@@ -3,10 +3,31 @@
 #include <shape_msgs/SolidPrimitive.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <optional>
 #include <sstream>
 
+#include "sixdof_core/primitive_dimensions.h"
+
 namespace sixdof_sim {
+namespace {
+
+// The primitives a SimObject may be, for both directions; the dimension order is sixdof_core's.
+struct Primitive {
+  uint8_t msg_type;
+  ShapeType type;
+  const char* name;
+  const char* dimensions;  // as the error message spells them
+};
+constexpr Primitive kPrimitives[] = {
+    {shape_msgs::SolidPrimitive::BOX, ShapeType::kBox, "BOX", "[x, y, z]"},
+    {shape_msgs::SolidPrimitive::SPHERE, ShapeType::kSphere, "SPHERE", "[radius]"},
+    {shape_msgs::SolidPrimitive::CYLINDER, ShapeType::kCylinder, "CYLINDER", "[height, radius]"},
+};
+
+}  // namespace
 
 geometry_msgs::Pose toMsg(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
 
@@ -20,26 +41,16 @@ geometry_msgs::Twist toMsg(const Twist& twist) {
 sixdof_msgs::SimObject toMsg(const ObjectSpec& spec) {
   sixdof_msgs::SimObject msg;
   msg.name = spec.name;
-  switch (spec.shape.type) {
-    case ShapeType::kBox:
-      msg.shape.type = shape_msgs::SolidPrimitive::BOX;
-      msg.shape.dimensions = {spec.shape.box_size.x(), spec.shape.box_size.y(), spec.shape.box_size.z()};
-      break;
-    case ShapeType::kSphere:
-      msg.shape.type = shape_msgs::SolidPrimitive::SPHERE;
-      msg.shape.dimensions = {spec.shape.radius};
-      break;
-    case ShapeType::kCylinder:
-      msg.shape.type = shape_msgs::SolidPrimitive::CYLINDER;
-      msg.shape.dimensions = {spec.shape.length, spec.shape.radius};
-      break;
-    case ShapeType::kMesh:
-      msg.mesh_resource = spec.shape.mesh_resource;
-      msg.mesh_scale.x = spec.shape.mesh_scale.x();
-      msg.mesh_scale.y = spec.shape.mesh_scale.y();
-      msg.mesh_scale.z = spec.shape.mesh_scale.z();
-      break;
+  if (spec.shape.type == ShapeType::kMesh) {
+    msg.mesh_resource = spec.shape.mesh_resource;
+    msg.mesh_scale.x = spec.shape.mesh_scale.x();
+    msg.mesh_scale.y = spec.shape.mesh_scale.y();
+    msg.mesh_scale.z = spec.shape.mesh_scale.z();
   }
+  for (const Primitive& primitive : kPrimitives) {
+    if (primitive.type == spec.shape.type) msg.shape.type = primitive.msg_type;
+  }
+  msg.shape.dimensions = sixdof_core::primitiveDimensions(spec.shape);
   msg.pose = tf2::toMsg(spec.pose);
   msg.mass = spec.mass;
   msg.friction = spec.friction;
@@ -91,42 +102,22 @@ bool fromMsg(const sixdof_msgs::SimObject& msg, ObjectSpec* spec, std::string* e
     const Eigen::Vector3d scale(msg.mesh_scale.x, msg.mesh_scale.y, msg.mesh_scale.z);
     out.shape.mesh_scale = scale.isZero(0.0) ? Eigen::Vector3d::Ones() : scale;
   } else {
-    const std::vector<double>& d = msg.shape.dimensions;
-    const auto wrong = [&](const char* type, const char* expected) {
+    const auto primitive = std::find_if(std::begin(kPrimitives), std::end(kPrimitives),
+                                        [&](const Primitive& p) { return p.msg_type == msg.shape.type; });
+    if (primitive == std::end(kPrimitives)) {
+      *error = "object '" + msg.name + "': shape type " + std::to_string(msg.shape.type) +
+               " is not supported (BOX=1, SPHERE=2, CYLINDER=3, or set mesh_resource)";
+      return false;
+    }
+    const std::optional<Shape> shape = sixdof_core::primitiveShape(primitive->type, msg.shape.dimensions);
+    if (!shape) {
       std::ostringstream s;
-      s << "object '" << msg.name << "': a " << type << " needs dimensions " << expected << ", got " << d.size()
-        << " values";
+      s << "object '" << msg.name << "': a " << primitive->name << " needs dimensions " << primitive->dimensions
+        << ", got " << msg.shape.dimensions.size() << " values";
       *error = s.str();
       return false;
-    };
-    switch (msg.shape.type) {
-      case shape_msgs::SolidPrimitive::BOX:
-        if (d.size() != 3) {
-          return wrong("BOX", "[x, y, z]");
-        }
-        out.shape.type = ShapeType::kBox;
-        out.shape.box_size = Eigen::Vector3d(d[0], d[1], d[2]);
-        break;
-      case shape_msgs::SolidPrimitive::SPHERE:
-        if (d.size() != 1) {
-          return wrong("SPHERE", "[radius]");
-        }
-        out.shape.type = ShapeType::kSphere;
-        out.shape.radius = d[0];
-        break;
-      case shape_msgs::SolidPrimitive::CYLINDER:
-        if (d.size() != 2) {
-          return wrong("CYLINDER", "[height, radius]");
-        }
-        out.shape.type = ShapeType::kCylinder;
-        out.shape.length = d[0];
-        out.shape.radius = d[1];
-        break;
-      default:
-        *error = "object '" + msg.name + "': shape type " + std::to_string(msg.shape.type) +
-                 " is not supported (BOX=1, SPHERE=2, CYLINDER=3, or set mesh_resource)";
-        return false;
     }
+    out.shape = *shape;
   }
   if (!fromMsg(msg.pose, &out.pose, error)) {
     *error = "object '" + msg.name + "': " + *error;

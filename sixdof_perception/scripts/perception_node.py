@@ -21,7 +21,7 @@ Private parameters:
   ~position_threshold  m: MOVE a scene object when its detection moved more than this (0.003)
   ~angle_threshold     rad: ... or turned more than this (0.05)
   ~wait_for_move_group s (wall clock) to wait for move_group's services (60; 0: forever); the robot model (planning
-                       frame, end effectors) comes from move_group's get_robot_model
+                       frame, end effectors, the links' collision shapes) comes from move_group's get_robot_model
 """
 
 import sys
@@ -33,8 +33,6 @@ import rospy
 import tf2_ros
 import yaml
 from sensor_msgs.msg import PointCloud2
-from sixdof_commander.mesh import load_stl
-from sixdof_commander.planning_scene import resolve_resource
 from std_msgs.msg import Header
 from visualization_msgs.msg import Marker, MarkerArray
 
@@ -54,12 +52,6 @@ from sixdof_perception.ros_conversions import (
 )
 from sixdof_perception.self_filter import hand_box, link_boxes, posed_boxes
 from sixdof_perception.tracking import Tracker
-
-
-def load_vertices(uri: str, scale: list[float]) -> np.ndarray:
-    """Vertices (Nx3) of a mesh file or package:// URI, scaled."""
-    mesh = load_stl(resolve_resource(uri), scale)
-    return np.array([(v.x, v.y, v.z) for v in mesh.vertices], dtype=float)
 
 
 class PerceptionNode:
@@ -91,12 +83,14 @@ class PerceptionNode:
         hand_padding = number_param("~hand_padding", 0.02, inclusive=False)
         position_threshold = number_param("~position_threshold", 0.003, inclusive=False)
         angle_threshold = number_param("~angle_threshold", 0.05, inclusive=False)
-        self.move_group = MoveGroupScene("perception", number_param("~wait_for_move_group", MOVE_GROUP_WAIT))
+        self.move_group = MoveGroupScene(
+            "perception", number_param("~wait_for_move_group", MOVE_GROUP_WAIT), collision_geometry=True
+        )
         robot = self.move_group.robot
         self.planning_frame = robot.planning_frame
-        # Self filter: every link's geometry box, and one box around each hand (a held object is inside it).
-        # The shapes come from robot_description (the model service carries no geometry); the hands from the model.
-        self.link_boxes = link_boxes(rospy.get_param("robot_description"), load_vertices)
+        # Self filter: every link's collision-geometry box, and one box around each hand (a held object is inside
+        # it), both from move_group's model.
+        self.link_boxes = link_boxes(robot.urdf.collision.values())
         self.hands = [(eef.parent_link, robot.touch_links(eef.parent_link)) for eef in robot.srdf.end_effectors]
         self.hand_padding = hand_padding
         self.mirror = SceneMirror(

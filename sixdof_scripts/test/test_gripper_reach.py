@@ -1,22 +1,24 @@
-"""The gripper's reach beyond the tcp, from the URDF's collision geometry."""
+"""The gripper's reach beyond the tcp, from the collision geometry of move_group's model (built here as the
+get_robot_model response's sixdof_msgs/RobotModelLinkGeometry messages)."""
 
-from xml.etree import ElementTree
+import dataclasses
 
 import numpy as np
 import pytest
+from geometry_msgs.msg import Point, Pose
 from offline_model import parse_urdf
+from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from sixdof_commander import SixdofCommanderError
-from sixdof_commander.gripper_reach import collision_points, gripper_reach
-from sixdof_commander.transforms import homogeneous
+from sixdof_commander.gripper_reach import gripper_reach
+from sixdof_commander.robot_model import geometry_points, primitive_points
+from sixdof_commander.transforms import homogeneous, quaternion_from_rpy
+
+from sixdof_msgs.msg import RobotModelLinkGeometry
 
 # A tip link and one finger 0.06 m long whose joint is 0.06 m along the tip's z axis (the finger spans 0.06 to
 # 0.12); tcp 0.08 along the tip's z axis: the fingertip reaches 0.12 - 0.08 = 0.04 beyond the tcp.
 URDF = """<robot name="hand">
-  <link name="tip"><collision><geometry><cylinder radius="0.03" length="0.01"/></geometry></collision></link>
-  <link name="finger">
-    <collision><origin xyz="0 0 0.03"/><geometry><box size="0.01 0.02 0.06"/></geometry></collision>
-  </link>
-  <link name="tcp"/>
+  <link name="tip"/><link name="finger"/><link name="tcp"/>
   <joint name="finger_joint" type="prismatic">
     <parent link="tip"/><child link="finger"/><origin xyz="0 0 0.06"/><axis xyz="0 1 0"/>
     <limit lower="0" upper="0.04" effort="10" velocity="0.1"/>
@@ -25,22 +27,84 @@ URDF = """<robot name="hand">
 </robot>"""
 
 
+def pose(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> Pose:
+    result = Pose()
+    result.position.x, result.position.y, result.position.z = xyz
+    q = quaternion_from_rpy(*rpy)
+    result.orientation.x, result.orientation.y, result.orientation.z, result.orientation.w = q
+    return result
+
+
+def primitive(kind: int, *dimensions: float) -> SolidPrimitive:
+    return SolidPrimitive(type=kind, dimensions=list(dimensions))
+
+
+# The tip: a cylinder at its origin; the finger: a box from 0 to 0.06 along z (its centre at 0.03).
+GEOMETRY = {
+    "tip": RobotModelLinkGeometry(
+        link_name="tip", primitives=[primitive(SolidPrimitive.CYLINDER, 0.01, 0.03)], primitive_poses=[pose()]
+    ),
+    "finger": RobotModelLinkGeometry(
+        link_name="finger",
+        primitives=[primitive(SolidPrimitive.BOX, 0.01, 0.02, 0.06)],
+        primitive_poses=[pose((0.0, 0.0, 0.03))],
+    ),
+}
+
+
+def hand(geometry=GEOMETRY):
+    return dataclasses.replace(parse_urdf(URDF), collision=geometry)
+
+
 def test_reach_is_the_fingertip_beyond_the_tcp():
-    description = parse_urdf(URDF)
     tcp_in_tip = homogeneous([0.0, 0.0, 0.08], np.eye(3))
-    assert gripper_reach(URDF, description, "tip", tcp_in_tip, lambda f: f) == pytest.approx(0.04)
+    assert gripper_reach(hand(), "tip", tcp_in_tip) == pytest.approx(0.04)
 
 
-def test_collision_points_bound_primitives():
-    points = collision_points(ElementTree.fromstring(URDF), "finger", lambda f: f)
-    assert points[:, 2].min() == pytest.approx(0.0)
-    assert points[:, 2].max() == pytest.approx(0.06)
-    assert len(collision_points(ElementTree.fromstring(URDF), "tcp", lambda f: f)) == 0
+def test_reach_counts_mesh_vertices_at_their_pose():
+    # A mesh 0.07 down the finger link (itself 0.06 down the tip), its vertices 0.05 along its z axis: upright it
+    # reaches 0.06 + 0.07 + 0.05 = 0.18 along the tip's z axis, turned over (roll pi) only 0.13.
+    mesh = Mesh(
+        vertices=[Point(0.0, 0.0, 0.0), Point(0.0, 0.0, 0.05), Point(0.01, 0.0, 0.0)],
+        triangles=[MeshTriangle(vertex_indices=[0, 1, 2])],
+    )
+    tcp_in_tip = homogeneous([0.0, 0.0, 0.08], np.eye(3))
+    for rpy, tip_z in (((0.0, 0.0, 0.0), 0.18), ((np.pi, 0.0, 0.0), 0.13)):
+        finger = RobotModelLinkGeometry(link_name="finger", meshes=[mesh], mesh_poses=[pose((0.0, 0.0, 0.07), rpy)])
+        assert gripper_reach(hand({"finger": finger}), "tip", tcp_in_tip) == pytest.approx(tip_z - 0.08)
 
 
-def test_unknown_link_and_bad_geometry_are_named():
+def test_geometry_points_bound_every_primitive_in_the_link_frame():
+    points = geometry_points(GEOMETRY["finger"])
+    np.testing.assert_allclose(points.min(axis=0), [-0.005, -0.01, 0.0], atol=1e-12)
+    np.testing.assert_allclose(points.max(axis=0), [0.005, 0.01, 0.06], atol=1e-12)
+    # A cylinder (height 0.4, radius 0.1) turned onto the x axis spans x by its height.
+    turned = RobotModelLinkGeometry(
+        link_name="arm",
+        primitives=[primitive(SolidPrimitive.CYLINDER, 0.4, 0.1), primitive(SolidPrimitive.SPHERE, 0.05)],
+        primitive_poses=[pose((0.2, 0.0, 0.0), (0.0, np.pi / 2.0, 0.0)), pose((0.0, 0.0, 0.3))],
+    )
+    points = geometry_points(turned)
+    np.testing.assert_allclose(points.min(axis=0), [-0.05, -0.1, -0.1], atol=1e-12)
+    np.testing.assert_allclose(points.max(axis=0), [0.4, 0.1, 0.35], atol=1e-12)
+    assert geometry_points(RobotModelLinkGeometry(link_name="empty")).shape == (0, 3)
+
+
+def test_links_without_geometry_have_no_points_and_unknown_links_are_named():
+    assert hand().collision_points("tcp").shape == (0, 3)
     with pytest.raises(SixdofCommanderError, match="link 'nope'"):
-        collision_points(ElementTree.fromstring(URDF), "nope", lambda f: f)
-    bad = URDF.replace('size="0.01 0.02 0.06"', 'size="0.01 x 0.06"')
-    with pytest.raises(SixdofCommanderError, match="finger.*box size"):
-        collision_points(ElementTree.fromstring(bad), "finger", lambda f: f)
+        hand().collision_points("nope")
+
+
+def test_a_model_queried_without_geometry_says_so():
+    with pytest.raises(SixdofCommanderError, match="collision_geometry=True"):
+        gripper_reach(parse_urdf(URDF), "tip", np.eye(4))
+
+
+def test_bad_primitives_are_named():
+    with pytest.raises(SixdofCommanderError, match="type 4 is not a box, sphere or cylinder"):
+        primitive_points(primitive(SolidPrimitive.CONE, 0.1, 0.1))
+    with pytest.raises(SixdofCommanderError, match=r"bad dimensions \[0.1, 0.2\]"):
+        primitive_points(primitive(SolidPrimitive.BOX, 0.1, 0.2))
+    with pytest.raises(SixdofCommanderError, match="bad dimensions"):
+        primitive_points(primitive(SolidPrimitive.SPHERE, float("nan")))

@@ -62,9 +62,12 @@ class SceneRobot:
 class MoveGroupScene:
     """move_group's robot model and planning-scene services, waited for under one bounded wall-clock wait."""
 
-    def __init__(self, who: str, timeout: float, extra_services: Iterable[str] = ()) -> None:
+    def __init__(
+        self, who: str, timeout: float, extra_services: Iterable[str] = (), collision_geometry: bool = False
+    ) -> None:
         """Waits up to `timeout` s (0: forever) for get_robot_model, get_planning_scene, apply_planning_scene
-        and `extra_services`; SixdofCommanderError names every one missing."""
+        and `extra_services`; SixdofCommanderError names every one missing. With `collision_geometry` the robot
+        model carries the links' collision shapes (RobotDescription.collision)."""
         services = ["get_robot_model", "get_planning_scene", "apply_planning_scene", *extra_services]
         waiter = ServerWaiter(timeout)
         for service in services:
@@ -72,7 +75,7 @@ class MoveGroupScene:
             waiter.service(service)
         waiter.check("needed services")
         self.who = who
-        urdf, srdf = query_robot_model("", timeout)
+        urdf, srdf = query_robot_model("", timeout, collision_geometry=collision_geometry)
         # move_group's model frame (the SRDF virtual joint's parent frame, else the root link).
         self.robot = SceneRobot(urdf=urdf, srdf=srdf, planning_frame=srdf.virtual_joint_parent or urdf.root_link)
         self._get_scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)

@@ -1,70 +1,30 @@
-"""The robot's own points: per link the bounding box (in the link frame) of its URDF collision and visual
-geometry, and per end effector one box around the whole hand (its links and the space between the fingers,
-where a held object is), both padded. Posed from tf each frame, they mask the cloud (as MoveIt's self filter
-does with the links' shapes)."""
+"""The robot's own points: per link the bounding box (in the link frame) of its collision shapes in move_group's
+robot model (get_robot_model with collision geometry), and per end effector one box around the whole hand (its
+links and the space between the fingers, where a held object is), both padded. Posed from tf each frame, they
+mask the cloud (as MoveIt's self filter does with the links' collision shapes)."""
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable, Iterable, Mapping, Sequence
-from xml.etree import ElementTree
+from collections.abc import Iterable, Mapping
+from typing import Any
 
 import numpy as np
+from sixdof_commander.robot_model import geometry_points
 
 from .detection import Box
-from .world import rotation_rpy
 
 LinkBoxes = dict[str, tuple[np.ndarray, np.ndarray]]  # link -> (centre, half extents) in the link frame
-VertexLoader = Callable[[str, list[float]], np.ndarray]  # (mesh URI, scale) -> Nx3 vertices
 
 
-def _floats(text: str | None, count: int, default: Sequence[float]) -> list[float]:
-    if text is None:
-        return list(default)
-    values = [float(v) for v in text.split()]
-    if len(values) != count or not all(math.isfinite(v) for v in values):
-        raise ValueError(f"URDF: expected {count} numbers, got '{text}'")
-    return values
-
-
-def _geometry_points(
-    geometry: ElementTree.Element, load_vertices: Callable[[str, list[float]], np.ndarray]
-) -> np.ndarray:
-    """Points whose bounding box is the geometry's (its own frame)."""
-    shape = next(iter(geometry), None)
-    if shape is None:
-        raise ValueError("URDF: <geometry> without a shape")
-    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
-    if shape.tag == "box":
-        return corners * np.array(_floats(shape.get("size"), 3, ())) / 2.0
-    if shape.tag == "cylinder":
-        r, length = float(shape.get("radius")), float(shape.get("length"))
-        return corners * np.array([r, r, length / 2.0])
-    if shape.tag == "sphere":
-        return corners * float(shape.get("radius"))
-    if shape.tag == "mesh":
-        return load_vertices(shape.get("filename", ""), _floats(shape.get("scale"), 3, (1.0, 1.0, 1.0)))
-    raise ValueError(f"URDF: unsupported geometry <{shape.tag}>")
-
-
-def link_boxes(urdf_text: str, load_vertices: VertexLoader) -> LinkBoxes:
-    """Per link with geometry, the bounding box of its collision and visual shapes in the link frame."""
+def link_boxes(geometries: Iterable[Any]) -> LinkBoxes:
+    """Per link with collision shapes (sixdof_msgs/RobotModelLinkGeometry, as RobotDescription.collision holds
+    them), the bounding box of its shapes in the link frame."""
     boxes: LinkBoxes = {}
-    for link in ElementTree.fromstring(urdf_text).iter("link"):
-        points = []
-        for element in list(link.iter("collision")) + list(link.iter("visual")):
-            geometry = element.find("geometry")
-            if geometry is None:
-                continue
-            origin = element.find("origin")
-            xyz = _floats(origin.get("xyz") if origin is not None else None, 3, (0.0, 0.0, 0.0))
-            rpy = _floats(origin.get("rpy") if origin is not None else None, 3, (0.0, 0.0, 0.0))
-            local = _geometry_points(geometry, load_vertices)
-            points.append(local @ rotation_rpy(*rpy).T + np.array(xyz))
-        if points:
-            allp = np.concatenate(points)
-            low, high = allp.min(axis=0), allp.max(axis=0)
-            boxes[link.get("name")] = ((low + high) / 2.0, (high - low) / 2.0)
+    for geometry in geometries:
+        points = geometry_points(geometry)
+        if len(points):
+            low, high = points.min(axis=0), points.max(axis=0)
+            boxes[geometry.link_name] = ((low + high) / 2.0, (high - low) / 2.0)
     return boxes
 
 

@@ -64,23 +64,29 @@ def load_robot_model(
     return query_robot_model(ns, timeout)
 
 
-def query_robot_model(ns: str, timeout: float = 5.0) -> tuple[RobotDescription, SemanticDescription]:
+def query_robot_model(
+    ns: str, timeout: float = 5.0, collision_geometry: bool = False
+) -> tuple[RobotDescription, SemanticDescription]:
     """The robot model move_group plans with, from its `get_robot_model` service (sixdof_msgs/GetRobotModel).
 
     move_group's core RobotModel is the project's only URDF/SRDF reader: groups, joint order, limits (continuous
     joints unbounded), named states and end effectors come from it, as moveit_commander gets them from MoveIt's
-    C++ RobotModel. Waits up to `timeout` wall-clock seconds (0: forever) for the service;
-    SixdofCommanderError names it when move_group is not there.
+    C++ RobotModel; with `collision_geometry`, also every link's collision shapes (RobotDescription.collision).
+    Waits up to `timeout` wall-clock seconds (0: forever) for the service; SixdofCommanderError names it when
+    move_group is not there, and move_group's error when it cannot describe the geometry.
     """
     name = resolve(ns, "get_robot_model")
     waiter = ServerWaiter(check_timeout(timeout, "timeout"))
     waiter.service(name)
     waiter.check("robot model")
     try:
-        response = call_service(rospy.ServiceProxy(name, GetRobotModel), GetRobotModelRequest(), SERVICE_TIMEOUT)
+        request = GetRobotModelRequest(include_collision_geometry=bool(collision_geometry))
+        response = call_service(rospy.ServiceProxy(name, GetRobotModel), request, SERVICE_TIMEOUT)
     except (rospy.ServiceException, rospy.ROSException) as err:
         raise SixdofCommanderError(f"robot model: call to '{rospy.resolve_name(name)}' failed: {err}") from err
-    return model_from_response(response)
+    if response.error_code.val != response.error_code.SUCCESS:
+        raise SixdofCommanderError(f"robot model: '{rospy.resolve_name(name)}' failed: {response.error_code.message}")
+    return model_from_response(response, collision=bool(collision_geometry))
 
 
 # Hang guard (wall clock) for service calls: a dead node fails at once, this only bounds a node that hangs.

@@ -14,7 +14,7 @@ from geometry_msgs.msg import Pose
 from sixdof_msgs.msg import MoveItErrorCodes
 from sixdof_msgs.srv import GetObjectState
 
-from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, resolve
+from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, query_robot_model, resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .grasping import (
@@ -28,7 +28,7 @@ from .grasping import (
 from .gripper import Gripper
 from .gripper_reach import gripper_reach
 from .move_group import MoveGroup
-from .planning_scene import PlanningScene, resolve_resource
+from .planning_scene import PlanningScene
 from .robot_model import resolve_group
 from .transforms import matrix_from_pose, quaternion_from_matrix
 
@@ -142,11 +142,9 @@ class ArmDriver:
         tcp_in_tip = urdf.fixed_transform(tip, "tcp") if "tcp" in urdf.links else np.eye(4)
         finger_frame = urdf.chain_transform(tip, finger.child)
         axis = finger_frame[:3, :3] @ np.asarray(finger.axis, dtype=float)
-        # The fingertips' reach beyond the tcp, from the gripper's collision geometry in the URDF.
-        param = resolve(self._ns, "robot_description")
-        if not rospy.has_param(param):
-            raise SixdofCommanderError(f"parameter {param} (the URDF) is not set: the gripper's reach is unknown")
-        reach = gripper_reach(rospy.get_param(param), urdf, tip, tcp_in_tip, resolve_resource)
+        # The fingertips' reach beyond the tcp, from the gripper's collision geometry in move_group's model.
+        geometry, _ = query_robot_model(self._ns, collision_geometry=True)
+        reach = gripper_reach(geometry, tip, tcp_in_tip)
         return GraspSpec(
             tcp_in_tip=tcp_in_tip, finger_axis=axis, max_width=2.0 * self.gripper.open_position, reach=reach
         )

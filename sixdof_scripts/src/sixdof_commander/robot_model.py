@@ -8,18 +8,23 @@ node ask move_group too (sixdof_bringup.scene_node), and the unit tests that run
 models with a reader of their own (sixdof_scripts/test/offline_model.py).
 
 Only what the commander needs: which joints a group moves (in order), their limits, the group's tip and
-end-effector links, the named states, and fixed offsets between links (link6 -> tcp).
+end-effector links, the named states, fixed offsets between links (link6 -> tcp) and, when asked for
+(`query_robot_model(..., collision_geometry=True)`), the links' collision shapes as move_group has them (the
+gripper's reach, the perception node's self filter): no Python code reads geometry from robot_description.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+from shape_msgs.msg import SolidPrimitive
 
 from .exceptions import SixdofCommanderError, UnknownGroupError
-from .transforms import homogeneous, matrix_from_quaternion
+from .transforms import matrix_from_pose
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,6 +66,21 @@ class RobotDescription:
     joints: dict[str, Joint]  # in the model's order (breadth-first from the root link)
     links: frozenset[str]
     link_order: tuple[str, ...] = ()  # the links in the model's order (empty when read offline)
+    # link -> its sixdof_msgs/RobotModelLinkGeometry (links without collision shapes have none); None when the
+    # model was queried without collision geometry.
+    collision: Mapping[str, Any] | None = None
+
+    def collision_points(self, link: str) -> np.ndarray:
+        """Points (N x 3, link frame) whose convex hull bounds the link's collision shapes (`geometry_points`);
+        none for a link without collision geometry."""
+        if self.collision is None:
+            raise SixdofCommanderError(
+                "the robot model carries no collision geometry: query it with collision_geometry=True"
+            )
+        if link not in self.links:
+            raise SixdofCommanderError(f"link '{link}' is not in the URDF '{self.name}'")
+        geometry = self.collision.get(link)
+        return geometry_points(geometry) if geometry is not None else np.zeros((0, 3))
 
     def parent_joint(self, link: str) -> Joint | None:
         """The joint whose child is `link`, or None for the root."""
@@ -186,20 +206,54 @@ def _expanded_tip(srdf: SemanticDescription, name: str, links: list[str]) -> str
     return links[-1] if links else ""
 
 
-def model_from_response(response: object) -> tuple[RobotDescription, SemanticDescription]:
-    """The robot model of a sixdof_msgs/GetRobotModel response (move_group's get_robot_model)."""
+def _box_corners(half: np.ndarray) -> np.ndarray:
+    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
+    return signs * half
+
+
+def primitive_points(primitive: Any) -> np.ndarray:
+    """The 8 corners (its own frame) of the box around a shape_msgs/SolidPrimitive BOX, SPHERE or CYLINDER (along
+    z); SixdofCommanderError naming the type or dimensions it cannot bound."""
+    dims = list(primitive.dimensions)
+    expected = {SolidPrimitive.BOX: 3, SolidPrimitive.SPHERE: 1, SolidPrimitive.CYLINDER: 2}
+    if primitive.type not in expected:
+        raise SixdofCommanderError(f"collision primitive type {primitive.type} is not a box, sphere or cylinder")
+    if len(dims) != expected[primitive.type] or not all(math.isfinite(v) and v > 0.0 for v in dims):
+        raise SixdofCommanderError(f"collision primitive type {primitive.type} has bad dimensions {dims}")
+    if primitive.type == SolidPrimitive.BOX:
+        half = np.array(dims) / 2.0
+    elif primitive.type == SolidPrimitive.SPHERE:
+        half = np.full(3, dims[0])
+    else:  # CYLINDER: [height, radius]
+        half = np.array([dims[1], dims[1], dims[0] / 2.0])
+    return _box_corners(half)
+
+
+def geometry_points(geometry: Any) -> np.ndarray:
+    """Points (N x 3, link frame) whose convex hull bounds a sixdof_msgs/RobotModelLinkGeometry's shapes: the
+    corners of the boxes around its primitives and its meshes' vertices, each placed at its pose."""
+    primitives = zip(geometry.primitives, geometry.primitive_poses, strict=True)
+    placed = [(primitive_points(primitive), pose) for primitive, pose in primitives]
+    for mesh, pose in zip(geometry.meshes, geometry.mesh_poses, strict=True):
+        placed.append((np.array([[v.x, v.y, v.z] for v in mesh.vertices], dtype=float).reshape(-1, 3), pose))
+    points = []
+    for local, pose in placed:
+        frame = matrix_from_pose(pose)
+        points.append(local @ frame[:3, :3].T + frame[:3, 3])
+    return np.vstack(points) if points else np.zeros((0, 3))
+
+
+def model_from_response(response: object, collision: bool = False) -> tuple[RobotDescription, SemanticDescription]:
+    """The robot model of a sixdof_msgs/GetRobotModel response (move_group's get_robot_model); its collision
+    geometry when the request included it (`collision` is None otherwise)."""
     joints = {}
     for j in response.joints:
-        position, orientation = j.origin.position, j.origin.orientation
         joints[j.name] = Joint(
             name=j.name,
             type=j.type,
             parent=j.parent_link,
             child=j.child_link,
-            origin=homogeneous(
-                (position.x, position.y, position.z),
-                matrix_from_quaternion((orientation.x, orientation.y, orientation.z, orientation.w)),
-            ),
+            origin=matrix_from_pose(j.origin),
             lower=j.min_position,
             upper=j.max_position,
             effort=j.max_effort,
@@ -215,6 +269,7 @@ def model_from_response(response: object) -> tuple[RobotDescription, SemanticDes
         joints=joints,
         links=frozenset(response.link_names),
         link_order=tuple(response.link_names),
+        collision={g.link_name: g for g in response.link_geometries} if collision else None,
     )
     groups = {
         g.name: GroupSpec(

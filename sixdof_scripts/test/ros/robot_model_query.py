@@ -2,8 +2,10 @@
 """rostest: the commander's robot model comes from move_group's get_robot_model and agrees, on the shared
 joint-kinds fixture, with what sixdof_core, sixdof_sim and sixdof_rviz test (test_joint_kinds): the link and
 joint order, a continuous joint unbounded with the nominal -pi..pi, prismatic limits, the mimic finger, the fixed
-mount link and the link without geometry or inertia, groups, named states and the end effector; and that the
-Jacobian computed from that model (get_jacobian_matrix) is the derivative of move_group's forward kinematics."""
+mount link and the link without geometry or inertia, groups, named states and the end effector; the links'
+collision shapes when asked for (box, cylinder and sphere, posed in the link frame; links without geometry have
+none); and that the Jacobian computed from that model (get_jacobian_matrix) is the derivative of move_group's
+forward kinematics."""
 
 import math
 import unittest
@@ -12,6 +14,7 @@ import numpy as np
 import rospy
 import rostest
 from moveit_commander import RobotCommander
+from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import MoveGroup
 from sixdof_commander._ros import query_robot_model
 from sixdof_commander.robot_model import resolve_group
@@ -85,6 +88,33 @@ class RobotModelQuery(unittest.TestCase):
                 np.testing.assert_allclose(jacobian[:3, column], (moved @ point - base @ point)[:3] / step, atol=1e-5)
                 spin = (moved[:3, :3] - base[:3, :3]) / step @ base[:3, :3].T
                 np.testing.assert_allclose(jacobian[3:, column], [spin[2, 1], spin[0, 2], spin[1, 0]], atol=1e-5)
+
+    def test_collision_geometry_on_request(self):
+        self.assertIsNone(self.urdf.collision)  # not asked for: the response stays small
+        urdf, _ = query_robot_model("", timeout=60.0, collision_geometry=True)
+        # The links with <collision>, in model order (mount and sensor_frame have none).
+        with_geometry = ["base_link", "turntable", "carriage", "head", "left_finger", "right_finger"]
+        self.assertEqual(list(urdf.collision), with_geometry)
+        expected = {
+            "base_link": (SolidPrimitive.BOX, [0.2, 0.2, 0.1], [0.0, 0.0, 0.05]),
+            "turntable": (SolidPrimitive.CYLINDER, [0.05, 0.08], [0.0, 0.0, 0.025]),  # height, radius
+            "carriage": (SolidPrimitive.BOX, [0.06, 0.06, 0.06], [0.0, 0.0, 0.0]),
+            "head": (SolidPrimitive.SPHERE, [0.03], [0.05, 0.0, 0.0]),
+        }
+        for link, (kind, dimensions, position) in expected.items():
+            geometry = urdf.collision[link]
+            self.assertEqual(geometry.link_name, link)
+            self.assertEqual(len(geometry.meshes), 0)
+            self.assertEqual([p.type for p in geometry.primitives], [kind], link)
+            np.testing.assert_allclose(geometry.primitives[0].dimensions, dimensions, atol=1e-12)
+            pose = np.eye(4)
+            pose[:3, 3] = position
+            np.testing.assert_allclose(matrix_from_pose(geometry.primitive_poses[0]), pose, atol=1e-12)
+        # The points bounding the head's sphere, in the head frame.
+        points = urdf.collision_points("head")
+        np.testing.assert_allclose(points.min(axis=0), [0.02, -0.03, -0.03], atol=1e-12)
+        np.testing.assert_allclose(points.max(axis=0), [0.08, 0.03, 0.03], atol=1e-12)
+        self.assertEqual(urdf.collision_points("sensor_frame").shape, (0, 3))
 
     def test_groups_states_and_end_effector(self):
         arm = resolve_group(self.urdf, self.srdf, "arm")

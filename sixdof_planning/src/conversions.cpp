@@ -19,16 +19,11 @@ Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose) {
 geometry_msgs::Pose eigenToPose(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
 
 std::optional<sixdof_core::ShapeType> primitiveType(uint8_t msg_type) {
-  switch (msg_type) {
-    case shape_msgs::SolidPrimitive::BOX:
-      return sixdof_core::ShapeType::kBox;
-    case shape_msgs::SolidPrimitive::SPHERE:
-      return sixdof_core::ShapeType::kSphere;
-    case shape_msgs::SolidPrimitive::CYLINDER:
-      return sixdof_core::ShapeType::kCylinder;
-    default:
-      return std::nullopt;
-  }
+  using P = shape_msgs::SolidPrimitive;
+  if (msg_type == P::BOX) return sixdof_core::ShapeType::kBox;
+  if (msg_type == P::SPHERE) return sixdof_core::ShapeType::kSphere;
+  if (msg_type == P::CYLINDER) return sixdof_core::ShapeType::kCylinder;
+  return std::nullopt;
 }
 
 sensor_msgs::JointState toJointState(const sixdof_core::RobotState& state) {

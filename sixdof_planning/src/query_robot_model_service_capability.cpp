@@ -1,6 +1,7 @@
 #include "sixdof_planning/query_robot_model_service_capability.h"
 
 #include <sixdof_core/mesh_loader.h>
+#include <sixdof_core/primitive_dimensions.h>
 #include <sixdof_core/robot_model.h>
 #include <sixdof_msgs/GetRobotModel.h>
 
@@ -75,20 +76,14 @@ void appendMsgs(const Items& items, std::vector<Msg>* out) {
   for (const auto& item : items) out->push_back(toMsg(item));
 }
 
-// A primitive in SolidPrimitive's dimension order (BOX x y z, SPHERE radius, CYLINDER height radius).
+// A box, sphere or cylinder as a SolidPrimitive (the dimension order is sixdof_core/primitive_dimensions.h's).
 shape_msgs::SolidPrimitive primitiveMsg(const sixdof_core::Shape& shape) {
   using Type = sixdof_core::ShapeType;
   shape_msgs::SolidPrimitive msg;
-  if (shape.type == Type::kBox) {
-    msg.type = shape_msgs::SolidPrimitive::BOX;
-    msg.dimensions = {shape.box_size.x(), shape.box_size.y(), shape.box_size.z()};
-  } else if (shape.type == Type::kSphere) {
-    msg.type = shape_msgs::SolidPrimitive::SPHERE;
-    msg.dimensions = {shape.radius};
-  } else {
-    msg.type = shape_msgs::SolidPrimitive::CYLINDER;
-    msg.dimensions = {shape.length, shape.radius};
-  }
+  msg.type = shape.type == Type::kBox      ? shape_msgs::SolidPrimitive::BOX
+             : shape.type == Type::kSphere ? shape_msgs::SolidPrimitive::SPHERE
+                                           : shape_msgs::SolidPrimitive::CYLINDER;
+  msg.dimensions = sixdof_core::primitiveDimensions(shape);
   return msg;
 }
 

@@ -269,14 +269,7 @@ class ArmDriver:
         geometry = object_geometry(matrix_from_pose(state.object.pose), state.object.shape)
         tcp, _ = grasp_tcp_pose(geometry, spec)
         grasp_tip = tip_pose(tcp, spec)
-        if not self.gripper_open():
-            return False
-        if not self.moveto_pose(pose_from_matrix(raised(grasp_tip, self.approach_distance))):
-            return False
-        # Into contact: the fingers straddle the object, which MoveIt's pick also allows.
-        if not self.move_straight(grasp_tip, "approach", avoid_collisions=False):
-            return False
-        if not self.gripper_close():
+        if not (self.gripper_open() and self._descend_to(grasp_tip, "approach") and self.gripper_close()):
             return False
         self._wait_for_grasp_fix(object_name, attached=True)
         if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
@@ -297,6 +290,13 @@ class ArmDriver:
         self._object_in_tcp = np.linalg.inv(tcp) @ obj[:, 3]
         return True
 
+    def _descend_to(self, tip: np.ndarray, what: str) -> bool:
+        """Move the tip link the approach distance above `tip`, then straight down to it. Into contact: the
+        fingers straddle the object (grasp) or the held object meets the surface (place), which MoveIt's pick and
+        place also allow."""
+        above = pose_from_matrix(raised(tip, self.approach_distance))
+        return self.moveto_pose(above) and self.move_straight(tip, what, avoid_collisions=False)
+
     def pick(self, object_name: str) -> bool:
         """Grasp the simulator object from the top and lift it."""
         return self.grasp(object_name) and self.lift()
@@ -310,11 +310,7 @@ class ArmDriver:
             raise SixdofCommanderError("place: lift() the object first (its position in the hand is unknown)")
         tcp = place_tcp_pose(target, self._object_in_tcp, spec.clearance)
         place_tip = tip_pose(tcp, spec)
-        if not self.moveto_pose(pose_from_matrix(raised(place_tip, self.approach_distance))):
-            return False
-        if not self.move_straight(place_tip, "place descent", avoid_collisions=False):
-            return False
-        if not self.gripper_open():
+        if not (self._descend_to(place_tip, "place descent") and self.gripper_open()):
             return False
         self._wait_for_grasp_fix(held.name, attached=False)
         if held.name in self.scene.get_attached_object_names() and not self._scene_attach(held.name, False):

@@ -1,5 +1,7 @@
 #include "sixdof_core/planning_context.h"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <random>
 #include <set>
@@ -34,6 +36,55 @@ PlanningContext::PlanningContext(RobotModelConstPtr model, std::shared_ptr<const
   }
 }
 
+void PlanningContext::setPathConstraints(const PathConstraints& constraints) {
+  std::vector<JointBounds> joints = joints_;
+  for (const JointBounds& c : constraints.joint_bounds) {
+    auto it = std::find_if(joints.begin(), joints.end(), [&](const JointBounds& j) { return j.name == c.name; });
+    if (it == joints.end()) {
+      throw std::invalid_argument("path constraint on joint '" + c.name + "', which is not an active joint of group '" +
+                                  group_ + "'");
+    }
+    if (!(std::isfinite(c.lower) && std::isfinite(c.upper) && c.lower <= c.upper)) {
+      throw std::invalid_argument("path constraint on joint '" + c.name + "' has an empty or non-finite range");
+    }
+    if (it->continuous) {
+      if (c.upper - c.lower < 2.0 * M_PI) *it = JointBounds{it->name, c.lower, c.upper, false};
+      continue;
+    }
+    const double lower = std::max(it->lower, c.lower);
+    const double upper = std::min(it->upper, c.upper);
+    if (lower > upper) {
+      throw std::invalid_argument("path constraint on joint '" + c.name + "' allows no value within its limits [" +
+                                  std::to_string(it->lower) + ", " + std::to_string(it->upper) + "]");
+    }
+    it->lower = lower;
+    it->upper = upper;
+  }
+  joints_ = joints;
+  constrained_joints_ = !constraints.joint_bounds.empty();
+  state_constraint_ = constraints.state;
+  explain_constraint_ = constraints.explain;
+}
+
+std::string PlanningContext::pathConstraintViolation(const RobotState& reference, const Eigen::VectorXd& values) const {
+  if (constrained_joints_) {
+    for (std::size_t i = 0; i < joints_.size(); ++i) {
+      const JointBounds& j = joints_[i];
+      if (!j.continuous && (values[i] < j.lower || values[i] > j.upper)) {
+        return "joint " + j.name + " = " + std::to_string(values[i]) + " is outside its path constraint [" +
+               std::to_string(j.lower) + ", " + std::to_string(j.upper) + "]";
+      }
+    }
+  }
+  if (state_constraint_) {
+    const RobotState state = withGroup(reference, values);
+    if (!state_constraint_(state)) {
+      return explain_constraint_ ? explain_constraint_(state) : "the state violates the path constraints";
+    }
+  }
+  return "";
+}
+
 RobotState PlanningContext::withGroup(const RobotState& reference, const Eigen::VectorXd& values) const {
   RobotState state = reference;
   state.setVariablePositions(variable_indices_, values);
@@ -63,7 +114,14 @@ JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
     } else {
       state.emplace(reference);
     }
+    if (self.constrained_joints_) {
+      for (std::size_t i = 0; i < self.joints_.size(); ++i) {
+        const JointBounds& j = self.joints_[i];
+        if (!j.continuous && (q[i] < j.lower || q[i] > j.upper)) return false;
+      }
+    }
     state->setVariablePositions(self.variable_indices_, q);
+    if (self.state_constraint_ && !self.state_constraint_(*state)) return false;
     self.sceneLinkPoses(*state, &poses);
     return !scene->isColliding(poses);
   };
@@ -71,8 +129,9 @@ JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
 
 JointValidityExplainFn PlanningContext::explainFn(const RobotState& reference) const {
   return [scene = scene_, self = *this, reference](const Eigen::VectorXd& q) -> std::string {
+    std::string why = self.pathConstraintViolation(reference, q);
+    if (!why.empty()) return why;
     const CollisionReport report = scene->checkCollision(self.sceneLinkPoses(self.withGroup(reference, q)));
-    std::string why;
     std::set<std::pair<std::string, std::string>> pairs;
     for (const Contact& c : report.contacts) {
       if (pairs.insert({c.body1, c.body2}).second) {
@@ -143,6 +202,10 @@ SampledGoal PlanningContext::poseSampler(const RobotState& start, const Eigen::I
     ++state->calls;
     const IkResult r = ik->solve(tip_pose, o);
     if (!r.ok()) return false;
+    // Path constraints may narrow the joints below their limits, which the solver keeps to.
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      if (!joints[i].continuous && (r.solution[i] < joints[i].lower || r.solution[i] > joints[i].upper)) return false;
+    }
     *out = r.solution;
     return true;
   };

@@ -174,5 +174,37 @@ TEST_F(PlanningContextTest, CartesianDescentStopsAtTheTable) {
   expectCollisionFree(above, c.path, 0.0);
 }
 
+TEST_F(PlanningContextTest, PathConstraintsHoldAlongThePath) {
+  const RobotState start = stateAt((Eigen::VectorXd(6) << 0.8, 0.4, 0.6, 0.0, 0.5, 0.0).finished());
+  const Eigen::VectorXd goal = (Eigen::VectorXd(6) << -0.9, 0.5, 0.3, 0.5, 0.8, -1.0).finished();
+  // joint4 kept in [-0.1, 0.6] and link6's origin kept above z = 0.15 (a state condition) all along the path.
+  PathConstraints constraints;
+  constraints.joint_bounds.push_back({"joint4", -0.1, 0.6, false});
+  constraints.state = [](const RobotState& s) { return s.linkTransform("link6").translation().z() > 0.15; };
+  constraints.explain = [](const RobotState&) { return std::string("link6 below z = 0.15"); };
+  t_.context->setPathConstraints(constraints);
+  const PlanningResult r = t_.context->planToJoints(start, goal, 0.0, options_);
+  ASSERT_EQ(r.status, PlanningStatus::kSuccess) << r.message;
+  expectCollisionFree(start, r.path, options_.max_joint_step);
+  RobotState s = start;
+  for (std::size_t k = 1; k < r.path.size(); ++k) {
+    const Eigen::VectorXd delta = r.path[k] - r.path[k - 1];
+    const int n = std::max(1, static_cast<int>(std::ceil(delta.cwiseAbs().maxCoeff() / 0.002)));
+    for (int i = 0; i <= n; ++i) {
+      const Eigen::VectorXd q = r.path[k - 1] + delta * (static_cast<double>(i) / n);
+      EXPECT_GE(q[3], -0.1 - 1e-9);
+      EXPECT_LE(q[3], 0.6 + 1e-9);
+      s.setGroupPositions("arm", q);
+      EXPECT_GT(s.linkTransform("link6").translation().z(), 0.15 - 2e-3) << "segment " << k;
+    }
+  }
+  // A goal outside the joint range violates the constraints, and says so.
+  Eigen::VectorXd outside = goal;
+  outside[3] = 1.0;
+  EXPECT_NE(t_.context->pathConstraintViolation(start, outside).find("joint4"), std::string::npos);
+  EXPECT_THROW(t_.context->setPathConstraints({{{"finger1_joint", 0.0, 0.01, false}}, {}, {}}), std::invalid_argument);
+  EXPECT_THROW(t_.context->setPathConstraints({{{"joint2", 3.0, 4.0, false}}, {}, {}}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace sixdof_core

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,17 @@
 #include "sixdof_core/robot_model.h"
 
 namespace sixdof_core {
+
+// Path constraints (MoveIt's path_constraints): every state of a planned path or Cartesian path satisfies them.
+struct PathConstraints {
+  // Joints of the group kept inside [lower, upper] (intersected with their limits; a continuous joint becomes
+  // bounded when the range is shorter than a full turn). `continuous` is ignored.
+  std::vector<JointBounds> joint_bounds;
+  // A condition on the whole robot state (e.g. a link's point inside a region); empty = none. Must be thread-safe.
+  std::function<bool(const RobotState&)> state;
+  // Why `state` rejects a robot state (for error messages); optional.
+  std::function<std::string(const RobotState&)> explain;
+};
 
 // Options of IK-sampled goals (pose and position goals).
 struct PoseGoalOptions {
@@ -35,6 +47,14 @@ class PlanningContext {
   // a scene link unknown to the model, or an IK chain that does not match the group.
   PlanningContext(RobotModelConstPtr model, std::shared_ptr<const CollisionScene> scene, const std::string& group,
                   std::shared_ptr<const IkSolver> ik);
+
+  // Every later plan and Cartesian path keeps to these constraints: the planner samples only inside the joint
+  // bounds, IK goal samples outside them are discarded, and states violating `state` are invalid. Throws
+  // std::invalid_argument naming a joint that is not an active joint of the group or a range that is empty or
+  // outside the joint's limits.
+  void setPathConstraints(const PathConstraints& constraints);
+  // The group values violate the path constraints (reference supplies the other joints): why, else "".
+  std::string pathConstraintViolation(const RobotState& reference, const Eigen::VectorXd& values) const;
 
   const std::string& group() const { return group_; }
   const std::vector<JointBounds>& joints() const { return joints_; }
@@ -84,6 +104,9 @@ class PlanningContext {
   std::vector<bool> prismatic_;
   std::vector<int> variable_indices_;     // RobotState variable index of each group joint
   std::vector<int> scene_link_to_model_;  // model link index of each scene link
+  bool constrained_joints_ = false;       // joints_ narrowed by path constraints
+  std::function<bool(const RobotState&)> state_constraint_;
+  std::function<std::string(const RobotState&)> explain_constraint_;
 };
 
 }  // namespace sixdof_core

@@ -10,7 +10,7 @@
 
 namespace sixdof_sim {
 
-// Result codes, values as in sixdof_msgs/FollowJointTrajectory (control_msgs).
+// Result codes, values as in control_msgs/FollowJointTrajectory.
 enum class TrajectoryErrorCode : int {
   kSuccessful = 0,
   kInvalidGoal = -1,

@@ -3,7 +3,7 @@
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Twist.h>
-#include <sixdof_msgs/FollowJointTrajectoryGoal.h>
+#include <control_msgs/FollowJointTrajectoryGoal.h>
 #include <sixdof_msgs/SimObject.h>
 
 #include <string>
@@ -24,6 +24,6 @@ bool fromMsg(const geometry_msgs::Twist& msg, Twist* twist, std::string* error);
 // means 1). An all-zero color (the message default) means the World's default color.
 bool fromMsg(const sixdof_msgs::SimObject& msg, ObjectSpec* spec, std::string* error);
 
-TrajectoryGoal fromMsg(const sixdof_msgs::FollowJointTrajectoryGoal& msg);
+TrajectoryGoal fromMsg(const control_msgs::FollowJointTrajectoryGoal& msg);
 
 }  // namespace sixdof_sim

@@ -31,8 +31,8 @@ GripperActionHandler::GripperActionHandler(ros::NodeHandle nh, GripperController
   server_.start();
 }
 
-sixdof_msgs::GripperCommandResult GripperActionHandler::makeResult(bool reached_goal, bool stalled) const {
-  sixdof_msgs::GripperCommandResult result;
+control_msgs::GripperCommandResult GripperActionHandler::makeResult(bool reached_goal, bool stalled) const {
+  control_msgs::GripperCommandResult result;
   result.position = world_.jointPositions()[index_];
   result.effort = world_.jointEfforts()[index_];
   result.reached_goal = reached_goal;
@@ -101,8 +101,8 @@ void GripperActionHandler::publishFeedback(const ros::Time&) {
   if (!active_) {
     return;
   }
-  const sixdof_msgs::GripperCommandResult r = makeResult(false, false);
-  sixdof_msgs::GripperCommandFeedback fb;
+  const control_msgs::GripperCommandResult r = makeResult(false, false);
+  control_msgs::GripperCommandFeedback fb;
   fb.position = r.position;
   fb.effort = r.effort;
   active_->publishFeedback(fb);

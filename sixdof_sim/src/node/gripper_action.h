@@ -1,10 +1,10 @@
 #pragma once
-// gripper_controller/gripper_cmd: a sixdof_msgs/GripperCommand action server around a GripperController
+// gripper_controller/gripper_cmd: a control_msgs/GripperCommand action server around a GripperController
 // driving the finger joint (the other finger mimics it in the World).
 
 #include <actionlib/server/action_server.h>
 #include <ros/node_handle.h>
-#include <sixdof_msgs/GripperCommandAction.h>
+#include <control_msgs/GripperCommandAction.h>
 
 #include <functional>
 #include <optional>
@@ -17,7 +17,7 @@ namespace sixdof_sim {
 
 class GripperActionHandler : public JointDriver {
  public:
-  using Server = actionlib::ActionServer<sixdof_msgs::GripperCommandAction>;
+  using Server = actionlib::ActionServer<control_msgs::GripperCommandAction>;
 
   // nh: the controller's namespace (the action is nh/gripper_cmd). Throws std::invalid_argument if the
   // joint is unknown or a mimic joint.
@@ -32,7 +32,7 @@ class GripperActionHandler : public JointDriver {
  private:
   void goalCallback(Server::GoalHandle gh);
   void cancelCallback(Server::GoalHandle gh);
-  sixdof_msgs::GripperCommandResult makeResult(bool reached_goal, bool stalled) const;
+  control_msgs::GripperCommandResult makeResult(bool reached_goal, bool stalled) const;
   void finishActive(bool succeeded, bool canceled, bool reached_goal, bool stalled, const std::string& text);
 
   GripperController controller_;

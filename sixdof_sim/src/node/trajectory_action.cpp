@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <sixdof_msgs/JointTrajectoryControllerState.h>
+#include <control_msgs/JointTrajectoryControllerState.h>
 
 #include "action_goal.h"
 #include "conversions.h"
@@ -24,7 +24,7 @@ TrajectoryActionHandler::TrajectoryActionHandler(ros::NodeHandle nh, TrajectoryC
       server_(nh, "follow_joint_trajectory", false) {
   if (state_publish_rate > 0.0) {
     state_period_ = 1.0 / state_publish_rate;
-    state_pub_ = nh.advertise<sixdof_msgs::JointTrajectoryControllerState>("state", 1);
+    state_pub_ = nh.advertise<control_msgs::JointTrajectoryControllerState>("state", 1);
   }
   const std::vector<std::string>& joints = controller_.joints();
   for (const std::string& j : joints) {
@@ -100,7 +100,7 @@ std::string TrajectoryActionHandler::checkMimics(const TrajectoryGoal& goal) con
 }
 
 void TrajectoryActionHandler::finishActive(int code, const std::string& message, bool succeeded, bool canceled) {
-  sixdof_msgs::FollowJointTrajectoryResult result;
+  control_msgs::FollowJointTrajectoryResult result;
   result.error_code = code;
   result.error_string = message;
   finishGoal(&active_, result, succeeded, canceled, controller_.config().name, message);
@@ -109,7 +109,7 @@ void TrajectoryActionHandler::finishActive(int code, const std::string& message,
 void TrajectoryActionHandler::goalCallback(Server::GoalHandle gh) {
   const double now = clock_();
   const TrajectoryGoal goal = fromMsg(*gh.getGoal());
-  sixdof_msgs::FollowJointTrajectoryResult result;
+  control_msgs::FollowJointTrajectoryResult result;
   TrajectoryResult check = controller_.validate(goal, now);
   if (check.ok()) {
     const std::string mimic_error = checkMimics(goal);
@@ -139,19 +139,20 @@ void TrajectoryActionHandler::goalCallback(Server::GoalHandle gh) {
   active_ = gh;
 }
 
-bool TrajectoryActionHandler::queryState(sixdof_msgs::QueryTrajectoryState::Request& request,
-                                         sixdof_msgs::QueryTrajectoryState::Response& response) {
+bool TrajectoryActionHandler::queryState(control_msgs::QueryTrajectoryState::Request& request,
+                                         control_msgs::QueryTrajectoryState::Response& response) {
+  // As joint_trajectory_controller: a state that cannot be sampled is a failed call, with the reason logged.
   const std::string& name = controller_.config().name;
   if (!ownsAny()) {
-    response.message = name + " does not command its joints now (another driver, e.g. gripper_cmd, has them)";
-    return true;
+    ROS_ERROR_STREAM("[" << name << "] query_state: " << name
+                         << " does not command its joints now (another driver, e.g. gripper_cmd, has them)");
+    return false;
   }
   const std::optional<TrajectorySample> sample = controller_.sample(request.time.toSec());
   if (!sample) {
-    response.message = name + " has no trajectory yet";
-    return true;
+    ROS_ERROR_STREAM("[" << name << "] query_state: " << name << " has no trajectory yet");
+    return false;
   }
-  response.success = true;
   response.name = controller_.joints();
   response.position = sample->position;
   response.velocity = sample->velocity;
@@ -219,7 +220,7 @@ void TrajectoryActionHandler::publishFeedback(const ros::Time& stamp) {
     return;
   }
   // The action feedback and the state topic carry the same fields.
-  sixdof_msgs::FollowJointTrajectoryFeedback fb;
+  control_msgs::FollowJointTrajectoryFeedback fb;
   fb.header.stamp = stamp;
   fb.joint_names = controller_.joints();
   fb.desired.positions = last_update_.desired.position;
@@ -235,7 +236,7 @@ void TrajectoryActionHandler::publishFeedback(const ros::Time& stamp) {
     active_->publishFeedback(fb);
   }
   if (state_due) {
-    sixdof_msgs::JointTrajectoryControllerState state;
+    control_msgs::JointTrajectoryControllerState state;
     state.header = fb.header;
     state.joint_names = fb.joint_names;
     state.desired = fb.desired;

@@ -1,15 +1,15 @@
 #pragma once
 // arm_controller/follow_joint_trajectory and gripper_controller/follow_joint_trajectory: a
-// sixdof_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints, the
-// controller's state topic (<controller>/state, sixdof_msgs/JointTrajectoryControllerState) and its
-// query_state service (sixdof_msgs/QueryTrajectoryState), as joint_trajectory_controller has them.
+// control_msgs/FollowJointTrajectory action server around a TrajectoryController driving World joints, the
+// controller's state topic (<controller>/state, control_msgs/JointTrajectoryControllerState) and its
+// query_state service (control_msgs/QueryTrajectoryState), as joint_trajectory_controller has them.
 
 #include <actionlib/server/action_server.h>
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
 #include <ros/service_server.h>
-#include <sixdof_msgs/FollowJointTrajectoryAction.h>
-#include <sixdof_msgs/QueryTrajectoryState.h>
+#include <control_msgs/FollowJointTrajectoryAction.h>
+#include <control_msgs/QueryTrajectoryState.h>
 
 #include <functional>
 #include <optional>
@@ -24,7 +24,7 @@ namespace sixdof_sim {
 
 class TrajectoryActionHandler : public JointDriver {
  public:
-  using Server = actionlib::ActionServer<sixdof_msgs::FollowJointTrajectoryAction>;
+  using Server = actionlib::ActionServer<control_msgs::FollowJointTrajectoryAction>;
 
   // nh: the controller's namespace (the action is nh/follow_joint_trajectory). Mimic joints of the config
   // are checked against their master in every goal and left to the World to drive. Throws
@@ -48,8 +48,8 @@ class TrajectoryActionHandler : public JointDriver {
   };
 
   void goalCallback(Server::GoalHandle gh);
-  bool queryState(sixdof_msgs::QueryTrajectoryState::Request& request,
-                  sixdof_msgs::QueryTrajectoryState::Response& response);
+  bool queryState(control_msgs::QueryTrajectoryState::Request& request,
+                  control_msgs::QueryTrajectoryState::Response& response);
   void cancelCallback(Server::GoalHandle gh);
   std::string checkMimics(const TrajectoryGoal& goal) const;
   void readState(std::vector<double>* q, std::vector<double>* v) const;

@@ -8,7 +8,8 @@ import rospy
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from sixdof_msgs.msg import FollowJointTrajectoryGoal, GraspEvent
+from control_msgs.msg import FollowJointTrajectoryGoal
+from sixdof_msgs.msg import GraspEvent
 
 ARM_JOINTS = [f"joint{i}" for i in range(1, 7)]
 FINGER_JOINTS = ["finger1_joint", "finger2_joint"]

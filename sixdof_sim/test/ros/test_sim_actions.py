@@ -13,14 +13,15 @@ from shape_msgs.msg import SolidPrimitive
 from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
 from std_srvs.srv import Empty
 
-from sixdof_msgs.msg import (
+from control_msgs.msg import (
     FollowJointTrajectoryAction,
     FollowJointTrajectoryResult,
     JointTolerance,
     JointTrajectoryControllerState,
-    SimObject,
 )
-from sixdof_msgs.srv import GetObjectState, QueryTrajectoryState, SpawnObject
+from control_msgs.srv import QueryTrajectoryState
+from sixdof_msgs.msg import SimObject
+from sixdof_msgs.srv import GetObjectState, SpawnObject
 
 TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
 TARGET_B = [-0.3, 0.2, 0.6, -0.1, 0.5, 0.2]
@@ -114,7 +115,6 @@ class SimActionsTest(unittest.TestCase):
     def test_query_state_samples_the_commanded_trajectory(self) -> None:
         query = rospy.ServiceProxy("arm_controller/query_state", QueryTrajectoryState)
         answer = query(rospy.Time.now())
-        self.assertTrue(answer.success, answer.message)
         self.assertEqual(list(answer.name), ARM_JOINTS)
         # Holding where the reset left the arm. The latest joint_states may still be from before the reset: wait
         # until they show the arm where the controller says it holds it.
@@ -127,7 +127,6 @@ class SimActionsTest(unittest.TestCase):
             rospy.rostime.wallsleep(0.01)
         # Once accepted, the controller answers for any time: long after the end, the last point at rest.
         answer = query(rospy.Time.now() + rospy.Duration(100.0))
-        self.assertTrue(answer.success, answer.message)
         for p, v, t in zip(answer.position, answer.velocity, TARGET, strict=True):
             self.assertAlmostEqual(p, t, places=9)
             self.assertAlmostEqual(v, 0.0, places=9)

@@ -20,13 +20,8 @@ from sim_test_util import (
 )
 from std_srvs.srv import Empty
 
-from sixdof_msgs.msg import (
-    FollowJointTrajectoryAction,
-    GraspEvent,
-    GripperCommand,
-    GripperCommandAction,
-    GripperCommandGoal,
-)
+from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, GripperCommandAction, GripperCommandGoal
+from sixdof_msgs.msg import GraspEvent
 from sixdof_msgs.srv import GetObjectState, SetObjectState
 
 CUBE = "red_cube"

@@ -13,18 +13,12 @@ from shape_msgs.msg import SolidPrimitive
 from sim_test_util import FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
 from std_srvs.srv import Empty
 
-from sixdof_msgs.msg import (
-    FollowJointTrajectoryAction,
-    GripperCommand,
-    GripperCommandAction,
-    GripperCommandGoal,
-    ObjectStates,
-    SimObject,
-)
+from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, GripperCommandAction, GripperCommandGoal
+from control_msgs.srv import QueryTrajectoryState
+from sixdof_msgs.msg import ObjectStates, SimObject
 from sixdof_msgs.srv import (
     DeleteObject,
     GetObjectState,
-    QueryTrajectoryState,
     SetObjectState,
     SpawnObject,
     StepSimulation,
@@ -134,11 +128,11 @@ class SimServicesTest(unittest.TestCase):
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025))
         rospy.sleep(1.0)  # the preempted trajectory towards 0.01 no longer drives the finger
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025, timeout=0.0))
-        # The trajectory controller cannot say what it commands: it commands nothing now.
-        answer = rospy.ServiceProxy("gripper_controller/query_state", QueryTrajectoryState)(rospy.Time.now())
-        self.assertFalse(answer.success)
-        self.assertIn("does not command its joints now", answer.message)
-        self.assertEqual(list(answer.position), [])
+        # The trajectory controller cannot say what it commands: it commands nothing now, and (as
+        # joint_trajectory_controller) the call fails.
+        query = rospy.ServiceProxy("gripper_controller/query_state", QueryTrajectoryState)
+        with self.assertRaises(rospy.ServiceException):
+            query(rospy.Time.now())
 
 
 if __name__ == "__main__":

@@ -16,17 +16,19 @@ void publishState(Server* server, const std::string& state) {
   server->publishFeedback(feedback);
 }
 
-// Ends the server's current goal by its error code (PREEMPTED -> preempted, success -> succeeded, else aborted),
-// logs it under `source` and reports the server idle.
+// Ends the server's current goal by `code` (PREEMPTED -> preempted, success -> succeeded, else aborted) with the
+// code in the result and its words as the goal's status text (where actionlib clients read them), logs it under
+// `source` and reports the server idle.
 template <typename Feedback, typename Server, typename Result>
-void finishGoal(Server* server, const Result& result, const char* source) {
-  ROS_INFO_STREAM(source << ": " << errorCodeName(result.error_code.val) << " " << result.error_code.message);
-  if (result.error_code.val == ErrorCode::PREEMPTED) {
-    server->setPreempted(result, result.error_code.message);
-  } else if (isSuccess(result.error_code)) {
-    server->setSucceeded(result, result.error_code.message);
+void finishGoal(Server* server, Result* result, const ErrorCode& code, const char* source) {
+  result->error_code = code;
+  ROS_INFO_STREAM(source << ": " << errorCodeName(code.val) << " " << code.message);
+  if (code.val == ErrorCode::PREEMPTED) {
+    server->setPreempted(*result, code.message);
+  } else if (isSuccess(code)) {
+    server->setSucceeded(*result, code.message);
   } else {
-    server->setAborted(result, result.error_code.message);
+    server->setAborted(*result, code.message);
   }
   publishState<Feedback>(server, "IDLE");
 }

@@ -6,9 +6,10 @@
 #include <sixdof_core/cartesian_path.h>
 #include <sixdof_core/planning_context.h>
 #include <ros/console.h>
-#include <sixdof_msgs/GetCartesianPath.h>
+#include <moveit_msgs/GetCartesianPath.h>
 
 #include "move_group_capability_impl.h"
+#include "sixdof_planning/constraints.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
@@ -23,18 +24,18 @@ ErrorCode nonNegative(double value, const std::string& what) {
   if (!std::isfinite(value) || value < 0.0) {
     std::ostringstream out;
     out << what << " must be finite and >= 0, got " << value;
-    return makeError(ErrorCode::INVALID_REQUEST, out.str(), kCartesianSource);
+    return makeError(ErrorCode::FAILURE, out.str(), kCartesianSource);
   }
   return makeSuccess(kCartesianSource);
 }
 
 // The whole request; the response gets everything but the error code.
-ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesianPathRequest& request,
-                      sixdof_msgs::GetCartesianPathResponse* response) {
+ErrorCode computePath(MoveGroupContext* context, const moveit_msgs::GetCartesianPathRequest& request,
+                      moveit_msgs::GetCartesianPathResponse* response) {
   const auto& model = *context->model();
   ErrorCode code = validateGroup(model, request.group_name, kCartesianSource);
   if (!isSuccess(code)) return code;
-  if (request.waypoints.empty()) return makeError(ErrorCode::INVALID_REQUEST, "waypoints is empty", kCartesianSource);
+  if (request.waypoints.empty()) return makeError(ErrorCode::FAILURE, "waypoints is empty", kCartesianSource);
   for (size_t i = 0; i < request.waypoints.size(); ++i) {
     code = validatePose(request.waypoints[i], "waypoints[" + std::to_string(i) + "]", kCartesianSource);
     if (!isSuccess(code)) return code;
@@ -42,16 +43,23 @@ ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesian
   if (!std::isfinite(request.max_step) || request.max_step <= 0.0) {
     std::ostringstream out;
     out << "max_step must be > 0, got " << request.max_step;
-    return makeError(ErrorCode::INVALID_REQUEST, out.str(), kCartesianSource);
+    return makeError(ErrorCode::FAILURE, out.str(), kCartesianSource);
   }
   for (const auto& check : {nonNegative(request.jump_threshold, "jump_threshold"),
                             nonNegative(request.prismatic_jump_threshold, "prismatic_jump_threshold"),
                             nonNegative(request.revolute_jump_threshold, "revolute_jump_threshold")}) {
     if (!isSuccess(check)) return check;
   }
-  ScalingFactors scaling;
-  code = validateScalingFactors(request.max_velocity_scaling_factor, request.max_acceleration_scaling_factor, "max_",
-                                kCartesianSource, &scaling);
+  code = nonNegative(request.max_cartesian_speed, "max_cartesian_speed");
+  if (!isSuccess(code)) return code;
+  if (request.max_cartesian_speed > 0.0) {
+    return makeError(ErrorCode::FAILURE,
+                     "max_cartesian_speed is not supported: retime the path (retime_trajectory) to slow it down",
+                     kCartesianSource);
+  }
+  sixdof_core::PathConstraints path_constraints;
+  code = toPathConstraints(model, request.group_name, request.path_constraints, "path_constraints", kCartesianSource,
+                           &path_constraints);
   if (!isSuccess(code)) return code;
   Eigen::Isometry3d link_in_tip;
   code = context->linkInTip(request.group_name, request.link_name, kCartesianSource, &link_in_tip);
@@ -84,8 +92,13 @@ ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesian
   try {
     planning = std::make_unique<sixdof_core::PlanningContext>(context->model(), scene->collision(),
                                                               request.group_name, solver);
+    planning->setPathConstraints(path_constraints);
   } catch (const std::exception& e) {
-    return makeError(ErrorCode::INVALID_GROUP_NAME, e.what(), kCartesianSource);
+    return makeError(ErrorCode::FAILURE, std::string("path_constraints: ") + e.what(), kCartesianSource);
+  }
+  const std::string violation = planning->pathConstraintViolation(start, start.groupPositions(request.group_name));
+  if (!violation.empty()) {
+    return makeError(ErrorCode::START_STATE_VIOLATES_PATH_CONSTRAINTS, violation, kCartesianSource);
   }
   // The tip moves by at most max_step between points, so a link fixed to it does as well when the
   // rotation is small; MoveIt interpolates the requested link the same way.
@@ -93,7 +106,7 @@ ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesian
                                               context->ikOptions(request.group_name));
   using S = sixdof_core::CartesianStatus;
   if (result.status == S::kInvalidRequest) {
-    return makeError(ErrorCode::INVALID_REQUEST, result.message, kCartesianSource);
+    return makeError(ErrorCode::FAILURE, result.message, kCartesianSource);
   }
   if (result.status == S::kInvalidStart) {
     return makeError(ErrorCode::START_STATE_IN_COLLISION, result.message, kCartesianSource);
@@ -105,8 +118,8 @@ ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesian
   const auto& joints = model.findGroup(request.group_name)->active_joints;
   sixdof_core::Trajectory trajectory;
   if (result.path.size() >= 2) {
-    code = context->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, kCartesianSource,
-                                     &trajectory);
+    // As MoveIt's service: timed at full speed; clients retime to their scaling factors.
+    code = context->timeParameterize(joints, result.path, 1.0, 1.0, kCartesianSource, &trajectory);
     if (!isSuccess(code)) return code;
   } else {
     // Nothing achieved: the path is the start state alone.
@@ -126,11 +139,12 @@ ErrorCode computePath(MoveGroupContext* context, const sixdof_msgs::GetCartesian
 }
 }  // namespace
 
-bool CartesianPathService::handle(sixdof_msgs::GetCartesianPathRequest& request,
-                                  sixdof_msgs::GetCartesianPathResponse& response) {
+ErrorCode CartesianPathService::handle(const moveit_msgs::GetCartesianPathRequest& request,
+                                  moveit_msgs::GetCartesianPathResponse& response) {
   response.fraction = 0.0;
-  response.error_code = computePath(context_, request, &response);
-  return true;
+  const ErrorCode code = computePath(context_, request, &response);
+  response.error_code = code;
+  return code;
 }
 
 template class ServiceCapability<CartesianPathService>;

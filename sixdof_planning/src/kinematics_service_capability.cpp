@@ -6,10 +6,11 @@
 
 #include <sixdof_core/ik_analytic.h>
 
-#include <sixdof_msgs/GetPositionFK.h>
-#include <sixdof_msgs/GetPositionIK.h>
+#include <moveit_msgs/GetPositionFK.h>
+#include <moveit_msgs/GetPositionIK.h>
 
 #include "move_group_capability_impl.h"
+#include "sixdof_planning/constraints.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
@@ -20,8 +21,8 @@ namespace sixdof_planning {
 namespace {
 const char* const kIkSource = "compute_ik";
 
-ErrorCode solveIk(MoveGroupContext* context, const sixdof_msgs::PositionIKRequest& request,
-                  sixdof_msgs::RobotState* solution) {
+ErrorCode solveIk(MoveGroupContext* context, const moveit_msgs::PositionIKRequest& request,
+                  moveit_msgs::RobotState* solution) {
   const auto& model = *context->model();
   ErrorCode code = validateGroup(model, request.group_name, kIkSource);
   if (!isSuccess(code)) return code;
@@ -31,10 +32,19 @@ ErrorCode solveIk(MoveGroupContext* context, const sixdof_msgs::PositionIKReques
                      "group '" + request.group_name + "' has no IK solver (no entry in robot_description_kinematics)",
                      kIkSource);
   }
+  if (!constraintsEmpty(request.constraints)) {
+    return makeError(ErrorCode::FAILURE, "ik_request.constraints are not supported", kIkSource);
+  }
+  if (!request.ik_link_names.empty() || !request.pose_stamped_vector.empty()) {
+    return makeError(ErrorCode::FAILURE,
+                     "ik_request.ik_link_names / pose_stamped_vector (several tip links) are not supported: give one "
+                     "ik_link_name and pose_stamped",
+                     kIkSource);
+  }
   code = validatePose(request.pose_stamped.pose, "ik_request.pose_stamped.pose", kIkSource);
   if (!isSuccess(code)) return code;
   if (request.timeout.toSec() < 0.0) {
-    return makeError(ErrorCode::INVALID_REQUEST, "ik_request.timeout is negative", kIkSource);
+    return makeError(ErrorCode::FAILURE, "ik_request.timeout is negative", kIkSource);
   }
   sixdof_core::RobotState state(context->model());
   std::shared_ptr<const SceneStore> scene;
@@ -124,38 +134,44 @@ ErrorCode solveIk(MoveGroupContext* context, const sixdof_msgs::PositionIKReques
 }
 }  // namespace
 
-bool ForwardKinematicsService::handle(sixdof_msgs::GetPositionFKRequest& request,
-                                      sixdof_msgs::GetPositionFKResponse& response) {
-  ErrorCode& code = response.error_code;
+ErrorCode ForwardKinematicsService::handle(const moveit_msgs::GetPositionFKRequest& request,
+                                           moveit_msgs::GetPositionFKResponse& response) {
+  const ErrorCode code = fk(request, &response);
+  response.error_code = code;
+  return code;
+}
+
+ErrorCode ForwardKinematicsService::fk(const moveit_msgs::GetPositionFKRequest& request,
+                                       moveit_msgs::GetPositionFKResponse* response) const {
   const auto& model = *context_->model();
   for (const auto& link : request.fk_link_names) {
-    code = validateLink(model, link, service_);
-    if (!isSuccess(code)) return true;
+    const ErrorCode code = validateLink(model, link, service_);
+    if (!isSuccess(code)) return code;
   }
   sixdof_core::RobotState state(context_->model());
   std::shared_ptr<const SceneStore> scene;
-  code = context_->resolveRobotState(request.robot_state, "robot_state", service_, &state, &scene);
-  if (!isSuccess(code)) return true;
+  ErrorCode code = context_->resolveRobotState(request.robot_state, "robot_state", service_, &state, &scene);
+  if (!isSuccess(code)) return code;
   Eigen::Isometry3d frame;
   code = SceneStore::frameTransform(state, request.header.frame_id, service_, &frame);
-  if (!isSuccess(code)) return true;
+  if (!isSuccess(code)) return code;
   const std::string frame_id = request.header.frame_id.empty() ? context_->planningFrame() : request.header.frame_id;
   for (const auto& link : request.fk_link_names) {
     geometry_msgs::PoseStamped pose;
     pose.header.frame_id = frame_id;
     pose.header.stamp = ros::Time::now();
     pose.pose = eigenToPose(frame.inverse() * state.linkTransform(link));
-    response.pose_stamped.push_back(pose);
-    response.fk_link_names.push_back(link);
+    response->pose_stamped.push_back(pose);
+    response->fk_link_names.push_back(link);
   }
-  code = makeSuccess(service_);
-  return true;
+  return makeSuccess(service_);
 }
 
-bool InverseKinematicsService::handle(sixdof_msgs::GetPositionIKRequest& request,
-                                      sixdof_msgs::GetPositionIKResponse& response) {
-  response.error_code = solveIk(context_, request.ik_request, &response.solution);
-  return true;
+ErrorCode InverseKinematicsService::handle(const moveit_msgs::GetPositionIKRequest& request,
+                                           moveit_msgs::GetPositionIKResponse& response) {
+  const ErrorCode code = solveIk(context_, request.ik_request, &response.solution);
+  response.error_code = code;
+  return code;
 }
 
 template class ServiceCapability<ForwardKinematicsService>;

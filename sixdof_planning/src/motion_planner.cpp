@@ -4,10 +4,13 @@
 #include <cmath>
 #include <sstream>
 
-#include <ros/console.h>
-#include <sixdof_msgs/MotionPlanRequest.h>
-#include <sixdof_msgs/MotionPlanResponse.h>
+#include <sixdof_core/primitive_dimensions.h>
 
+#include <moveit_msgs/MotionPlanRequest.h>
+#include <moveit_msgs/MotionPlanResponse.h>
+#include <ros/console.h>
+
+#include "sixdof_planning/constraints.h"
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
@@ -18,6 +21,39 @@ namespace {
 
 ErrorCode goalError(const std::string& what, const std::string& message, const std::string& source) {
   return makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS, what + ": " + message, source);
+}
+
+// The target of a position goal: the centre of its constraint region's one primitive (MoveGroupInterface sends a
+// sphere of radius goal_position_tolerance around the target), in the constraint's frame; IK solves for the centre,
+// which lies inside any region.
+ErrorCode goalRegionCentre(const moveit_msgs::PositionConstraint& pc, const std::string& what,
+                           const std::string& source, Eigen::Vector3d* centre) {
+  const auto& region = pc.constraint_region;
+  if (!region.meshes.empty() || region.primitives.size() != 1 || region.primitive_poses.size() != 1) {
+    return goalError(what, "constraint_region must hold exactly one primitive (a sphere around the target), got " +
+                               std::to_string(region.primitives.size()) + " primitives and " +
+                               std::to_string(region.meshes.size()) + " meshes",
+                     source);
+  }
+  const auto& primitive = region.primitives[0];
+  const auto type = primitiveType(primitive.type);
+  if (!type || primitive.dimensions.size() != sixdof_core::primitiveDimensionCount(*type)) {
+    return goalError(what, "constraint_region.primitives[0] must be a BOX, SPHERE or CYLINDER with its dimensions",
+                     source);
+  }
+  for (double d : primitive.dimensions) {
+    if (!std::isfinite(d) || d < 0.0) {
+      return goalError(what, "constraint_region.primitives[0] has a negative or non-finite dimension", source);
+    }
+  }
+  for (double v : {pc.target_point_offset.x, pc.target_point_offset.y, pc.target_point_offset.z}) {
+    if (!std::isfinite(v)) return goalError(what, "target_point_offset is not finite", source);
+  }
+  const ErrorCode code = validatePose(region.primitive_poses[0], what + ".constraint_region.primitive_poses[0]", source);
+  if (!isSuccess(code)) return recode(code, ErrorCode::INVALID_GOAL_CONSTRAINTS);
+  const auto& p = region.primitive_poses[0].position;
+  *centre = Eigen::Vector3d(p.x, p.y, p.z);
+  return makeSuccess(source);
 }
 
 }  // namespace
@@ -72,7 +108,7 @@ ErrorCode planningStatusToError(const sixdof_core::PlanningResult& result, const
     case S::kSuccess:
       return makeSuccess(source_name);
     case S::kInvalidRequest:
-      return makeError(ErrorCode::INVALID_REQUEST, result.message, source_name);
+      return makeError(ErrorCode::FAILURE, result.message, source_name);
     case S::kInvalidStart:
       return makeError(ErrorCode::START_STATE_INVALID, result.message, source_name);
     case S::kInvalidGoal:
@@ -90,24 +126,20 @@ ErrorCode planningStatusToError(const sixdof_core::PlanningResult& result, const
 }
 
 ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning, const sixdof_core::RobotState& start,
-                                    const sixdof_msgs::Constraints& goal, const std::string& what,
+                                    const moveit_msgs::Constraints& goal, const std::string& what,
                                     const sixdof_core::PlanningOptions& options, const std::string& source,
                                     sixdof_core::PlanningResult* result) const {
   const auto& model = *context_->model();
   const std::string& group = planning.group();
+  if (!goal.visibility_constraints.empty()) {
+    return goalError(what, "visibility constraints are not supported as goals", source);
+  }
   const bool has_joints = !goal.joint_constraints.empty();
   const bool has_pose = !goal.position_constraints.empty() || !goal.orientation_constraints.empty();
   if (has_joints && has_pose) {
     return goalError(what, "mixing joint constraints with position/orientation constraints is not supported", source);
   }
-  if (!has_joints && !has_pose) {
-    // sixdof extension: a Constraints with only a name is the group's SRDF state of that name.
-    if (goal.name.empty()) return goalError(what, "has no constraints and no named state", source);
-    ErrorCode code = validateNamedState(model, group, goal.name, source);
-    if (!isSuccess(code)) return code;
-    *result = planning.planToNamed(start, goal.name, 0.0, options);
-    return planningStatusToError(*result, source);
-  }
+  if (!has_joints && !has_pose) return goalError(what, "has no constraints", source);
   if (has_joints) {
     const auto* joint_group = model.findGroup(group);
     const auto& active = joint_group->active_joints;
@@ -136,6 +168,10 @@ ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning
       // The core's goal region is symmetric: the smaller side keeps every accepted state inside the request's.
       tolerance[k] = std::min(c.tolerance_above, c.tolerance_below);
     }
+    const std::string violation = planning.pathConstraintViolation(start, target);
+    if (!violation.empty()) {
+      return makeError(ErrorCode::GOAL_VIOLATES_PATH_CONSTRAINTS, what + ": " + violation, source);
+    }
     auto problem = planning.problem(start, options);
     problem.joint_goal = sixdof_core::JointGoal{target, tolerance};
     *result = sixdof_core::plan(problem);
@@ -156,18 +192,13 @@ ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning
     code.message = pwhat + ": " + code.message;
     return code;
   }
-  for (double v : {pc.position.x, pc.position.y, pc.position.z, pc.target_point_offset.x, pc.target_point_offset.y,
-                   pc.target_point_offset.z}) {
-    if (!std::isfinite(v)) return makeError(ErrorCode::INVALID_REQUEST, pwhat + " has a non-finite value", source);
-  }
-  if (!std::isfinite(pc.tolerance) || pc.tolerance < 0.0) {
-    return makeError(ErrorCode::INVALID_REQUEST,
-                     pwhat + ".tolerance must be finite and >= 0, got " + formatNumber(pc.tolerance), source);
-  }
+  Eigen::Vector3d position;
+  code = goalRegionCentre(pc, pwhat, source, &position);
+  if (!isSuccess(code)) return code;
   Eigen::Isometry3d frame;
   code = SceneStore::frameTransform(start, pc.header.frame_id, source, &frame);
   if (!isSuccess(code)) return code;
-  const Eigen::Vector3d position = frame * Eigen::Vector3d(pc.position.x, pc.position.y, pc.position.z);
+  position = frame * position;
   const Eigen::Vector3d offset(pc.target_point_offset.x, pc.target_point_offset.y, pc.target_point_offset.z);
   const auto solver = context_->ikSolver(group);
   const Eigen::Isometry3d base_pose = start.linkTransform(solver->chain().baseLink());
@@ -190,7 +221,7 @@ ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning
   geometry_msgs::Pose orientation_pose;
   orientation_pose.orientation = oc.orientation;
   code = validatePose(orientation_pose, owhat, source);
-  if (!isSuccess(code)) return code;
+  if (!isSuccess(code)) return recode(code, ErrorCode::INVALID_GOAL_CONSTRAINTS);
   Eigen::Isometry3d oframe;
   code = SceneStore::frameTransform(start, oc.header.frame_id, source, &oframe);
   if (!isSuccess(code)) return code;
@@ -202,56 +233,103 @@ ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning
   return planningStatusToError(*result, source);
 }
 
-void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const std::string& source,
-                         sixdof_msgs::MotionPlanResponse* response,
-                         std::shared_ptr<const SceneStore> base_scene) const {
+// MoveIt fields sixdof does not support, refused by name (FAILURE), and the workspace's consistency.
+ErrorCode checkRequestFields(const moveit_msgs::MotionPlanRequest& request, const std::string& planning_frame,
+                             const std::string& source) {
+  const auto refuse = [&](const std::string& message) { return makeError(ErrorCode::FAILURE, message, source); };
+  if (!request.pipeline_id.empty() && request.pipeline_id != "ompl") {
+    return refuse("pipeline_id '" + request.pipeline_id + "' is not available (the only pipeline is 'ompl')");
+  }
+  if (!request.trajectory_constraints.constraints.empty()) {
+    return refuse("trajectory_constraints are not supported");
+  }
+  if (!request.reference_trajectories.empty()) return refuse("reference_trajectories are not supported");
+  if (!std::isfinite(request.max_cartesian_speed) || request.max_cartesian_speed < 0.0) {
+    return refuse("max_cartesian_speed must be finite and >= 0, got " + formatNumber(request.max_cartesian_speed));
+  }
+  if (request.max_cartesian_speed > 0.0) {
+    return refuse("max_cartesian_speed (" + formatNumber(request.max_cartesian_speed) +
+                  " m/s) is not supported: limit the speed with max_velocity_scaling_factor");
+  }
+  // As in MoveIt, the workspace bounds only multi-DOF (planar, floating) joints, which sixdof models do not have:
+  // it must make sense, it does not restrict an arm.
+  const auto& workspace = request.workspace_parameters;
+  const auto& lo = workspace.min_corner;
+  const auto& hi = workspace.max_corner;
+  for (double v : {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}) {
+    if (!std::isfinite(v)) return refuse("workspace_parameters has a non-finite corner");
+  }
+  if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) {
+    return refuse("workspace_parameters.min_corner is above max_corner on some axis");
+  }
+  const std::string& frame = workspace.header.frame_id;
+  if (!frame.empty() && frame != planning_frame) {
+    return makeError(ErrorCode::FRAME_TRANSFORM_FAILURE,
+                     "workspace_parameters.header.frame_id '" + frame + "' is not the planning frame '" +
+                         planning_frame + "'",
+                     source);
+  }
+  return makeSuccess(source);
+}
+
+ErrorCode MotionPlanner::plan(const moveit_msgs::MotionPlanRequest& request, const std::string& source,
+                              moveit_msgs::MotionPlanResponse* response,
+                              std::shared_ptr<const SceneStore> base_scene) const {
+  const ErrorCode code = planRequest(request, source, response, std::move(base_scene));
+  response->error_code = code;
+  return code;
+}
+
+ErrorCode MotionPlanner::planRequest(const moveit_msgs::MotionPlanRequest& request, const std::string& source,
+                                     moveit_msgs::MotionPlanResponse* response,
+                                     std::shared_ptr<const SceneStore> base_scene) const {
   const auto& model = *context_->model();
   const auto& config = context_->config();
   response->group_name = request.group_name;
-  ErrorCode& code = response->error_code;
-  code = validateGroup(model, request.group_name, source);
-  if (!isSuccess(code)) return;
+  ErrorCode code = validateGroup(model, request.group_name, source);
+  if (!isSuccess(code)) return code;
+  code = checkRequestFields(request, context_->planningFrame(), source);
+  if (!isSuccess(code)) return code;
   ScalingFactors scaling;
   code = validateScalingFactors(request.max_velocity_scaling_factor, request.max_acceleration_scaling_factor, "max_",
                                 source, &scaling);
-  if (!isSuccess(code)) return;
+  if (!isSuccess(code)) return code;
   if (!std::isfinite(request.allowed_planning_time) || request.allowed_planning_time < 0.0) {
-    code = makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      "allowed_planning_time must be >= 0 (0: the default), got " +
                          formatNumber(request.allowed_planning_time),
                      source);
-    return;
   }
   // Each attempt holds a planner (and a thread when they run in parallel): an unbounded count ran out of memory.
   constexpr int kMaxPlanningAttempts = 1000;
   if (request.num_planning_attempts < 0 || request.num_planning_attempts > kMaxPlanningAttempts) {
-    code = makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      "num_planning_attempts must be in [0, " + std::to_string(kMaxPlanningAttempts) + "] (0: 1), got " +
                          std::to_string(request.num_planning_attempts),
                      source);
-    return;
   }
   if (request.goal_constraints.empty()) {
-    code = makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS, "goal_constraints is empty", source);
-    return;
+    return makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS, "goal_constraints is empty", source);
   }
+  sixdof_core::PathConstraints path_constraints;
+  code = toPathConstraints(model, request.group_name, request.path_constraints, "path_constraints", source,
+                           &path_constraints);
+  if (!isSuccess(code)) return code;
   sixdof_core::RobotState start(context_->model());
   std::shared_ptr<const SceneStore> scene;
   code = context_->resolveRobotState(request.start_state, "start_state", source, &start, &scene, base_scene);
-  if (!isSuccess(code)) return;
+  if (!isSuccess(code)) return code;
   const std::string moved = fixStartStateBounds(config.start_state_max_bounds_error, &start);
   if (!moved.empty()) ROS_INFO_STREAM("start state moved onto its joint limits: " << moved);
   response->trajectory_start.joint_state = toJointState(start);
   const std::string out_of_bounds = boundsViolation(start);
   if (!out_of_bounds.empty()) {
-    code = makeError(ErrorCode::START_STATE_INVALID, "start state: " + out_of_bounds, source);
-    return;
+    return makeError(ErrorCode::START_STATE_INVALID, "start state: " + out_of_bounds, source);
   }
   const auto report = checkStateCollision(start, *scene->collision());
   if (report.colliding) {
-    code = makeError(ErrorCode::START_STATE_IN_COLLISION,
+    return makeError(ErrorCode::START_STATE_IN_COLLISION,
                      "start state in collision: " + describeContact(report.contacts.front()), source);
-    return;
   }
   sixdof_core::PlanningOptions options;
   options.planner_id = request.planner_id.empty() ? config.default_planner_id : request.planner_id;
@@ -264,10 +342,12 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
   try {
     planning = std::make_unique<sixdof_core::PlanningContext>(
         context_->model(), scene->collision(), request.group_name, context_->ikSolver(request.group_name));
+    planning->setPathConstraints(path_constraints);
   } catch (const std::exception& e) {
-    code = makeError(ErrorCode::INVALID_GROUP_NAME, e.what(), source);
-    return;
+    return makeError(ErrorCode::FAILURE, std::string("path_constraints: ") + e.what(), source);
   }
+  const std::string violation = planning->pathConstraintViolation(start, start.groupPositions(request.group_name));
+  if (!violation.empty()) return makeError(ErrorCode::START_STATE_VIOLATES_PATH_CONSTRAINTS, violation, source);
   sixdof_core::PlanningResult result;
   for (size_t i = 0; i < request.goal_constraints.size(); ++i) {
     code = planToGoal(*planning, start, request.goal_constraints[i], "goal_constraints[" + std::to_string(i) + "]",
@@ -275,17 +355,17 @@ void MotionPlanner::plan(const sixdof_msgs::MotionPlanRequest& request, const st
     if (isSuccess(code)) break;
   }
   response->planning_time = result.planning_time;
-  if (!isSuccess(code)) return;
+  if (!isSuccess(code)) return code;
   sixdof_core::Trajectory trajectory;
   const auto& joints = model.findGroup(request.group_name)->active_joints;
   code = context_->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, source, &trajectory);
-  if (!isSuccess(code)) return;
+  if (!isSuccess(code)) return code;
   response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();
-  code = makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
+  context_->publishDisplayTrajectory(start, response->trajectory.joint_trajectory);
+  return makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
                                       formatNumber(result.planning_time) + " s, trajectory " +
                                       formatNumber(trajectory.duration()) + " s");
-  context_->publishDisplayTrajectory(start, response->trajectory.joint_trajectory);
 }
 
 }  // namespace sixdof_planning

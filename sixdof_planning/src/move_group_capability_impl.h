@@ -16,11 +16,16 @@ ServiceCapability<Capability>::ServiceCapability(MoveGroupContext* context, cons
 template <class Capability>
 template <class Request, class Response>
 ros::ServiceServer ServiceCapability<Capability>::advertise(ros::NodeHandle& nh, const std::string& service,
-                                                            bool (Capability::*handle)(Request&, Response&)) {
+                                                            ErrorCode (Capability::*handle)(const Request&,
+                                                                                            Response&)) {
+  using Event = ros::ServiceEvent<Request, Response>;
   // The capability is reached through its base only when a request comes, once it is fully built.
-  return nh.advertiseService<Request, Response>(service, [this, handle](Request& request, Response& response) {
-    return (static_cast<Capability*>(this)->*handle)(request, response);
-  });
+  const std::string resolved = nh.resolveName(service);
+  return nh.advertiseService<Event>(service, boost::function<bool(Event&)>([this, handle, resolved](Event& event) {
+    const ErrorCode code = (static_cast<Capability*>(this)->*handle)(event.getRequest(), event.getResponse());
+    if (!isSuccess(code)) context_->reportError(event.getCallerName(), resolved, code);
+    return true;
+  }));
 }
 
 template <class Capability, class Action>

@@ -1,11 +1,13 @@
 #include "sixdof_planning/move_group_context.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
+#include <moveit_msgs/DisplayTrajectory.h>
+#include <moveit_msgs/PlanningSceneComponents.h>
 #include <sixdof_core/time_parameterization.h>
-#include <sixdof_msgs/DisplayTrajectory.h>
+#include <sixdof_msgs/ErrorReport.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "sixdof_planning/conversions.h"
@@ -45,9 +47,11 @@ MoveGroupContext::MoveGroupContext(ros::NodeHandle nh, MoveGroupConfig config)
     throw ConfigError(std::string("collision geometry of robot_description: ") + e.what());
   }
   state_monitor_ = std::make_unique<CurrentStateMonitor>(nh_, model_, "joint_states");
-  display_path_pub_ = nh_.advertise<sixdof_msgs::DisplayTrajectory>("move_group/display_planned_path", 1, true);
+  display_path_pub_ = nh_.advertise<moveit_msgs::DisplayTrajectory>("move_group/display_planned_path", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("move_group/planning_scene_markers", 1, true);
-  publishSceneMarkers();
+  monitored_scene_pub_ = nh_.advertise<moveit_msgs::PlanningScene>("move_group/monitored_planning_scene", 1, true);
+  error_reports_pub_ = nh_.advertise<sixdof_msgs::ErrorReport>("move_group/error_reports", 100);
+  publishScene();
 }
 
 std::shared_ptr<const sixdof_core::IkSolver> MoveGroupContext::ikSolver(const std::string& group) const {
@@ -83,10 +87,16 @@ ErrorCode MoveGroupContext::currentState(const std::string& source, sixdof_core:
   return makeSuccess(source);
 }
 
-ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg, const std::string& what,
+ErrorCode MoveGroupContext::resolveRobotState(const moveit_msgs::RobotState& msg, const std::string& what,
                                               const std::string& source, sixdof_core::RobotState* state,
                                               std::shared_ptr<const SceneStore>* scene,
                                               std::shared_ptr<const SceneStore> base_scene) const {
+  if (!msg.multi_dof_joint_state.joint_names.empty()) {
+    return makeError(ErrorCode::INVALID_ROBOT_STATE,
+                     what + ".multi_dof_joint_state sets joints (" + joinNames(msg.multi_dof_joint_state.joint_names) +
+                         "): multi-DOF joints are not supported (the robot model has none)",
+                     source);
+  }
   const auto& joint_state = msg.joint_state;
   ErrorCode code = validateJointState(*model_, joint_state, source);
   if (!isSuccess(code)) {
@@ -130,13 +140,15 @@ ErrorCode MoveGroupContext::resolveRobotState(const sixdof_msgs::RobotState& msg
     }
   }
   *scene = base_scene ? base_scene : this->scene();
-  if (!msg.attached_collision_objects.empty()) {
+  // As MoveIt: a full state (is_diff false) carries exactly the robot's attached objects, a diff adds to them.
+  if (!msg.attached_collision_objects.empty() || (!msg.is_diff && !(*scene)->attachedObjects().empty())) {
     auto copy = std::make_shared<SceneStore>(**scene);
+    if (!msg.is_diff) copy->clearAttachedObjects();
     for (size_t i = 0; i < msg.attached_collision_objects.size(); ++i) {
       code = copy->applyAttachedObject(msg.attached_collision_objects[i], *state, source);
       if (!isSuccess(code)) {
         code.message = what + ".attached_collision_objects[" + std::to_string(i) + "]: " + code.message;
-        return code;
+        return recode(code, ErrorCode::INVALID_ROBOT_STATE);
       }
     }
     *scene = copy;
@@ -157,7 +169,7 @@ std::shared_ptr<const SceneStore> MoveGroupContext::scene() const {
   return scene_;
 }
 
-ErrorCode MoveGroupContext::applyScene(const sixdof_msgs::PlanningScene& msg, const std::string& source) {
+ErrorCode MoveGroupContext::applyScene(const moveit_msgs::PlanningScene& msg, const std::string& source) {
   sixdof_core::RobotState state(model_);
   // Attached objects and objects given in link frames are placed at the current state; objects in the planning
   // frame need none, so the scene can be set up before the robot publishes joint_states.
@@ -179,8 +191,72 @@ ErrorCode MoveGroupContext::applyScene(const sixdof_msgs::PlanningScene& msg, co
     if (!isSuccess(code)) return code;
     scene_ = copy;
   }
-  publishSceneMarkers();
+  publishScene();
   return makeSuccess(source);
+}
+
+moveit_msgs::PlanningScene MoveGroupContext::sceneMessage(uint32_t components, const std::string& source) const {
+  using C = moveit_msgs::PlanningSceneComponents;
+  const auto store = scene();
+  moveit_msgs::PlanningScene msg;
+  msg.name = "move_group";
+  msg.robot_model_name = model_->name();
+  msg.is_diff = false;
+  if (components & C::ROBOT_STATE) {
+    sixdof_core::RobotState state(model_);
+    // The scene has objects even before joint_states arrive; the joint values are then left empty.
+    if (isSuccess(currentState(source, &state))) msg.robot_state.joint_state = toJointState(state);
+  }
+  if (components & C::ROBOT_STATE_ATTACHED_OBJECTS) msg.robot_state.attached_collision_objects = store->attachedObjects();
+  if (components & (C::WORLD_OBJECT_NAMES | C::WORLD_OBJECT_GEOMETRY)) {
+    msg.world.collision_objects = store->worldObjects();
+    if (!(components & C::WORLD_OBJECT_GEOMETRY)) {
+      for (auto& object : msg.world.collision_objects) {
+        moveit_msgs::CollisionObject named;
+        named.header = object.header;
+        named.id = object.id;
+        named.type = object.type;
+        named.operation = object.operation;
+        object = named;
+      }
+    }
+  }
+  if (components & C::OCTOMAP) store->octomapMessage(&msg.world.octomap);
+  if (components & C::TRANSFORMS) {
+    // MoveIt's fixed frames: the planning frame itself (the scene knows no other frames).
+    geometry_msgs::TransformStamped identity;
+    identity.header.frame_id = planningFrame();
+    identity.child_frame_id = planningFrame();
+    identity.transform.rotation.w = 1.0;
+    msg.fixed_frame_transforms.push_back(identity);
+  }
+  if (components & C::ALLOWED_COLLISION_MATRIX) msg.allowed_collision_matrix = store->allowedCollisionMatrix();
+  if (components & C::LINK_PADDING_AND_SCALING) {
+    for (const auto& link : model_->links()) {
+      moveit_msgs::LinkPadding padding;
+      padding.link_name = link.name;
+      padding.padding = config_.default_robot_padding;
+      msg.link_padding.push_back(padding);
+      moveit_msgs::LinkScale scale;
+      scale.link_name = link.name;
+      scale.scale = 1.0;
+      msg.link_scale.push_back(scale);
+    }
+  }
+  if (components & C::OBJECT_COLORS) msg.object_colors = store->objectColors();
+  return msg;
+}
+
+void MoveGroupContext::reportError(const std::string& caller, const std::string& interface, const ErrorCode& code) {
+  ROS_WARN_STREAM(interface << " (from " << caller << "): " << errorCodeName(code.val) << ": " << code.message);
+  sixdof_msgs::ErrorReport report;
+  report.header.stamp = ros::Time::now();
+  report.caller_id = caller;
+  report.interface = interface;
+  report.error_code = code;
+  report.message = code.message;
+  report.source = code.source;
+  error_reports_pub_.publish(report);
 }
 
 void MoveGroupContext::setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map,
@@ -244,7 +320,7 @@ ErrorCode MoveGroupContext::timeParameterize(const std::vector<std::string>& joi
 
 void MoveGroupContext::publishDisplayTrajectory(const sixdof_core::RobotState& start,
                                                 const trajectory_msgs::JointTrajectory& path) {
-  sixdof_msgs::DisplayTrajectory msg;
+  moveit_msgs::DisplayTrajectory msg;
   msg.model_id = model_->name();
   msg.trajectory.resize(1);
   msg.trajectory[0].joint_trajectory = path;
@@ -252,6 +328,12 @@ void MoveGroupContext::publishDisplayTrajectory(const sixdof_core::RobotState& s
   display_path_pub_.publish(msg);
 }
 
-void MoveGroupContext::publishSceneMarkers() { markers_pub_.publish(scene()->markers()); }
+void MoveGroupContext::publishScene() {
+  using C = moveit_msgs::PlanningSceneComponents;
+  markers_pub_.publish(scene()->markers());
+  monitored_scene_pub_.publish(sceneMessage(C::SCENE_SETTINGS | C::ROBOT_STATE_ATTACHED_OBJECTS |
+                                                C::WORLD_OBJECT_GEOMETRY | C::OBJECT_COLORS,
+                                            "monitored_planning_scene"));
+}
 
 }  // namespace sixdof_planning

@@ -9,6 +9,7 @@
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/occupancy_map_monitor.h"
 #include "sixdof_planning/plan_service_capability.h"
+#include "sixdof_planning/planning_scene_topics_capability.h"
 #include "sixdof_planning/query_robot_model_service_capability.h"
 #include "sixdof_planning/retime_trajectory_service_capability.h"
 #include "sixdof_planning/state_validation_service_capability.h"
@@ -33,6 +34,7 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   execute_trajectory_ = std::make_unique<ExecuteTrajectoryActionCapability>(context_.get(), executor_.get(),
                                                                             "execute_trajectory");
   robot_model_ = std::make_unique<QueryRobotModelService>(context_.get(), "get_robot_model");
+  scene_topics_ = std::make_unique<PlanningSceneTopics>(context_.get());
 }
 
 MoveGroupNode::~MoveGroupNode() = default;

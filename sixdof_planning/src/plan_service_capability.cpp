@@ -1,6 +1,6 @@
 #include "sixdof_planning/plan_service_capability.h"
 
-#include <sixdof_msgs/GetMotionPlan.h>
+#include <moveit_msgs/GetMotionPlan.h>
 
 #include "move_group_capability_impl.h"
 #include "sixdof_planning/motion_planner.h"
@@ -8,10 +8,9 @@
 
 namespace sixdof_planning {
 
-bool MotionPlanService::handle(sixdof_msgs::GetMotionPlanRequest& request,
-                               sixdof_msgs::GetMotionPlanResponse& response) {
-  MotionPlanner(context_).plan(request.motion_plan_request, service_, &response.motion_plan_response);
-  return true;
+ErrorCode MotionPlanService::handle(const moveit_msgs::GetMotionPlanRequest& request,
+                               moveit_msgs::GetMotionPlanResponse& response) {
+  return MotionPlanner(context_).plan(request.motion_plan_request, service_, &response.motion_plan_response);
 }
 
 template class ServiceCapability<MotionPlanService>;

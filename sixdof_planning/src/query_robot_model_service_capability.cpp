@@ -141,18 +141,17 @@ std::string describeCollisionGeometry(const sixdof_core::RobotModel& model,
   return "";
 }
 
-bool QueryRobotModelService::handle(sixdof_msgs::GetRobotModelRequest& request,
+ErrorCode QueryRobotModelService::handle(const sixdof_msgs::GetRobotModelRequest& request,
                                     sixdof_msgs::GetRobotModelResponse& response) {
   describeRobotModel(*context_->model(), &response);
+  ErrorCode code = makeSuccess(service_);
   if (request.include_collision_geometry) {
     const std::string error = describeCollisionGeometry(*context_->model(), &response.link_geometries);
-    if (!error.empty()) {
-      response.error_code = makeError(ErrorCode::FAILURE, "collision geometry: " + error, service_);
-      return true;
-    }
+    if (!error.empty()) code = makeError(ErrorCode::FAILURE, "collision geometry: " + error, service_);
   }
-  response.error_code = makeSuccess(service_);
-  return true;
+  response.error_code = code;
+  response.error_message = code.message;
+  return code;
 }
 
 template class ServiceCapability<QueryRobotModelService>;

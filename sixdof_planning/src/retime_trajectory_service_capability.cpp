@@ -44,16 +44,28 @@ ErrorCode validatePath(const sixdof_core::RobotModel& model, const trajectory_ms
 }
 }  // namespace
 
-bool RetimeTrajectoryService::handle(sixdof_msgs::RetimeTrajectoryRequest& request,
-                                     sixdof_msgs::RetimeTrajectoryResponse& response) {
-  ErrorCode& code = response.error_code;
+ErrorCode RetimeTrajectoryService::handle(const sixdof_msgs::RetimeTrajectoryRequest& request,
+                                          sixdof_msgs::RetimeTrajectoryResponse& response) {
+  const ErrorCode code = retime(request, &response);
+  response.error_code = code;
+  response.error_message = isSuccess(code) ? "" : code.message;
+  return code;
+}
+
+ErrorCode RetimeTrajectoryService::retime(const sixdof_msgs::RetimeTrajectoryRequest& request,
+                                          sixdof_msgs::RetimeTrajectoryResponse* response) const {
+  if (!request.trajectory.multi_dof_joint_trajectory.joint_names.empty()) {
+    return makeError(ErrorCode::INVALID_MOTION_PLAN,
+                     "trajectory.multi_dof_joint_trajectory is not supported (the robot model has no multi-DOF joints)",
+                     kRetimeSource);
+  }
   const auto& path = request.trajectory.joint_trajectory;
-  code = validatePath(*context_->model(), path);
-  if (!isSuccess(code)) return true;
+  ErrorCode code = validatePath(*context_->model(), path);
+  if (!isSuccess(code)) return code;
   ScalingFactors scaling;
   code = validateScalingFactors(request.velocity_scaling_factor, request.acceleration_scaling_factor, "", kRetimeSource,
                                 &scaling);
-  if (!isSuccess(code)) return true;
+  if (!isSuccess(code)) return code;
   std::vector<Eigen::VectorXd> waypoints;
   for (const auto& point : path.points) {
     waypoints.push_back(Eigen::Map<const Eigen::VectorXd>(point.positions.data(), point.positions.size()));
@@ -61,12 +73,11 @@ bool RetimeTrajectoryService::handle(sixdof_msgs::RetimeTrajectoryRequest& reque
   sixdof_core::Trajectory trajectory;
   code = context_->timeParameterize(path.joint_names, waypoints, scaling.velocity, scaling.acceleration, kRetimeSource,
                                     &trajectory);
-  if (!isSuccess(code)) return true;
-  response.trajectory.joint_trajectory = toJointTrajectory(trajectory);
-  response.trajectory.joint_trajectory.header = path.header;
-  code = makeSuccess(kRetimeSource, "retimed " + std::to_string(path.points.size()) + " points to " +
+  if (!isSuccess(code)) return code;
+  response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
+  response->trajectory.joint_trajectory.header = path.header;
+  return makeSuccess(kRetimeSource, "retimed " + std::to_string(path.points.size()) + " points to " +
                                         formatNumber(trajectory.duration()) + " s");
-  return true;
 }
 
 template class ServiceCapability<RetimeTrajectoryService>;

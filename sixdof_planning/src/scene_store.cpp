@@ -19,7 +19,7 @@ namespace sixdof_planning {
 
 namespace {
 
-using sixdof_msgs::CollisionObject;
+using moveit_msgs::CollisionObject;
 
 // The core loads meshes from files (and caches them by path): a message mesh becomes an OBJ file named
 // after its content, in a per-process directory.
@@ -114,11 +114,66 @@ SceneStore::SceneStore(const SceneStore& other)
     : model_(other.model_),
       collision_(std::make_shared<sixdof_core::CollisionScene>(*other.collision_)),
       world_(other.world_),
-      attached_(other.attached_) {}
+      attached_(other.attached_),
+      colors_(other.colors_),
+      occupancy_map_(other.occupancy_map_),
+      occupancy_map_pose_(other.occupancy_map_pose_) {}
 
 void SceneStore::setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map,
                                  const Eigen::Isometry3d& map_pose) {
+  occupancy_map_ = map;
+  occupancy_map_pose_ = map_pose;
   collision_->setOccupancyMap(std::move(map), map_pose);
+}
+
+void SceneStore::octomapMessage(octomap_msgs::OctomapWithPose* msg) const {
+  if (!occupancy_map_) return;
+  msg->header.frame_id = planningFrame(*model_);
+  msg->origin = eigenToPose(occupancy_map_pose_);
+  msg->octomap.header.frame_id = planningFrame(*model_);
+  msg->octomap.binary = true;
+  msg->octomap.id = "OcTree";
+  msg->octomap.resolution = occupancy_map_->resolution();
+  const std::string data = occupancy_map_->binaryData();
+  msg->octomap.data.assign(data.begin(), data.end());
+}
+
+moveit_msgs::AllowedCollisionMatrix SceneStore::allowedCollisionMatrix() const {
+  moveit_msgs::AllowedCollisionMatrix acm;
+  acm.entry_names = collision_->linkNames();
+  const size_t n = acm.entry_names.size();
+  std::map<std::string, size_t> index;
+  for (size_t i = 0; i < n; ++i) index[acm.entry_names[i]] = i;
+  acm.entry_values.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    acm.entry_values[i].enabled.assign(n, false);
+    acm.entry_values[i].enabled[i] = true;
+  }
+  for (const auto& pair : model_->disabledCollisionPairs()) {
+    auto a = index.find(pair.link1);
+    auto b = index.find(pair.link2);
+    if (a == index.end() || b == index.end()) continue;
+    acm.entry_values[a->second].enabled[b->second] = true;
+    acm.entry_values[b->second].enabled[a->second] = true;
+  }
+  return acm;
+}
+
+std::vector<moveit_msgs::ObjectColor> SceneStore::objectColors() const {
+  std::vector<moveit_msgs::ObjectColor> result;
+  for (const auto& entry : colors_) {
+    if (!world_.count(entry.first) && !attached_.count(entry.first)) continue;
+    moveit_msgs::ObjectColor color;
+    color.id = entry.first;
+    color.color = entry.second;
+    result.push_back(color);
+  }
+  return result;
+}
+
+void SceneStore::clearAttachedObjects() {
+  for (const auto& entry : attached_) collision_->removeAttachedObject(entry.first);
+  attached_.clear();
 }
 
 ErrorCode SceneStore::frameTransform(const sixdof_core::RobotState& state, const std::string& frame,
@@ -153,7 +208,7 @@ ErrorCode SceneStore::sceneError(const sixdof_core::SceneStatus& status, const s
     case Code::kDuplicateName:
       return makeError(ErrorCode::INVALID_OBJECT_NAME, status.message, source);
     default:
-      return makeError(ErrorCode::INVALID_REQUEST, status.message, source);
+      return makeError(ErrorCode::FAILURE, status.message, source);
   }
 }
 
@@ -168,7 +223,7 @@ ErrorCode SceneStore::toShapes(const CollisionObject& object, const std::string&
     const std::optional<sixdof_core::Shape> shape =
         type ? sixdof_core::primitiveShape(*type, primitive.dimensions) : std::nullopt;
     if (!shape) {
-      return makeError(ErrorCode::INVALID_REQUEST,
+      return makeError(ErrorCode::FAILURE,
                        "primitive " + std::to_string(i) + " of '" + object.id + "' is not a valid primitive", source);
     }
     placed.shape = *shape;
@@ -305,7 +360,7 @@ ErrorCode SceneStore::detach(const std::string& id, const sixdof_core::RobotStat
   return makeSuccess(source);
 }
 
-ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionObject& attached,
+ErrorCode SceneStore::applyAttachedObject(const moveit_msgs::AttachedCollisionObject& attached,
                                           const sixdof_core::RobotState& state, const std::string& source) {
   const CollisionObject& object = attached.object;
   ErrorCode code = validateCollisionObject(object, "attached object", source, false);
@@ -326,7 +381,7 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
     return detach(object.id, state, source);
   }
   if (object.operation != CollisionObject::ADD) {
-    return makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      "attached object '" + object.id + "': only ADD (attach) and REMOVE (detach) are supported",
                      source);
   }
@@ -353,7 +408,7 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
   code = carrierLink(attached.link_name, source, &carrier, &link_in_carrier);
   if (!isSuccess(code)) return code;
   const Eigen::Isometry3d link_pose = state.linkTransform(attached.link_name);
-  sixdof_msgs::AttachedCollisionObject stored = attached;
+  moveit_msgs::AttachedCollisionObject stored = attached;
   stored.object.header.frame_id = attached.link_name;
   stored.object.header.stamp = ros::Time();
   stored.object.operation = CollisionObject::ADD;
@@ -403,19 +458,43 @@ ErrorCode SceneStore::applyAttachedObject(const sixdof_msgs::AttachedCollisionOb
   return code;
 }
 
-ErrorCode SceneStore::apply(const sixdof_msgs::PlanningScene& scene, const sixdof_core::RobotState& state,
+ErrorCode SceneStore::apply(const moveit_msgs::PlanningScene& scene, const sixdof_core::RobotState& state,
                             const std::string& source) {
-  if (!scene.robot_state.joint_state.name.empty()) {
-    return makeError(ErrorCode::INVALID_REQUEST,
-                     "scene.robot_state.joint_state sets joints (" + joinNames(scene.robot_state.joint_state.name) +
+  if (!scene.robot_state.joint_state.name.empty() || !scene.robot_state.multi_dof_joint_state.joint_names.empty()) {
+    return makeError(ErrorCode::FAILURE,
+                     "scene.robot_state sets joints (" + joinNames(scene.robot_state.joint_state.name) +
+                         joinNames(scene.robot_state.multi_dof_joint_state.joint_names) +
                          "): the planning scene follows joint_states, its joint values cannot be set",
                      source);
   }
+  const auto refuse = [&](const std::string& field, const std::string& why) {
+    return makeError(ErrorCode::FAILURE, "scene." + field + " is not supported: " + why, source);
+  };
+  if (!scene.fixed_frame_transforms.empty()) {
+    return refuse("fixed_frame_transforms", "the scene's frames are the planning frame and the robot's links");
+  }
+  const auto& acm = scene.allowed_collision_matrix;
+  if (!acm.entry_names.empty() || !acm.entry_values.empty() || !acm.default_entry_names.empty() ||
+      !acm.default_entry_values.empty()) {
+    return refuse("allowed_collision_matrix",
+                  "allowed collisions come from the SRDF's disable_collisions and attached objects' touch_links");
+  }
+  if (!scene.link_padding.empty()) return refuse("link_padding", "use robot_description_planning/default_robot_padding");
+  if (!scene.link_scale.empty()) return refuse("link_scale", "links are checked at their URDF size");
+  if (!scene.world.octomap.octomap.data.empty()) {
+    return refuse("world.octomap", "the occupancy map is built by move_group's sensors (sensors_3d.yaml)");
+  }
+  for (size_t i = 0; i < scene.object_colors.size(); ++i) {
+    if (scene.object_colors[i].id.empty()) {
+      return makeError(ErrorCode::INVALID_OBJECT_NAME, "scene.object_colors[" + std::to_string(i) + "] has an empty id",
+                       source);
+    }
+  }
   if (!scene.is_diff) {
-    for (const auto& entry : attached_) collision_->removeAttachedObject(entry.first);
-    attached_.clear();
+    clearAttachedObjects();
     collision_->clearWorld();
     world_.clear();
+    colors_.clear();
   }
   for (size_t i = 0; i < scene.world.collision_objects.size(); ++i) {
     ErrorCode code = applyCollisionObject(scene.world.collision_objects[i], state, source);
@@ -431,6 +510,7 @@ ErrorCode SceneStore::apply(const sixdof_msgs::PlanningScene& scene, const sixdo
       return code;
     }
   }
+  for (const auto& color : scene.object_colors) colors_[color.id] = color.color;
   return makeSuccess(source);
 }
 
@@ -440,8 +520,8 @@ std::vector<CollisionObject> SceneStore::worldObjects() const {
   return result;
 }
 
-std::vector<sixdof_msgs::AttachedCollisionObject> SceneStore::attachedObjects() const {
-  std::vector<sixdof_msgs::AttachedCollisionObject> result;
+std::vector<moveit_msgs::AttachedCollisionObject> SceneStore::attachedObjects() const {
+  std::vector<moveit_msgs::AttachedCollisionObject> result;
   for (const auto& entry : attached_) result.push_back(entry.second);
   return result;
 }

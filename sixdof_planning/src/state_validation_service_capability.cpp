@@ -1,9 +1,10 @@
 #include "sixdof_planning/state_validation_service_capability.h"
 
-#include <sixdof_msgs/GetStateValidity.h>
+#include <moveit_msgs/GetStateValidity.h>
 #include <tf2_eigen/tf2_eigen.h>
 
 #include "move_group_capability_impl.h"
+#include "sixdof_planning/constraints.h"
 #include "sixdof_planning/motion_planner.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/validation.h"
@@ -14,31 +15,34 @@ namespace {
 uint32_t bodyType(sixdof_core::BodyType type) {
   switch (type) {
     case sixdof_core::BodyType::kRobotLink:
-      return sixdof_msgs::ContactInformation::ROBOT_LINK;
+      return moveit_msgs::ContactInformation::ROBOT_LINK;
     case sixdof_core::BodyType::kAttachedObject:
-      return sixdof_msgs::ContactInformation::ROBOT_ATTACHED;
+      return moveit_msgs::ContactInformation::ROBOT_ATTACHED;
     case sixdof_core::BodyType::kWorldObject:
       break;
   }
-  return sixdof_msgs::ContactInformation::WORLD_OBJECT;
+  return moveit_msgs::ContactInformation::WORLD_OBJECT;
 }
 }  // namespace
 
-bool StateValidityService::handle(sixdof_msgs::GetStateValidityRequest& request,
-                                  sixdof_msgs::GetStateValidityResponse& response) {
-  ErrorCode& code = response.error_code;
+ErrorCode StateValidityService::handle(const moveit_msgs::GetStateValidityRequest& request,
+                                       moveit_msgs::GetStateValidityResponse& response) {
+  // moveit_msgs' answer has no error code: a request that cannot be checked answers valid = false, and its code and
+  // words go to move_group/error_reports.
   response.valid = false;
   if (!request.group_name.empty()) {
-    code = validateGroup(*context_->model(), request.group_name, service_);
-    if (!isSuccess(code)) return true;
+    const ErrorCode code = validateGroup(*context_->model(), request.group_name, service_);
+    if (!isSuccess(code)) return code;
   }
   sixdof_core::RobotState state(context_->model());
   std::shared_ptr<const SceneStore> scene;
-  code = context_->resolveRobotState(request.robot_state, "robot_state", service_, &state, &scene);
-  if (!isSuccess(code)) return true;
+  ErrorCode code = context_->resolveRobotState(request.robot_state, "robot_state", service_, &state, &scene);
+  if (!isSuccess(code)) return code;
+  code = evaluateConstraints(state, request.constraints, "constraints", service_, &response.constraint_result);
+  if (!isSuccess(code)) return code;
   const auto report = checkStateCollision(state, *scene->collision());
   for (const auto& contact : report.contacts) {
-    sixdof_msgs::ContactInformation info;
+    moveit_msgs::ContactInformation info;
     info.header.frame_id = context_->planningFrame();
     info.header.stamp = ros::Time::now();
     info.position = tf2::toMsg(contact.position);
@@ -51,15 +55,10 @@ bool StateValidityService::handle(sixdof_msgs::GetStateValidityRequest& request,
     response.contacts.push_back(info);
   }
   const std::string bounds = boundsViolation(state);
-  response.valid = !report.colliding && bounds.empty();
-  // The check itself succeeded: the code is SUCCESS, the message says why the state is invalid.
-  std::string message = "state is valid";
-  if (report.colliding) {
-    message = std::to_string(report.contacts.size()) + " contact(s), e.g. " + describeContact(report.contacts.front());
-  }
-  if (!bounds.empty()) message = (report.colliding ? message + "; " : "") + bounds;
-  code = makeSuccess(service_, message);
-  return true;
+  bool constraints_met = true;
+  for (const auto& result : response.constraint_result) constraints_met = constraints_met && result.result;
+  response.valid = !report.colliding && bounds.empty() && constraints_met;
+  return makeSuccess(service_);
 }
 
 template class ServiceCapability<StateValidityService>;

@@ -21,7 +21,7 @@ constexpr double kServerWaitSeconds = 1.0;
 constexpr double kLateSilence = 0.2;
 
 std::string followErrorName(int code) {
-  using R = sixdof_msgs::FollowJointTrajectoryResult;
+  using R = control_msgs::FollowJointTrajectoryResult;
   switch (code) {
     case R::SUCCESSFUL:
       return "SUCCESSFUL";
@@ -183,7 +183,7 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   const double allowed =
       expected * context_->config().execution_duration_scaling + context_->config().execution_goal_margin;
   for (const auto& part : parts) {
-    sixdof_msgs::FollowJointTrajectoryGoal goal;
+    control_msgs::FollowJointTrajectoryGoal goal;
     goal.trajectory = part.second;
     goal.trajectory.header.stamp = ros::Time(0);  // start now
     clients_.at(part.first)->sendGoal(goal);
@@ -214,7 +214,7 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
       }
       const auto result = client.getResult();
       const bool succeeded = state == actionlib::SimpleClientGoalState::SUCCEEDED && result &&
-                             result->error_code == sixdof_msgs::FollowJointTrajectoryResult::SUCCESSFUL;
+                             result->error_code == control_msgs::FollowJointTrajectoryResult::SUCCESSFUL;
       if (!succeeded) {
         cancelAll(parts);
         std::string detail = "goal " + state.toString();

@@ -24,7 +24,7 @@ std::string joinNames(const std::vector<std::string>& names) {
 }
 
 ErrorCode validateFinite(double value, const std::string& what, const std::string& source) {
-  if (!std::isfinite(value)) return makeError(ErrorCode::INVALID_REQUEST, what + " is " + formatNumber(value), source);
+  if (!std::isfinite(value)) return makeError(ErrorCode::FAILURE, what + " is " + formatNumber(value), source);
   return makeSuccess(source);
 }
 
@@ -40,7 +40,7 @@ ErrorCode validatePose(const geometry_msgs::Pose& pose, const std::string& what,
   const double norm = std::sqrt(pose.orientation.x * pose.orientation.x + pose.orientation.y * pose.orientation.y +
                                 pose.orientation.z * pose.orientation.z + pose.orientation.w * pose.orientation.w);
   if (std::abs(norm - 1.0) > kQuaternionNormTolerance) {
-    return makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      what + ".orientation is not a unit quaternion (norm " + formatNumber(norm) + ", tolerance " +
                          formatNumber(kQuaternionNormTolerance) + ")",
                      source);
@@ -57,7 +57,7 @@ ErrorCode validateScalingFactor(double value, const std::string& what, const std
   // Tiny factors (1e-308) made the time parameterization run for ages: below kMin the request is refused.
   constexpr double kMin = 1e-3;
   if (!std::isfinite(value) || value < kMin || value > 1.0) {
-    return makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      what + " must be in [" + formatNumber(kMin) + ", 1] (0 means 1), got " + formatNumber(value),
                      source);
   }
@@ -84,18 +84,6 @@ ErrorCode validateGroup(const sixdof_core::RobotModel& model, const std::string&
 ErrorCode validateLink(const sixdof_core::RobotModel& model, const std::string& link, const std::string& source) {
   if (model.linkIndex(link) >= 0) return makeSuccess(source);
   return makeError(ErrorCode::INVALID_LINK_NAME, "unknown link '" + link + "'", source);
-}
-
-ErrorCode validateNamedState(const sixdof_core::RobotModel& model, const std::string& group,
-                             const std::string& state, const std::string& source) {
-  if (model.findGroupState(group, state)) return makeSuccess(source);
-  std::vector<std::string> known;
-  for (const auto& s : model.groupStates()) {
-    if (s.group == group) known.push_back(s.name);
-  }
-  return makeError(ErrorCode::INVALID_GOAL_CONSTRAINTS,
-                   "unknown named state '" + state + "' of group '" + group + "' (known: " + joinNames(known) + ")",
-                   source);
 }
 
 ErrorCode validateTrajectoryJoints(const sixdof_core::RobotModel& model, const std::vector<std::string>& joint_names,
@@ -144,9 +132,9 @@ ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_
   return makeSuccess(source);
 }
 
-ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, const std::string& what,
+ErrorCode validateCollisionObject(const moveit_msgs::CollisionObject& object, const std::string& what,
                                   const std::string& source, bool shapes_required) {
-  using Op = sixdof_msgs::CollisionObject;
+  using Op = moveit_msgs::CollisionObject;
   // An empty id means "every object" for REMOVE only (MoveIt's convention).
   if (object.id.empty() && object.operation != Op::REMOVE) {
     return makeError(ErrorCode::INVALID_OBJECT_NAME, what + " has an empty id", source);
@@ -154,25 +142,31 @@ ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, co
   const std::string name = what + " '" + object.id + "'";
   if (object.operation != Op::ADD && object.operation != Op::REMOVE && object.operation != Op::APPEND &&
       object.operation != Op::MOVE) {
-    return makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      name + " has unknown operation " + std::to_string(static_cast<int>(object.operation)), source);
   }
   if (object.operation == Op::REMOVE) return makeSuccess(source);
+  if (!object.planes.empty() || !object.plane_poses.empty()) {
+    return makeError(ErrorCode::FAILURE, name + ": planes are not supported (use a thin box)", source);
+  }
+  if (!object.subframe_names.empty() || !object.subframe_poses.empty()) {
+    return makeError(ErrorCode::FAILURE, name + ": subframes are not supported", source);
+  }
   const bool shapeless = object.primitives.empty() && object.meshes.empty();
   // Attaching an existing object by id: its pose stays what the scene has, so the message's is not used.
   if (shapeless && !shapes_required && object.operation == Op::ADD) return makeSuccess(source);
   ErrorCode code = validatePose(object.pose, name + " pose", source);
   if (!isSuccess(code)) return code;
   if (object.operation == Op::MOVE) return makeSuccess(source);
-  if (shapeless) return makeError(ErrorCode::INVALID_REQUEST, name + " has no primitives and no meshes", source);
+  if (shapeless) return makeError(ErrorCode::FAILURE, name + " has no primitives and no meshes", source);
   if (object.primitive_poses.size() != object.primitives.size()) {
-    return makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      name + " has " + std::to_string(object.primitives.size()) + " primitives but " +
                          std::to_string(object.primitive_poses.size()) + " primitive_poses",
                      source);
   }
   if (object.mesh_poses.size() != object.meshes.size()) {
-    return makeError(ErrorCode::INVALID_REQUEST,
+    return makeError(ErrorCode::FAILURE,
                      name + " has " + std::to_string(object.meshes.size()) + " meshes but " +
                          std::to_string(object.mesh_poses.size()) + " mesh_poses",
                      source);
@@ -182,21 +176,21 @@ ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, co
     const std::string pname = name + " primitives[" + std::to_string(i) + "]";
     const std::optional<sixdof_core::ShapeType> type = primitiveType(primitive.type);
     if (!type) {
-      return makeError(ErrorCode::INVALID_REQUEST,
+      return makeError(ErrorCode::FAILURE,
                        pname + " has unsupported type " + std::to_string(static_cast<int>(primitive.type)) +
                            " (BOX, SPHERE and CYLINDER are supported)",
                        source);
     }
     const size_t expected = sixdof_core::primitiveDimensionCount(*type);
     if (primitive.dimensions.size() != expected) {
-      return makeError(ErrorCode::INVALID_REQUEST,
+      return makeError(ErrorCode::FAILURE,
                        pname + " needs " + std::to_string(expected) + " dimensions, got " +
                            std::to_string(primitive.dimensions.size()),
                        source);
     }
     for (double d : primitive.dimensions) {
       if (!std::isfinite(d) || d <= 0.0) {
-        return makeError(ErrorCode::INVALID_REQUEST, pname + " has a non-positive dimension " + formatNumber(d),
+        return makeError(ErrorCode::FAILURE, pname + " has a non-positive dimension " + formatNumber(d),
                          source);
       }
     }
@@ -207,17 +201,17 @@ ErrorCode validateCollisionObject(const sixdof_msgs::CollisionObject& object, co
     const auto& mesh = object.meshes[i];
     const std::string mname = name + " meshes[" + std::to_string(i) + "]";
     if (mesh.vertices.empty() || mesh.triangles.empty()) {
-      return makeError(ErrorCode::INVALID_REQUEST, mname + " has no vertices or no triangles", source);
+      return makeError(ErrorCode::FAILURE, mname + " has no vertices or no triangles", source);
     }
     for (const auto& v : mesh.vertices) {
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-        return makeError(ErrorCode::INVALID_REQUEST, mname + " has a non-finite vertex", source);
+        return makeError(ErrorCode::FAILURE, mname + " has a non-finite vertex", source);
       }
     }
     for (const auto& t : mesh.triangles) {
       for (auto index : t.vertex_indices) {
         if (index >= mesh.vertices.size()) {
-          return makeError(ErrorCode::INVALID_REQUEST,
+          return makeError(ErrorCode::FAILURE,
                            mname + " has a triangle with vertex index " + std::to_string(index) + " out of range",
                            source);
         }

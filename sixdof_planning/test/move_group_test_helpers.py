@@ -2,6 +2,8 @@
 base that connects to move_group's services and actions once and wraps the calls the tests repeat."""
 
 import math
+import threading
+import time
 import unittest
 import xml.etree.ElementTree as ElementTree
 
@@ -12,7 +14,7 @@ from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 from trajectory_msgs.msg import JointTrajectory
 
-from sixdof_msgs.msg import (
+from moveit_msgs.msg import (
     CollisionObject,
     Constraints,
     ExecuteTrajectoryAction,
@@ -22,10 +24,13 @@ from sixdof_msgs.msg import (
     MoveGroupAction,
     MoveGroupGoal,
     MoveItErrorCodes,
+    OrientationConstraint,
+    PlanningSceneComponents,
+    PositionConstraint,
     PositionIKRequest,
     RobotState,
 )
-from sixdof_msgs.srv import (
+from moveit_msgs.srv import (
     ApplyPlanningScene,
     GetCartesianPath,
     GetMotionPlan,
@@ -34,6 +39,7 @@ from sixdof_msgs.srv import (
     GetPositionIK,
     GetStateValidity,
 )
+from sixdof_msgs.msg import ErrorReport
 
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 # The paper's poses of link6 in base_link (rpy fixed axes, degrees).
@@ -114,6 +120,55 @@ def box(name: str, position: tuple, size: tuple, frame: str = "base_link") -> Co
     return obj
 
 
+class ErrorReports:
+    """move_group's words for this node's failed requests (sixdof_msgs/ErrorReport on move_group/error_reports)."""
+
+    def __init__(self) -> None:
+        self._reports: list[ErrorReport] = []
+        self._used = 0
+        self._condition = threading.Condition()
+        self._subscriber = rospy.Subscriber("move_group/error_reports", ErrorReport, self._on_report, queue_size=100)
+        deadline = time.monotonic() + 30.0
+        while self._subscriber.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert self._subscriber.get_num_connections() > 0, "move_group/error_reports never connected"
+
+    def _on_report(self, report: ErrorReport) -> None:
+        if report.caller_id == rospy.get_name():
+            with self._condition:
+                self._reports.append(report)
+                self._condition.notify_all()
+
+    def take(self, code: int, timeout: float = 10.0) -> ErrorReport:
+        """The oldest unread report with this code (the ones before it are dropped); waits for it to arrive."""
+        deadline = time.monotonic() + timeout
+        with self._condition:
+            while True:
+                for index in range(self._used, len(self._reports)):
+                    if self._reports[index].error_code.val == code:
+                        self._used = index + 1
+                        return self._reports[index]
+                remaining = deadline - time.monotonic()
+                assert remaining > 0, f"no error report with code {code} within {timeout} s"
+                self._condition.wait(remaining)
+
+
+def pose_goal(link: str, pose: Pose, frame: str = "base_link", tolerance: float = 1e-4) -> Constraints:
+    """A pose goal as MoveGroupInterface sends it: a sphere around the position, an orientation constraint."""
+    goal = Constraints()
+    position = PositionConstraint(link_name=link, weight=1.0)
+    position.header.frame_id = frame
+    position.constraint_region.primitives.append(SolidPrimitive(type=SolidPrimitive.SPHERE, dimensions=[tolerance]))
+    position.constraint_region.primitive_poses.append(Pose(position=pose.position, orientation=Quaternion(w=1.0)))
+    orientation = OrientationConstraint(link_name=link, orientation=pose.orientation, weight=1.0)
+    orientation.header.frame_id = frame
+    orientation.absolute_x_axis_tolerance = orientation.absolute_y_axis_tolerance = 1e-3
+    orientation.absolute_z_axis_tolerance = 1e-3
+    goal.position_constraints.append(position)
+    goal.orientation_constraints.append(orientation)
+    return goal
+
+
 class MoveGroupTestCase(unittest.TestCase):
     """move_group's services and actions as class attributes (connected once per test class) and call helpers."""
 
@@ -138,13 +193,40 @@ class MoveGroupTestCase(unittest.TestCase):
         assert cls.move_group.wait_for_server(rospy.Duration(60.0))
         cls.states = named_states()
         cls.limits = rospy.get_param("robot_description_planning/joint_limits")
+        cls.reports = ErrorReports()
 
     # --- helpers ---------------------------------------------------------------------------------------
     def assert_code(self, code: MoveItErrorCodes, expected: int, *fragments: str) -> None:
-        self.assertEqual(code.val, expected, f"got {code.val}: {code.message} (source {code.source})")
+        """A service's code; a failure's words come from move_group/error_reports and must hold the fragments."""
+        if code.val != MoveItErrorCodes.SUCCESS:
+            report = self.reports.take(code.val)
+            words = f"{report.message} (source {report.source})"
+            self.assertTrue(report.source)
+        else:
+            words = "(no report: success)"
+        self.assertEqual(code.val, expected, f"got {code.val}: {words}")
         for fragment in fragments:
-            self.assertIn(fragment, code.message)
-        self.assertTrue(code.source)
+            self.assertIn(fragment, words)
+
+    def assert_refused(self, expected: int, *fragments: str) -> ErrorReport:
+        """A request whose answer has no code (apply_planning_scene, check_state_validity) was refused so."""
+        report = self.reports.take(expected)
+        for fragment in fragments:
+            self.assertIn(fragment, report.message)
+        self.assertTrue(report.source)
+        return report
+
+    def assert_result(self, client: actionlib.SimpleActionClient, expected: int, *fragments: str) -> None:
+        """An action's result code; its words are the goal's status text."""
+        code = client.get_result().error_code
+        text = client.get_goal_status_text()
+        self.assertEqual(code.val, expected, f"got {code.val}: {text}")
+        for fragment in fragments:
+            self.assertIn(fragment, text)
+
+    def scene(self) -> object:
+        """The whole planning scene (every component)."""
+        return self.get_scene(components=PlanningSceneComponents(components=1023)).scene
 
     def current(self) -> dict:
         msg = rospy.wait_for_message("joint_states", JointState, timeout=10.0)
@@ -168,12 +250,13 @@ class MoveGroupTestCase(unittest.TestCase):
         self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         return response
 
-    def execute_trajectory(self, trajectory: JointTrajectory) -> MoveItErrorCodes:
+    def execute_trajectory(self, trajectory: JointTrajectory, expected: int, *fragments: str) -> None:
+        """Executes through execute_trajectory; the result must be `expected` with the fragments in its text."""
         goal = ExecuteTrajectoryGoal()
         goal.trajectory.joint_trajectory = trajectory
         self.execute.send_goal(goal)
         self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
-        return self.execute.get_result().error_code
+        self.assert_result(self.execute, expected, *fragments)
 
     def move_group_result(self, goal: MoveGroupGoal) -> object:
         self.move_group.send_goal(goal)
@@ -181,8 +264,7 @@ class MoveGroupTestCase(unittest.TestCase):
         return self.move_group.get_result()
 
     def move_to(self, values: dict, group: str = "arm") -> None:
-        code = self.execute_trajectory(self.plan_to(values, group).trajectory.joint_trajectory)
-        self.assert_code(code, MoveItErrorCodes.SUCCESS)
+        self.execute_trajectory(self.plan_to(values, group).trajectory.joint_trajectory, MoveItErrorCodes.SUCCESS)
 
     def assert_serving(self) -> None:
         self.link_pose(self.states[("arm", "home pose")])

@@ -16,7 +16,7 @@ import actionlib
 import rospy
 from sensor_msgs.msg import JointState
 
-from sixdof_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult
+from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult
 
 JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "finger1_joint", "finger2_joint"]
 CONTROLLERS = {

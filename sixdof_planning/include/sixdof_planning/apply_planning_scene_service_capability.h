@@ -8,7 +8,7 @@ namespace sixdof_planning {
 class ApplyPlanningSceneService : public ServiceCapability<ApplyPlanningSceneService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::ApplyPlanningSceneRequest& request, sixdof_msgs::ApplyPlanningSceneResponse& response);
+  ErrorCode handle(const moveit_msgs::ApplyPlanningSceneRequest& request, moveit_msgs::ApplyPlanningSceneResponse& response);
 };
 
 }  // namespace sixdof_planning

@@ -8,7 +8,7 @@ namespace sixdof_planning {
 class CartesianPathService : public ServiceCapability<CartesianPathService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetCartesianPathRequest& request, sixdof_msgs::GetCartesianPathResponse& response);
+  ErrorCode handle(const moveit_msgs::GetCartesianPathRequest& request, moveit_msgs::GetCartesianPathResponse& response);
 };
 
 }  // namespace sixdof_planning

@@ -9,10 +9,10 @@
 namespace sixdof_planning {
 
 class ExecuteTrajectoryActionCapability
-    : public ActionCapability<ExecuteTrajectoryActionCapability, sixdof_msgs::ExecuteTrajectoryAction> {
+    : public ActionCapability<ExecuteTrajectoryActionCapability, moveit_msgs::ExecuteTrajectoryAction> {
  public:
   using ActionCapability::ActionCapability;
-  void execute(const boost::shared_ptr<const sixdof_msgs::ExecuteTrajectoryGoal>& goal);
+  void execute(const boost::shared_ptr<const moveit_msgs::ExecuteTrajectoryGoal>& goal);
 };
 
 }  // namespace sixdof_planning

@@ -1,11 +1,11 @@
 #pragma once
-// Forward declarations of this package's shared classes and of the sixdof_msgs and actionlib types named in
-// its headers: a header can name a message or an action server without pulling in their headers (the .cpp
-// includes them).
+// Forward declarations of this package's shared classes and of the moveit_msgs, sixdof_msgs and actionlib types
+// named in its headers: a header can name a message or an action server without pulling in their headers (the
+// .cpp includes them).
 
 #include <memory>
 
-namespace sixdof_msgs {
+namespace moveit_msgs {
 template <class ContainerAllocator>
 struct ApplyPlanningSceneRequest_;
 template <class ContainerAllocator>
@@ -37,10 +37,6 @@ struct GetPositionIKRequest_;
 template <class ContainerAllocator>
 struct GetPositionIKResponse_;
 template <class ContainerAllocator>
-struct GetRobotModelRequest_;
-template <class ContainerAllocator>
-struct GetRobotModelResponse_;
-template <class ContainerAllocator>
 struct GetStateValidityRequest_;
 template <class ContainerAllocator>
 struct GetStateValidityResponse_;
@@ -53,13 +49,9 @@ struct MoveGroupAction_;
 template <class ContainerAllocator>
 struct MoveGroupGoal_;
 template <class ContainerAllocator>
-struct MoveItErrorCodes_;
+struct MoveGroupResult_;
 template <class ContainerAllocator>
 struct PositionIKRequest_;
-template <class ContainerAllocator>
-struct RetimeTrajectoryRequest_;
-template <class ContainerAllocator>
-struct RetimeTrajectoryResponse_;
 template <class ContainerAllocator>
 struct RobotState_;
 
@@ -78,19 +70,31 @@ typedef GetPositionFKRequest_<std::allocator<void>> GetPositionFKRequest;
 typedef GetPositionFKResponse_<std::allocator<void>> GetPositionFKResponse;
 typedef GetPositionIKRequest_<std::allocator<void>> GetPositionIKRequest;
 typedef GetPositionIKResponse_<std::allocator<void>> GetPositionIKResponse;
-typedef GetRobotModelRequest_<std::allocator<void>> GetRobotModelRequest;
-typedef GetRobotModelResponse_<std::allocator<void>> GetRobotModelResponse;
 typedef GetStateValidityRequest_<std::allocator<void>> GetStateValidityRequest;
 typedef GetStateValidityResponse_<std::allocator<void>> GetStateValidityResponse;
 typedef MotionPlanRequest_<std::allocator<void>> MotionPlanRequest;
 typedef MotionPlanResponse_<std::allocator<void>> MotionPlanResponse;
 typedef MoveGroupAction_<std::allocator<void>> MoveGroupAction;
 typedef MoveGroupGoal_<std::allocator<void>> MoveGroupGoal;
-typedef MoveItErrorCodes_<std::allocator<void>> MoveItErrorCodes;
+typedef MoveGroupResult_<std::allocator<void>> MoveGroupResult;
 typedef PositionIKRequest_<std::allocator<void>> PositionIKRequest;
+typedef RobotState_<std::allocator<void>> RobotState;
+}  // namespace moveit_msgs
+
+namespace sixdof_msgs {
+template <class ContainerAllocator>
+struct GetRobotModelRequest_;
+template <class ContainerAllocator>
+struct GetRobotModelResponse_;
+template <class ContainerAllocator>
+struct RetimeTrajectoryRequest_;
+template <class ContainerAllocator>
+struct RetimeTrajectoryResponse_;
+
+typedef GetRobotModelRequest_<std::allocator<void>> GetRobotModelRequest;
+typedef GetRobotModelResponse_<std::allocator<void>> GetRobotModelResponse;
 typedef RetimeTrajectoryRequest_<std::allocator<void>> RetimeTrajectoryRequest;
 typedef RetimeTrajectoryResponse_<std::allocator<void>> RetimeTrajectoryResponse;
-typedef RobotState_<std::allocator<void>> RobotState;
 }  // namespace sixdof_msgs
 
 namespace actionlib {

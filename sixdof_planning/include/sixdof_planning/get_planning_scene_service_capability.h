@@ -8,7 +8,7 @@ namespace sixdof_planning {
 class GetPlanningSceneService : public ServiceCapability<GetPlanningSceneService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetPlanningSceneRequest& request, sixdof_msgs::GetPlanningSceneResponse& response);
+  ErrorCode handle(const moveit_msgs::GetPlanningSceneRequest& request, moveit_msgs::GetPlanningSceneResponse& response);
 };
 
 }  // namespace sixdof_planning

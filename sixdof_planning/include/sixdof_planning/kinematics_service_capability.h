@@ -9,13 +9,16 @@ namespace sixdof_planning {
 class ForwardKinematicsService : public ServiceCapability<ForwardKinematicsService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetPositionFKRequest& request, sixdof_msgs::GetPositionFKResponse& response);
+  ErrorCode handle(const moveit_msgs::GetPositionFKRequest& request, moveit_msgs::GetPositionFKResponse& response);
+
+ private:
+  ErrorCode fk(const moveit_msgs::GetPositionFKRequest& request, moveit_msgs::GetPositionFKResponse* response) const;
 };
 
 class InverseKinematicsService : public ServiceCapability<InverseKinematicsService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetPositionIKRequest& request, sixdof_msgs::GetPositionIKResponse& response);
+  ErrorCode handle(const moveit_msgs::GetPositionIKRequest& request, moveit_msgs::GetPositionIKResponse& response);
 };
 
 }  // namespace sixdof_planning

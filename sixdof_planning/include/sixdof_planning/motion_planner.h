@@ -27,21 +27,25 @@ std::string fixStartStateBounds(double max_error, sixdof_core::RobotState* state
 // "link3 collides with box" for the first contact of a report.
 std::string describeContact(const sixdof_core::Contact& contact);
 
-// MoveIt's planning pipeline for one MotionPlanRequest: request checks, start state, goal
-// (joint constraints, a pose or position constraint of the tip or a link fixed to it, or a named state),
-// OMPL through sixdof_core, time parameterization. Shared by plan_kinematic_path and the move_group action.
+// MoveIt's planning pipeline for one MotionPlanRequest: request checks, start state, path constraints (joint
+// and position constraints), goal (joint constraints, or a pose or position constraint of the tip or a link fixed
+// to it), OMPL through sixdof_core, time parameterization. Shared by plan_kinematic_path and the move_group action.
 class MotionPlanner {
  public:
   explicit MotionPlanner(MoveGroupContext* context) : context_(context) {}
 
-  // Fills the whole response, error_code included. base_scene: the scene to plan in (null: the current one).
-  void plan(const sixdof_msgs::MotionPlanRequest& request, const std::string& source,
-            sixdof_msgs::MotionPlanResponse* response, std::shared_ptr<const SceneStore> base_scene = nullptr) const;
+  // Fills the whole response, error_code included, and returns the outcome with its words. base_scene: the scene
+  // to plan in (null: the current one).
+  ErrorCode plan(const moveit_msgs::MotionPlanRequest& request, const std::string& source,
+                 moveit_msgs::MotionPlanResponse* response,
+                 std::shared_ptr<const SceneStore> base_scene = nullptr) const;
 
  private:
+  ErrorCode planRequest(const moveit_msgs::MotionPlanRequest& request, const std::string& source,
+                        moveit_msgs::MotionPlanResponse* response, std::shared_ptr<const SceneStore> base_scene) const;
   // Plans to one goal alternative.
   ErrorCode planToGoal(const sixdof_core::PlanningContext& planning, const sixdof_core::RobotState& start,
-                       const sixdof_msgs::Constraints& goal, const std::string& what,
+                       const moveit_msgs::Constraints& goal, const std::string& what,
                        const sixdof_core::PlanningOptions& options, const std::string& source,
                        sixdof_core::PlanningResult* result) const;
 

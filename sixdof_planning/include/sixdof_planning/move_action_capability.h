@@ -8,10 +8,14 @@
 
 namespace sixdof_planning {
 
-class MoveGroupActionCapability : public ActionCapability<MoveGroupActionCapability, sixdof_msgs::MoveGroupAction> {
+class MoveGroupActionCapability : public ActionCapability<MoveGroupActionCapability, moveit_msgs::MoveGroupAction> {
  public:
   using ActionCapability::ActionCapability;
-  void execute(const boost::shared_ptr<const sixdof_msgs::MoveGroupGoal>& goal);
+  void execute(const boost::shared_ptr<const moveit_msgs::MoveGroupGoal>& goal);
+
+ private:
+  // Plans (and executes) the goal, filling the result but its error code; returns the outcome.
+  ErrorCode run(const moveit_msgs::MoveGroupGoal& goal, moveit_msgs::MoveGroupResult* result);
 };
 
 }  // namespace sixdof_planning

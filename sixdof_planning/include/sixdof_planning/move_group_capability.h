@@ -1,7 +1,9 @@
 #pragma once
 // What the capabilities share (MoveIt's MoveGroupCapability): the context they work in and their one server.
 // A capability derives as `class X : public ServiceCapability<X>` (or ActionCapability<X, Action>), inherits the
-// constructor and declares `bool handle(Request&, Response&)` (or `void execute(const GoalConstPtr&)`). Its source
+// constructor and declares `ErrorCode handle(const Request&, Response&)` (or `void execute(const GoalConstPtr&)`):
+// the handler fills the response (its error code field too, where the type has one) and returns the outcome with
+// its words; a failure is published on move_group/error_reports with the caller's name. Its source
 // includes "move_group_capability_impl.h" and instantiates the base there (`template class
 // ServiceCapability<X>;`), where the messages are complete: this header names them only through fwd.h.
 // Requests and goals are served by the node's spinner, which starts once the whole node is built, so a
@@ -13,6 +15,7 @@
 #include <ros/forwards.h>
 #include <ros/service_server.h>
 
+#include "sixdof_planning/errors.h"
 #include "sixdof_planning/fwd.h"
 
 namespace sixdof_planning {
@@ -20,7 +23,7 @@ namespace sixdof_planning {
 template <class Capability>
 class ServiceCapability {
  public:
-  // Advertises `service` in the context's namespace, answered by Capability::handle.
+  // Advertises `service` in the context's namespace, answered by Capability::handle; failures are reported.
   ServiceCapability(MoveGroupContext* context, const std::string& service);
   ServiceCapability(const ServiceCapability&) = delete;
   ServiceCapability& operator=(const ServiceCapability&) = delete;
@@ -32,7 +35,7 @@ class ServiceCapability {
  private:
   template <class Request, class Response>
   ros::ServiceServer advertise(ros::NodeHandle& nh, const std::string& service,
-                               bool (Capability::*handle)(Request&, Response&));
+                               ErrorCode (Capability::*handle)(const Request&, Response&));
 
   ros::ServiceServer server_;
 };

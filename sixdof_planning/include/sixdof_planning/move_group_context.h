@@ -12,8 +12,8 @@
 #include <sixdof_core/ik_solver.h>
 #include <sixdof_core/robot_model.h>
 #include <sixdof_core/trajectory.h>
-#include <sixdof_msgs/PlanningScene.h>
-#include <sixdof_msgs/RobotState.h>
+#include <moveit_msgs/PlanningScene.h>
+#include <moveit_msgs/RobotState.h>
 
 #include "sixdof_planning/config.h"
 #include "sixdof_planning/errors.h"
@@ -49,14 +49,23 @@ class MoveGroupContext {
   StateLiveness stateLiveness() const { return state_monitor_->liveness(); }
   // A request's robot state: its joints on top of the current state (the current state is only needed for
   // joints the message leaves out), and `base_scene` (null: the current scene) with the message's attached
-  // objects added (attached objects in a request are always additions). `what` names the field.
-  ErrorCode resolveRobotState(const sixdof_msgs::RobotState& msg, const std::string& what, const std::string& source,
+  // objects: added to the scene's with is_diff, instead of the scene's without. `what` names the field; a
+  // malformed state is INVALID_ROBOT_STATE.
+  ErrorCode resolveRobotState(const moveit_msgs::RobotState& msg, const std::string& what, const std::string& source,
                               sixdof_core::RobotState* state, std::shared_ptr<const SceneStore>* scene,
                               std::shared_ptr<const SceneStore> base_scene = nullptr) const;
 
   std::shared_ptr<const SceneStore> scene() const;
-  // Applies a scene message to the persistent scene (all or nothing) and publishes the markers.
-  ErrorCode applyScene(const sixdof_msgs::PlanningScene& msg, const std::string& source);
+  // Applies a scene message to the persistent scene (all or nothing) and publishes the markers and the monitored
+  // scene.
+  ErrorCode applyScene(const moveit_msgs::PlanningScene& msg, const std::string& source);
+  // The scene as get_planning_scene answers it: the parts moveit_msgs/PlanningSceneComponents' bits ask for.
+  moveit_msgs::PlanningScene sceneMessage(uint32_t components, const std::string& source) const;
+
+  // Publishes a failed request's words on move_group/error_reports (sixdof_msgs/ErrorReport) and logs them:
+  // moveit_msgs' responses carry at most the code. `caller` is the requesting node, `interface` the resolved
+  // service or topic name.
+  void reportError(const std::string& caller, const std::string& interface, const ErrorCode& code);
 
   // Swaps in a scene whose collision checks include `map` (a snapshot nobody changes), placed by map_pose.
   void setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map, const Eigen::Isometry3d& map_pose);
@@ -72,7 +81,8 @@ class MoveGroupContext {
                              sixdof_core::Trajectory* trajectory) const;
 
   void publishDisplayTrajectory(const sixdof_core::RobotState& start, const trajectory_msgs::JointTrajectory& path);
-  void publishSceneMarkers();
+  // The scene's markers and the whole scene on move_group/monitored_planning_scene, after each change.
+  void publishScene();
 
  private:
   void warnIfStale(const std::string& source) const;
@@ -89,6 +99,8 @@ class MoveGroupContext {
 
   ros::Publisher display_path_pub_;
   ros::Publisher markers_pub_;
+  ros::Publisher monitored_scene_pub_;
+  ros::Publisher error_reports_pub_;
 };
 
 }  // namespace sixdof_planning

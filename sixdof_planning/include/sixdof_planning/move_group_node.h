@@ -24,6 +24,7 @@ class ApplyPlanningSceneService;
 class MoveGroupActionCapability;
 class ExecuteTrajectoryActionCapability;
 class QueryRobotModelService;
+class PlanningSceneTopics;
 
 class MoveGroupNode {
  public:
@@ -46,6 +47,7 @@ class MoveGroupNode {
   std::unique_ptr<MoveGroupActionCapability> move_group_;
   std::unique_ptr<ExecuteTrajectoryActionCapability> execute_trajectory_;
   std::unique_ptr<QueryRobotModelService> robot_model_;
+  std::unique_ptr<PlanningSceneTopics> scene_topics_;
 };
 
 }  // namespace sixdof_planning

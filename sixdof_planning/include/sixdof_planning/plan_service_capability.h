@@ -8,7 +8,7 @@ namespace sixdof_planning {
 class MotionPlanService : public ServiceCapability<MotionPlanService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetMotionPlanRequest& request, sixdof_msgs::GetMotionPlanResponse& response);
+  ErrorCode handle(const moveit_msgs::GetMotionPlanRequest& request, moveit_msgs::GetMotionPlanResponse& response);
 };
 
 }  // namespace sixdof_planning

@@ -27,7 +27,7 @@ std::string describeCollisionGeometry(const sixdof_core::RobotModel& model,
 class QueryRobotModelService : public ServiceCapability<QueryRobotModelService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetRobotModelRequest& request, sixdof_msgs::GetRobotModelResponse& response);
+  ErrorCode handle(const sixdof_msgs::GetRobotModelRequest& request, sixdof_msgs::GetRobotModelResponse& response);
 };
 
 }  // namespace sixdof_planning

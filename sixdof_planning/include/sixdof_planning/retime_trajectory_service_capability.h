@@ -9,7 +9,11 @@ namespace sixdof_planning {
 class RetimeTrajectoryService : public ServiceCapability<RetimeTrajectoryService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::RetimeTrajectoryRequest& request, sixdof_msgs::RetimeTrajectoryResponse& response);
+  ErrorCode handle(const sixdof_msgs::RetimeTrajectoryRequest& request, sixdof_msgs::RetimeTrajectoryResponse& response);
+
+ private:
+  ErrorCode retime(const sixdof_msgs::RetimeTrajectoryRequest& request,
+                   sixdof_msgs::RetimeTrajectoryResponse* response) const;
 };
 
 }  // namespace sixdof_planning

@@ -8,12 +8,15 @@
 #include <Eigen/Geometry>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <moveit_msgs/AllowedCollisionMatrix.h>
+#include <moveit_msgs/AttachedCollisionObject.h>
+#include <moveit_msgs/CollisionObject.h>
+#include <moveit_msgs/ObjectColor.h>
+#include <moveit_msgs/PlanningScene.h>
+#include <octomap_msgs/OctomapWithPose.h>
 #include <sixdof_core/collision.h>
 #include <sixdof_core/occupancy_map.h>
 #include <sixdof_core/robot_model.h>
-#include <sixdof_msgs/AttachedCollisionObject.h>
-#include <sixdof_msgs/CollisionObject.h>
-#include <sixdof_msgs/PlanningScene.h>
 
 #include "sixdof_planning/errors.h"
 
@@ -35,24 +38,35 @@ class SceneStore {
   const sixdof_core::RobotModel& model() const { return *model_; }
   std::shared_ptr<const sixdof_core::CollisionScene> collision() const { return collision_; }
 
-  // Applies a PlanningScene message (a diff, or with is_diff false a full replacement of the objects) at the
-  // robot state `state` (which places attached objects and resolves link frames). The robot_state's joint
-  // values are not part of the scene (the node follows joint_states), so setting them is an error.
+  // Applies a PlanningScene message (a diff, or with is_diff false a full replacement of the objects and colours)
+  // at the robot state `state` (which places attached objects and resolves link frames). The robot_state's joint
+  // values are not part of the scene (the node follows joint_states), so setting them is an error, as are the
+  // parts sixdof does not support (fixed frame transforms, an allowed collision matrix, link padding or scale,
+  // an octomap): each is refused with FAILURE naming the field. Object colours are kept.
   // On error the store may be partly modified: apply to a copy and keep it only on success.
-  ErrorCode apply(const sixdof_msgs::PlanningScene& scene, const sixdof_core::RobotState& state,
+  ErrorCode apply(const moveit_msgs::PlanningScene& scene, const sixdof_core::RobotState& state,
                   const std::string& source);
-  ErrorCode applyCollisionObject(const sixdof_msgs::CollisionObject& object, const sixdof_core::RobotState& state,
+  ErrorCode applyCollisionObject(const moveit_msgs::CollisionObject& object, const sixdof_core::RobotState& state,
                                  const std::string& source);
-  ErrorCode applyAttachedObject(const sixdof_msgs::AttachedCollisionObject& attached,
+  ErrorCode applyAttachedObject(const moveit_msgs::AttachedCollisionObject& attached,
                                 const sixdof_core::RobotState& state, const std::string& source);
+
+  // Removes every attached object from the robot (a full robot state in a request replaces them).
+  void clearAttachedObjects();
 
   // The occupancy map robot links and attached objects collide against (see CollisionScene::setOccupancyMap);
   // copies of the store share it.
   void setOccupancyMap(std::shared_ptr<const sixdof_core::OccupancyMap> map, const Eigen::Isometry3d& map_pose);
+  // The map as octomap_msgs carries it (binary OcTree in the planning frame); left empty without a map.
+  void octomapMessage(octomap_msgs::OctomapWithPose* msg) const;
+  // The SRDF's allowed collisions between the links with collision geometry (MoveIt's ACM, no default entries).
+  moveit_msgs::AllowedCollisionMatrix allowedCollisionMatrix() const;
+  // Colours set through object_colors, of objects still in the scene.
+  std::vector<moveit_msgs::ObjectColor> objectColors() const;
 
   // World and attached objects as messages (ADD operations).
-  std::vector<sixdof_msgs::CollisionObject> worldObjects() const;
-  std::vector<sixdof_msgs::AttachedCollisionObject> attachedObjects() const;
+  std::vector<moveit_msgs::CollisionObject> worldObjects() const;
+  std::vector<moveit_msgs::AttachedCollisionObject> attachedObjects() const;
   // Markers of every object (world objects in the planning frame, attached ones in their link frame),
   // preceded by a DELETEALL marker so removed objects disappear.
   visualization_msgs::MarkerArray markers() const;
@@ -63,7 +77,7 @@ class SceneStore {
 
  private:
   // Shapes of a validated message.
-  ErrorCode toShapes(const sixdof_msgs::CollisionObject& object, const std::string& source,
+  ErrorCode toShapes(const moveit_msgs::CollisionObject& object, const std::string& source,
                      std::vector<sixdof_core::PlacedShape>* shapes) const;
   ErrorCode sceneError(const sixdof_core::SceneStatus& status, const std::string& source) const;
   // The link with collision geometry that carries objects attached to `link`, and `link`'s pose in it.
@@ -76,8 +90,11 @@ class SceneStore {
 
   sixdof_core::RobotModelConstPtr model_;
   std::shared_ptr<sixdof_core::CollisionScene> collision_;
-  std::map<std::string, sixdof_msgs::CollisionObject> world_;
-  std::map<std::string, sixdof_msgs::AttachedCollisionObject> attached_;
+  std::map<std::string, moveit_msgs::CollisionObject> world_;
+  std::map<std::string, moveit_msgs::AttachedCollisionObject> attached_;
+  std::map<std::string, std_msgs::ColorRGBA> colors_;
+  std::shared_ptr<const sixdof_core::OccupancyMap> occupancy_map_;
+  Eigen::Isometry3d occupancy_map_pose_ = Eigen::Isometry3d::Identity();
 };
 
 }  // namespace sixdof_planning

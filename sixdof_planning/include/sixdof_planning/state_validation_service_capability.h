@@ -8,7 +8,7 @@ namespace sixdof_planning {
 class StateValidityService : public ServiceCapability<StateValidityService> {
  public:
   using ServiceCapability::ServiceCapability;
-  bool handle(sixdof_msgs::GetStateValidityRequest& request, sixdof_msgs::GetStateValidityResponse& response);
+  ErrorCode handle(const moveit_msgs::GetStateValidityRequest& request, moveit_msgs::GetStateValidityResponse& response);
 };
 
 }  // namespace sixdof_planning

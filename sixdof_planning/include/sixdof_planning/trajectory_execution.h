@@ -9,7 +9,7 @@
 #include <actionlib/client/simple_action_client.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
-#include <sixdof_msgs/FollowJointTrajectoryAction.h>
+#include <control_msgs/FollowJointTrajectoryAction.h>
 
 #include "sixdof_planning/errors.h"
 #include "sixdof_planning/move_group_context.h"
@@ -30,7 +30,7 @@ class TrajectoryExecutor {
                     const std::function<bool()>& preempt_requested);
 
  private:
-  using Client = actionlib::SimpleActionClient<sixdof_msgs::FollowJointTrajectoryAction>;
+  using Client = actionlib::SimpleActionClient<control_msgs::FollowJointTrajectoryAction>;
 
   ErrorCode validate(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source) const;
   // One goal per controller that has joints in the trajectory (plus mimic joints of trajectory joints).

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
+
+#include <octomap/OcTree.h>
 
 #include "sixdof_core/collision.h"
 #include "sixdof_core/occupancy_map.h"
@@ -93,6 +96,28 @@ TEST(OccupancyMap, CopiesAreDeep) {
   map.clear();
   EXPECT_TRUE(map.empty());
   EXPECT_FALSE(copy.empty());
+}
+
+TEST(OccupancyMap, BinaryDataIsOctomapsOwn) {
+  OccupancyMap map(kResolution);
+  map.insertScan(kOrigin, wall(0.7), kNone, kNone);
+  const std::string data = map.binaryData();
+  ASSERT_FALSE(data.empty());
+  // What octomap_msgs' binaryMsgToMap does with a message's data: the tree reads it back cell for cell.
+  octomap::OcTree tree(kResolution);
+  std::istringstream in(data);
+  tree.readBinaryData(in);
+  std::size_t occupied = 0;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (tree.isNodeOccupied(*it)) ++occupied;
+  }
+  const auto cells = map.occupiedCells();
+  EXPECT_EQ(occupied, cells.size());
+  for (const auto& cell : cells) {
+    const octomap::OcTreeNode* node = tree.search(cell.center.x(), cell.center.y(), cell.center.z());
+    ASSERT_NE(node, nullptr);
+    EXPECT_TRUE(tree.isNodeOccupied(node));
+  }
 }
 
 TEST(ShapeMask, PrimitivesWithScaleAndPadding) {

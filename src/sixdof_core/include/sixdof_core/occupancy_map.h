@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -57,6 +58,9 @@ class OccupancyMap {
   std::vector<OccupiedCell> occupiedCells() const;
   // Bounds of the occupied cells (both zero and false when there are none).
   bool occupiedBounds(Eigen::Vector3d* min, Eigen::Vector3d* max) const;
+  // OctoMap's binary stream of the tree (OcTree::writeBinaryData: occupied/free bits, no header), what an
+  // octomap_msgs/Octomap with binary true and id "OcTree" carries.
+  std::string binaryData() const;
 
  private:
   friend struct detail::OccupancyMapAccess;

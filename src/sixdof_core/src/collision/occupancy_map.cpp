@@ -1,6 +1,7 @@
 #include "sixdof_core/occupancy_map.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "fcl_geometry.h"
@@ -42,6 +43,12 @@ OccupancyMap::OccupancyMap(OccupancyMap&&) noexcept = default;
 OccupancyMap& OccupancyMap::operator=(OccupancyMap&&) noexcept = default;
 
 double OccupancyMap::resolution() const { return impl_->tree->getResolution(); }
+
+std::string OccupancyMap::binaryData() const {
+  std::ostringstream out;
+  impl_->tree->writeBinaryData(out);
+  return out.str();
+}
 
 void OccupancyMap::insertScan(const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3d>& hits,
                               const std::vector<Eigen::Vector3d>& clipped, const std::vector<Eigen::Vector3d>& masked) {

@@ -56,7 +56,8 @@ import sys
 import time
 
 import rospy
-from sixdof_msgs.srv import GetPlanningScene
+from moveit_msgs.msg import PlanningSceneComponents
+from moveit_msgs.srv import GetPlanningScene
 
 
 def launch_alive() -> bool:
@@ -77,8 +78,9 @@ while True:
         if not launch_alive() or time.monotonic() > deadline:
             sys.exit("move_group did not come up")
 scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
+names_only = PlanningSceneComponents(components=PlanningSceneComponents.WORLD_OBJECT_NAMES)
 while time.monotonic() < deadline:
-    names = [o.id for o in scene().scene.world.collision_objects]
+    names = [o.id for o in scene(names_only).scene.world.collision_objects]
     if not sys.argv[1] or sys.argv[1] in names:
         print(f"move_group is up; planning scene objects: {', '.join(sorted(names)) or 'none'}")
         sys.exit(0)

@@ -162,6 +162,7 @@ GoalStateDisplay::~GoalStateDisplay() { stopWorker(); }
 
 void GoalStateDisplay::onInitialize() {
   goal_pub_ = update_nh_.advertise<sensor_msgs::JointState>(kGoalStateTopic, 1, true);
+  ik_ = std::make_unique<GoalIk>(ros::NodeHandle());
   worker_ = std::thread(&GoalStateDisplay::ikLoop, this);
   loadModel();
 }
@@ -414,7 +415,7 @@ void GoalStateDisplay::goalPoseCallback(const geometry_msgs::PoseStamped::ConstP
 }
 
 void GoalStateDisplay::requestIk(const geometry_msgs::PoseStamped& pose) {
-  IkRequest request;
+  GoalIkRequest request;
   request.pose = pose;
   request.group = group_;
   request.tip_link = tip_link_;
@@ -436,7 +437,7 @@ void GoalStateDisplay::update(float wall_dt, float /*ros_dt*/) {
     deleteStatusStd("Transform");
   }
   marker_->update(wall_dt);
-  std::optional<IkOutcome> outcome;
+  std::optional<GoalIkOutcome> outcome;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     outcome.swap(outcome_);
@@ -444,16 +445,16 @@ void GoalStateDisplay::update(float wall_dt, float /*ros_dt*/) {
   if (!outcome) return;
   for (const auto& [name, value] : outcome->solution) goal_[name] = value;
   switch (outcome->kind) {
-    case IkOutcome::Kind::kValid:
+    case GoalIkOutcome::Kind::kValid:
       setStatusStd(rviz::StatusProperty::Ok, "Goal", outcome->message);
       showGoal(true);
       break;
-    case IkOutcome::Kind::kInCollision:
-    case IkOutcome::Kind::kNoSolution:
+    case GoalIkOutcome::Kind::kInCollision:
+    case GoalIkOutcome::Kind::kNoSolution:
       setStatusStd(rviz::StatusProperty::Warn, "Goal", outcome->message);
       showGoal(false);
       break;
-    case IkOutcome::Kind::kError:
+    case GoalIkOutcome::Kind::kError:
       setStatusStd(rviz::StatusProperty::Error, "Goal", outcome->message);
       showGoal(false);
       break;

@@ -13,6 +13,7 @@
 #include <sensor_msgs/JointState.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
+#include "sixdof_rviz/goal_ik.h"
 #include "sixdof_rviz/link_poses.h"
 #include "sixdof_rviz/semantic_model.h"
 
@@ -30,7 +31,7 @@ class GhostRobot;
 
 // "sixdof_rviz/GoalState": a 6-DoF interactive marker on the tip link of a planning group. Dragging it (or
 // publishing a pose on the goal pose topic, e.g. from a script) asks
-// move_group's compute_ik (throttled, in a worker thread) and check_state_validity; the goal robot is drawn
+// move_group's compute_ik (throttled, in a worker thread) and check_state_validity (GoalIk); the goal robot is drawn
 // in the "reachable" colour, or in the "unreachable" colour when there is no IK solution or the solution is
 // in collision. Reachable goals are published (latched) on kGoalStateTopic for the MotionPlanningPanel.
 class GoalStateDisplay : public rviz::Display {
@@ -54,18 +55,6 @@ class GoalStateDisplay : public rviz::Display {
   void processFeedback(visualization_msgs::InteractiveMarkerFeedback& feedback);
 
  private:
-  struct IkRequest {
-    geometry_msgs::PoseStamped pose;
-    std::string group;
-    std::string tip_link;
-    sensor_msgs::JointState seed;
-  };
-  struct IkOutcome {
-    enum class Kind { kValid, kInCollision, kNoSolution, kError } kind;
-    JointValues solution;
-    std::string message;
-  };
-
   void createMarker();
   void startFromCurrentState(const sensor_msgs::JointState& state);
   void goalPoseCallback(const geometry_msgs::PoseStamped::ConstPtr& msg);
@@ -75,7 +64,6 @@ class GoalStateDisplay : public rviz::Display {
   void showGoal(bool reachable);
   void publishGoal();
   void ikLoop();
-  IkOutcome solve(const IkRequest& request);
   void stopWorker();
 
   rviz::StringProperty* robot_description_property_;
@@ -109,8 +97,9 @@ class GoalStateDisplay : public rviz::Display {
   std::condition_variable wake_;
   bool stop_ = false;
   double ik_period_ = 0.1;
-  std::optional<IkRequest> pending_request_;
-  std::optional<IkOutcome> outcome_;
+  std::unique_ptr<GoalIk> ik_;  // used by the worker only
+  std::optional<GoalIkRequest> pending_request_;
+  std::optional<GoalIkOutcome> outcome_;
   std::thread worker_;
 };
 

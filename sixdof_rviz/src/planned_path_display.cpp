@@ -24,8 +24,8 @@ PlannedPathDisplay::PlannedPathDisplay() {
                                "Parameter holding the URDF of the robot to draw.", this, SLOT(loadRobot()));
   topic_property_ = new rviz::RosTopicProperty(
       "Trajectory Topic", "move_group/display_planned_path",
-      QString::fromStdString(ros::message_traits::datatype<sixdof_msgs::DisplayTrajectory>()),
-      "sixdof_msgs/DisplayTrajectory topic of planned paths.", this, SLOT(updateTopic()));
+      QString::fromStdString(ros::message_traits::datatype<moveit_msgs::DisplayTrajectory>()),
+      "moveit_msgs/DisplayTrajectory topic of planned paths.", this, SLOT(updateTopic()));
   state_time_property_ = new rviz::EditableEnumProperty(
       "State Display Time", kRealtime,
       "Seconds each state is shown, or REALTIME to follow the trajectory's time_from_start.", this);
@@ -145,7 +145,7 @@ void PlannedPathDisplay::updateTrail() {
   }
 }
 
-void PlannedPathDisplay::incomingTrajectory(const sixdof_msgs::DisplayTrajectory::ConstPtr& msg) {
+void PlannedPathDisplay::incomingTrajectory(const moveit_msgs::DisplayTrajectory::ConstPtr& msg) {
   std::string error;
   auto states = toTrajectoryStates(*msg, &error);
   if (!states) {

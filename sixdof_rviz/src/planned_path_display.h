@@ -5,7 +5,7 @@
 #include <vector>
 
 #include <rviz/display.h>
-#include <sixdof_msgs/DisplayTrajectory.h>
+#include <moveit_msgs/DisplayTrajectory.h>
 
 #include "sixdof_rviz/trajectory_animation.h"
 
@@ -48,7 +48,7 @@ class PlannedPathDisplay : public rviz::Display {
  private:
   void subscribe();
   void unsubscribe();
-  void incomingTrajectory(const sixdof_msgs::DisplayTrajectory::ConstPtr& msg);
+  void incomingTrajectory(const moveit_msgs::DisplayTrajectory::ConstPtr& msg);
   std::optional<double> stateDisplayTime();
   void applyAppearance(GhostRobot* robot) const;
 

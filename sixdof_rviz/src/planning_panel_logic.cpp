@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <map>
 #include <sstream>
 
-#include <sixdof_msgs/GetStateValidity.h>
+#include <moveit_msgs/GetStateValidity.h>
+#include <moveit_msgs/MoveItErrorCodes.h>
+#include <sixdof_msgs/error_code_names.h>
 
 namespace sixdof_rviz {
 namespace {
@@ -22,16 +23,22 @@ std::string formatSeconds(double seconds) {
 
 bool inUnitInterval(double factor) { return std::isfinite(factor) && factor > 0.0 && factor <= 1.0; }
 
+// errorCodeName names an unknown value with its number already.
+bool isErrorCodeConstant(int32_t val) {
+  return std::any_of(sixdof_msgs::kMoveItErrorCodeNames.begin(), sixdof_msgs::kMoveItErrorCodeNames.end(),
+                     [val](const auto& entry) { return entry.val == val; });
+}
+
 }  // namespace
 
 PlanningPanelLogic::PlanningPanelLogic(const ros::NodeHandle& nh, std::shared_ptr<const SemanticModel> model,
                                        StatusCallback on_status)
-    : nh_(nh), model_(std::move(model)), on_status_(std::move(on_status)) {
+    : nh_(nh), model_(std::move(model)), on_status_(std::move(on_status)), reports_(nh) {
   if (!model_) throw std::invalid_argument("PlanningPanelLogic: no robot model");
   // No spin thread: results arrive on nh's callback queue, i.e. in the GUI thread inside rviz.
   move_group_client_ = std::make_unique<MoveGroupClient>(nh_, "move_group", false);
   execute_client_ = std::make_unique<ExecuteClient>(nh_, "execute_trajectory", false);
-  validity_client_ = nh_.serviceClient<sixdof_msgs::GetStateValidity>("check_state_validity");
+  validity_client_ = nh_.serviceClient<moveit_msgs::GetStateValidity>("check_state_validity");
   joint_state_sub_ = nh_.subscribe<sensor_msgs::JointState>(
       "joint_states", 1, [this](const sensor_msgs::JointStateConstPtr& msg) { current_state_ = *msg; });
   goal_state_sub_ = nh_.subscribe<sensor_msgs::JointState>(
@@ -107,7 +114,7 @@ std::optional<JointValues> PlanningPanelLogic::randomValidGoal(const PlanningGro
   }
   for (int attempt = 0; attempt < kRandomGoalAttempts; ++attempt) {
     JointValues goal;
-    sixdof_msgs::GetStateValidity srv;
+    moveit_msgs::GetStateValidity srv;
     srv.request.group_name = group.name;
     srv.request.robot_state.is_diff = true;
     if (current_state_) srv.request.robot_state.joint_state = *current_state_;
@@ -128,27 +135,33 @@ std::optional<JointValues> PlanningPanelLogic::randomValidGoal(const PlanningGro
         js.position[it - js.name.begin()] = value;
       }
     }
+    const std::string& service = validity_client_.getService();
+    const uint64_t mark = reports_.mark();
     if (!validity_client_.call(srv)) {
-      *error = "call to '" + validity_client_.getService() + "' failed";
-      return std::nullopt;
-    }
-    if (srv.response.error_code.val != sixdof_msgs::MoveItErrorCodes::SUCCESS) {
-      *error = describeResult("check_state_validity", srv.response.error_code, std::nullopt).text;
+      *error = reports_.explainFailure("call to '" + service + "' failed", service, mark);
       return std::nullopt;
     }
     if (srv.response.valid) return goal;
+    // Invalid without a contact: a refused request (its report says why) or an invalid sample.
+    if (srv.response.contacts.empty()) {
+      const auto report = reports_.waitFor(service, mark, kErrorReportWait);
+      if (report) {
+        *error = "check_state_validity failed: " + describeReport(*report);
+        return std::nullopt;
+      }
+    }
   }
   *error = "no valid random state of group '" + group.name + "' in " + std::to_string(kRandomGoalAttempts) + " samples";
   return std::nullopt;
 }
 
-std::optional<sixdof_msgs::MotionPlanRequest> PlanningPanelLogic::buildRequest(const PlanningSettings& settings,
+std::optional<moveit_msgs::MotionPlanRequest> PlanningPanelLogic::buildRequest(const PlanningSettings& settings,
                                                                               const JointValues& goal,
                                                                               std::string* error) const {
   *error = checkSettings(settings);
   if (!error->empty()) return std::nullopt;
   const PlanningGroup* group = model_->group(settings.group);
-  sixdof_msgs::MotionPlanRequest request;
+  moveit_msgs::MotionPlanRequest request;
   // An empty diff start state means "the planner's current state", as MoveGroupInterface does by default.
   request.start_state.is_diff = true;
   request.group_name = settings.group;
@@ -157,7 +170,7 @@ std::optional<sixdof_msgs::MotionPlanRequest> PlanningPanelLogic::buildRequest(c
   request.allowed_planning_time = settings.planning_time;
   request.max_velocity_scaling_factor = settings.velocity_scaling;
   request.max_acceleration_scaling_factor = settings.acceleration_scaling;
-  sixdof_msgs::Constraints constraints;
+  moveit_msgs::Constraints constraints;
   for (const auto& name : group->joints) {
     auto it = goal.find(name);
     if (it == goal.end()) {
@@ -169,7 +182,7 @@ std::optional<sixdof_msgs::MotionPlanRequest> PlanningPanelLogic::buildRequest(c
       *error = "goal value " + std::to_string(it->second) + " of joint '" + name + "' is outside its limits";
       return std::nullopt;
     }
-    sixdof_msgs::JointConstraint jc;
+    moveit_msgs::JointConstraint jc;
     jc.joint_name = name;
     jc.position = it->second;
     jc.tolerance_above = kGoalJointTolerance;
@@ -187,9 +200,9 @@ std::optional<sixdof_msgs::MotionPlanRequest> PlanningPanelLogic::buildRequest(c
   return request;
 }
 
-sixdof_msgs::MoveGroupGoal PlanningPanelLogic::buildMoveGroupGoal(const sixdof_msgs::MotionPlanRequest& request,
+moveit_msgs::MoveGroupGoal PlanningPanelLogic::buildMoveGroupGoal(const moveit_msgs::MotionPlanRequest& request,
                                                                   bool plan_only) {
-  sixdof_msgs::MoveGroupGoal goal;
+  moveit_msgs::MoveGroupGoal goal;
   goal.request = request;
   goal.planning_options.plan_only = plan_only;
   goal.planning_options.planning_scene_diff.is_diff = true;
@@ -197,59 +210,20 @@ sixdof_msgs::MoveGroupGoal PlanningPanelLogic::buildMoveGroupGoal(const sixdof_m
   return goal;
 }
 
-std::string PlanningPanelLogic::errorCodeName(int32_t val) {
-  using C = sixdof_msgs::MoveItErrorCodes;
-  static const std::map<int32_t, std::string> kNames = {
-      {C::SUCCESS, "SUCCESS"},
-      {C::FAILURE, "FAILURE"},
-      {C::PLANNING_FAILED, "PLANNING_FAILED"},
-      {C::INVALID_MOTION_PLAN, "INVALID_MOTION_PLAN"},
-      {C::MOTION_PLAN_INVALIDATED_BY_ENVIRONMENT_CHANGE, "MOTION_PLAN_INVALIDATED_BY_ENVIRONMENT_CHANGE"},
-      {C::CONTROL_FAILED, "CONTROL_FAILED"},
-      {C::UNABLE_TO_AQUIRE_SENSOR_DATA, "UNABLE_TO_AQUIRE_SENSOR_DATA"},
-      {C::TIMED_OUT, "TIMED_OUT"},
-      {C::PREEMPTED, "PREEMPTED"},
-      {C::START_STATE_IN_COLLISION, "START_STATE_IN_COLLISION"},
-      {C::START_STATE_VIOLATES_PATH_CONSTRAINTS, "START_STATE_VIOLATES_PATH_CONSTRAINTS"},
-      {C::GOAL_IN_COLLISION, "GOAL_IN_COLLISION"},
-      {C::GOAL_VIOLATES_PATH_CONSTRAINTS, "GOAL_VIOLATES_PATH_CONSTRAINTS"},
-      {C::GOAL_CONSTRAINTS_VIOLATED, "GOAL_CONSTRAINTS_VIOLATED"},
-      {C::INVALID_GROUP_NAME, "INVALID_GROUP_NAME"},
-      {C::INVALID_GOAL_CONSTRAINTS, "INVALID_GOAL_CONSTRAINTS"},
-      {C::INVALID_ROBOT_STATE, "INVALID_ROBOT_STATE"},
-      {C::INVALID_LINK_NAME, "INVALID_LINK_NAME"},
-      {C::INVALID_OBJECT_NAME, "INVALID_OBJECT_NAME"},
-      {C::FRAME_TRANSFORM_FAILURE, "FRAME_TRANSFORM_FAILURE"},
-      {C::COLLISION_CHECKING_UNAVAILABLE, "COLLISION_CHECKING_UNAVAILABLE"},
-      {C::ROBOT_STATE_STALE, "ROBOT_STATE_STALE"},
-      {C::SENSOR_INFO_STALE, "SENSOR_INFO_STALE"},
-      {C::COMMUNICATION_FAILURE, "COMMUNICATION_FAILURE"},
-      {C::START_STATE_INVALID, "START_STATE_INVALID"},
-      {C::GOAL_STATE_INVALID, "GOAL_STATE_INVALID"},
-      {C::UNRECOGNIZED_GOAL_TYPE, "UNRECOGNIZED_GOAL_TYPE"},
-      {C::CRASH, "CRASH"},
-      {C::ABORT, "ABORT"},
-      {C::NO_IK_SOLUTION, "NO_IK_SOLUTION"},
-      {C::INVALID_REQUEST, "INVALID_REQUEST"},
-  };
-  auto it = kNames.find(val);
-  return it == kNames.end() ? "UNKNOWN_ERROR_CODE" : it->second;
-}
-
-PanelStatus PlanningPanelLogic::describeResult(const std::string& operation, const sixdof_msgs::MoveItErrorCodes& code,
-                                               std::optional<double> planning_time,
+PanelStatus PlanningPanelLogic::describeResult(const std::string& operation, const moveit_msgs::MoveItErrorCodes& code,
+                                               const std::string& message, std::optional<double> planning_time,
                                                const std::string& success_detail) {
   PanelStatus status;
   std::ostringstream text;
-  if (code.val == sixdof_msgs::MoveItErrorCodes::SUCCESS) {
+  if (code.val == moveit_msgs::MoveItErrorCodes::SUCCESS) {
     status.level = PanelStatus::Level::kOk;
     text << operation << " succeeded";
     if (!success_detail.empty()) text << ": " << success_detail;
   } else {
     status.level = PanelStatus::Level::kError;
-    text << operation << " failed: " << errorCodeName(code.val) << " (" << code.val << ")";
-    if (!code.message.empty()) text << ": " << code.message;
-    if (!code.source.empty()) text << " [" << code.source << "]";
+    text << operation << " failed: " << sixdof_msgs::errorCodeName(code.val);
+    if (isErrorCodeConstant(code.val)) text << " (" << code.val << ")";
+    if (!message.empty()) text << ": " << message;
   }
   if (planning_time) text << " (planning time " << formatSeconds(*planning_time) << ")";
   status.text = text.str();
@@ -279,18 +253,18 @@ void PlanningPanelLogic::sendMoveGroupGoal(const std::string& operation, const P
   move_group_client_->sendGoal(
       buildMoveGroupGoal(*request, plan_only),
       [this, operation](const actionlib::SimpleClientGoalState& state,
-                        const sixdof_msgs::MoveGroupResultConstPtr& result) {
+                        const moveit_msgs::MoveGroupResultConstPtr& result) {
         if (!result) {
           return report(PanelStatus::Level::kError,
                         operation + " failed: move_group ended in state " + state.toString() + " without a result");
         }
-        if (result->error_code.val == sixdof_msgs::MoveItErrorCodes::SUCCESS) {
+        if (result->error_code.val == moveit_msgs::MoveItErrorCodes::SUCCESS) {
           last_plan_ = result->planned_trajectory;
         }
         const auto& points = result->planned_trajectory.joint_trajectory.points;
         std::string detail = std::to_string(points.size()) + " waypoints";
         if (!points.empty()) detail += ", duration " + formatSeconds(points.back().time_from_start.toSec());
-        on_status_(describeResult(operation, result->error_code, result->planning_time, detail));
+        on_status_(describeResult(operation, result->error_code, state.getText(), result->planning_time, detail));
       });
 }
 
@@ -300,16 +274,16 @@ void PlanningPanelLogic::execute() {
     return report(PanelStatus::Level::kError, "Execute: action server '" + nh_.resolveName("execute_trajectory") +
                                                   "' is not connected (is the planner node running?)");
   }
-  sixdof_msgs::ExecuteTrajectoryGoal goal;
+  moveit_msgs::ExecuteTrajectoryGoal goal;
   goal.trajectory = *last_plan_;
   report(PanelStatus::Level::kInfo, "Execute: sent to execute_trajectory...");
   execute_client_->sendGoal(goal, [this](const actionlib::SimpleClientGoalState& state,
-                                         const sixdof_msgs::ExecuteTrajectoryResultConstPtr& result) {
+                                         const moveit_msgs::ExecuteTrajectoryResultConstPtr& result) {
     if (!result) {
       return report(PanelStatus::Level::kError,
                     "Execute failed: execute_trajectory ended in state " + state.toString() + " without a result");
     }
-    on_status_(describeResult("Execute", result->error_code, std::nullopt));
+    on_status_(describeResult("Execute", result->error_code, state.getText(), std::nullopt));
   });
 }
 

@@ -1,6 +1,5 @@
 #include "planning_scene_display.h"
 
-#include <chrono>
 #include <cmath>
 
 #include <OgreMaterial.h>
@@ -14,10 +13,9 @@
 #include <rviz/ogre_helpers/shape.h>
 #include <rviz/properties/color_property.h>
 #include <rviz/properties/float_property.h>
-#include <rviz/properties/string_property.h>
+#include <rviz/properties/ros_topic_property.h>
 #include <shape_msgs/Mesh.h>
 #include <shape_msgs/SolidPrimitive.h>
-#include <sixdof_msgs/GetPlanningScene.h>
 
 namespace sixdof_rviz {
 namespace {
@@ -66,63 +64,67 @@ std::unique_ptr<rviz::Shape> makeMeshShape(const shape_msgs::Mesh& mesh, Ogre::S
   return shape;
 }
 
+// What the display draws of a scene: equal for scenes that differ only in the robot's joint values.
+bool sameObjects(const moveit_msgs::PlanningScene& a, const moveit_msgs::PlanningScene& b) {
+  return a.world.collision_objects == b.world.collision_objects &&
+         a.robot_state.attached_collision_objects == b.robot_state.attached_collision_objects &&
+         a.object_colors == b.object_colors;
+}
+
 }  // namespace
 
 PlanningSceneDisplay::PlanningSceneDisplay() {
-  service_property_ = new rviz::StringProperty("Scene Service", "get_planning_scene",
-                                               "sixdof_msgs/GetPlanningScene service of move_group.", this,
-                                               SLOT(updateSettings()));
-  rate_property_ =
-      new rviz::FloatProperty("Refresh Rate", 2.0f, "Scene requests per second.", this, SLOT(updateSettings()));
-  rate_property_->setMin(0.1f);
-  rate_property_->setMax(30.0f);
-  world_color_property_ = new rviz::ColorProperty("World Object Color", QColor(60, 170, 60),
-                                                  "Colour of world collision objects.", this, SLOT(updateSettings()));
-  attached_color_property_ = new rviz::ColorProperty(
-      "Attached Object Color", QColor(140, 60, 220), "Colour of objects attached to the robot.", this,
+  topic_property_ = new rviz::RosTopicProperty(
+      "Scene Topic", "move_group/monitored_planning_scene",
+      QString::fromStdString(ros::message_traits::datatype<moveit_msgs::PlanningScene>()),
+      "Full planning scenes (moveit_msgs/PlanningScene, is_diff false), e.g. move_group's latched "
+      "monitored_planning_scene.",
+      this, SLOT(updateTopic()));
+  world_color_property_ = new rviz::ColorProperty(
+      "World Object Color", QColor(60, 170, 60), "Colour of world collision objects the scene gives no colour.", this,
       SLOT(updateSettings()));
-  alpha_property_ = new rviz::FloatProperty("Alpha", 0.9f, "Opacity of the objects.", this, SLOT(updateSettings()));
+  attached_color_property_ = new rviz::ColorProperty(
+      "Attached Object Color", QColor(140, 60, 220), "Colour of attached objects the scene gives no colour.", this,
+      SLOT(updateSettings()));
+  alpha_property_ = new rviz::FloatProperty("Alpha", 0.9f, "Opacity of the objects the scene gives no colour.", this,
+                                            SLOT(updateSettings()));
   alpha_property_->setMin(0.0f);
   alpha_property_->setMax(1.0f);
 }
 
 PlanningSceneDisplay::~PlanningSceneDisplay() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-  if (worker_.joinable()) worker_.join();
+  sub_.shutdown();
   clearObjects();
 }
 
-void PlanningSceneDisplay::onInitialize() {
-  updateSettings();
-  worker_ = std::thread(&PlanningSceneDisplay::pollLoop, this);
-}
-
 void PlanningSceneDisplay::updateSettings() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    service_ = service_property_->getStdString();
-    period_ = 1.0 / rate_property_->getFloat();
-  }
   // Colours and alpha are applied when drawing: redraw the scene we have.
   if (shown_scene_) rebuild(*shown_scene_);
 }
 
-void PlanningSceneDisplay::onEnable() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    polling_ = true;
+void PlanningSceneDisplay::updateTopic() {
+  if (!isEnabled()) return;
+  clearObjects();
+  shown_scene_.reset();
+  subscribe();
+}
+
+void PlanningSceneDisplay::subscribe() {
+  sub_.shutdown();
+  const std::string topic = topic_property_->getStdString();
+  sub_ = update_nh_.subscribe(topic, 1, &PlanningSceneDisplay::incomingScene, this);
+  if (!shown_scene_) {
+    setStatusStd(rviz::StatusProperty::Warn, "Scene", "no scene received on '" + sub_.getTopic() + "' yet");
   }
-  wake_.notify_all();
+}
+
+void PlanningSceneDisplay::onEnable() {
+  subscribe();
   scene_node_->setVisible(true);
 }
 
 void PlanningSceneDisplay::onDisable() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  polling_ = false;
+  sub_.shutdown();
   scene_node_->setVisible(false);
 }
 
@@ -130,30 +132,20 @@ void PlanningSceneDisplay::reset() {
   rviz::Display::reset();
   clearObjects();
   shown_scene_.reset();
+  if (isEnabled()) subscribe();
 }
 
-void PlanningSceneDisplay::pollLoop() {
-  using Clock = std::chrono::steady_clock;
-  ros::NodeHandle nh;
-  std::unique_lock<std::mutex> lock(mutex_);
-  while (true) {
-    wake_.wait(lock, [this] { return stop_ || polling_; });
-    if (stop_) return;
-    const std::string service = service_;
-    const auto next = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
-    lock.unlock();
-    sixdof_msgs::GetPlanningScene srv;
-    ros::ServiceClient client = nh.serviceClient<sixdof_msgs::GetPlanningScene>(service);
-    const bool ok = client.call(srv);
-    lock.lock();
-    if (ok) {
-      received_ = srv.response.scene;
-      poll_error_.reset();
-    } else {
-      poll_error_ = "service '" + client.getService() + "' is not available (is move_group running?)";
-    }
-    wake_.wait_until(lock, next, [this] { return stop_; });
+void PlanningSceneDisplay::incomingScene(const moveit_msgs::PlanningScene::ConstPtr& scene) {
+  if (scene->is_diff) {
+    setStatusStd(rviz::StatusProperty::Error, "Scene",
+                 "received a scene diff (is_diff true) on '" + sub_.getTopic() +
+                     "': this display draws full scenes only; the scene shown is unchanged");
+    return;
   }
+  // move_group publishes after each change; the robot's joint values do not change what is drawn.
+  if (shown_scene_ && sameObjects(*shown_scene_, *scene)) return;
+  shown_scene_ = *scene;
+  rebuild(*scene);
 }
 
 void PlanningSceneDisplay::clearObjects() {
@@ -164,12 +156,18 @@ void PlanningSceneDisplay::clearObjects() {
   objects_.clear();
 }
 
-void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object, const std::string& frame,
-                                     bool attached) {
+void PlanningSceneDisplay::addObject(const moveit_msgs::CollisionObject& object, const std::string& frame,
+                                     bool attached, const std::optional<std_msgs::ColorRGBA>& scene_color) {
   DrawnObject drawn;
   drawn.frame = frame;
   drawn.node = scene_node_->createChildSceneNode();
-  const QColor color = attached ? attached_color_property_->getColor() : world_color_property_->getColor();
+  const QColor display_color = attached ? attached_color_property_->getColor() : world_color_property_->getColor();
+  std_msgs::ColorRGBA color;
+  color.r = display_color.redF();
+  color.g = display_color.greenF();
+  color.b = display_color.blueF();
+  color.a = alpha_property_->getFloat();
+  if (scene_color) color = *scene_color;
   const Ogre::Vector3 object_position = toOgre(object.pose.position);
   const Ogre::Quaternion object_orientation = toOgre(object.pose.orientation);
   // Shape i at object.pose * poses[i] (a missing pose is the identity), in the object's colour.
@@ -183,7 +181,7 @@ void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object,
     }
     shape->setPosition(object_position + object_orientation * local_position);
     shape->setOrientation(object_orientation * local_orientation * axis_fix);
-    shape->setColor(color.redF(), color.greenF(), color.blueF(), alpha_property_->getFloat());
+    shape->setColor(color.r, color.g, color.b, color.a);
     drawn.shapes.push_back(std::move(shape));
   };
   std::vector<std::string> problems;
@@ -221,6 +219,9 @@ void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object,
     }
     add(makeMeshShape(object.meshes[i], scene_manager_, drawn.node), object.mesh_poses, i, Ogre::Quaternion::IDENTITY);
   }
+  for (size_t i = 0; i < object.planes.size(); ++i) {
+    problems.push_back("plane " + std::to_string(i) + " is not drawn (planes are not supported)");
+  }
   if (!problems.empty()) {
     std::string text = problems.front();
     for (size_t i = 1; i < problems.size(); ++i) text += "; " + problems[i];
@@ -230,19 +231,26 @@ void PlanningSceneDisplay::addObject(const sixdof_msgs::CollisionObject& object,
   objects_.push_back(std::move(drawn));
 }
 
-void PlanningSceneDisplay::rebuild(const sixdof_msgs::PlanningScene& scene) {
+void PlanningSceneDisplay::rebuild(const moveit_msgs::PlanningScene& scene) {
   clearObjects();
   // The objects' warnings are those of the scene drawn now.
   for (const auto& name : object_statuses_) deleteStatusStd(name);
   object_statuses_.clear();
+  const auto color_of = [&scene](const std::string& id) -> std::optional<std_msgs::ColorRGBA> {
+    for (const auto& object_color : scene.object_colors) {
+      if (object_color.id == id) return object_color.color;
+    }
+    return std::nullopt;
+  };
   for (const auto& object : scene.world.collision_objects) {
-    addObject(object, object.header.frame_id.empty() ? fixed_frame_.toStdString() : object.header.frame_id, false);
+    addObject(object, object.header.frame_id.empty() ? fixed_frame_.toStdString() : object.header.frame_id, false,
+              color_of(object.id));
   }
   for (const auto& attached : scene.robot_state.attached_collision_objects) {
     // An attached object's pose is relative to its link unless its header names another frame.
     const std::string frame =
         attached.object.header.frame_id.empty() ? attached.link_name : attached.object.header.frame_id;
-    addObject(attached.object, frame, true);
+    addObject(attached.object, frame, true, color_of(attached.object.id));
   }
   setStatusStd(rviz::StatusProperty::Ok, "Scene",
                std::to_string(scene.world.collision_objects.size()) + " world object(s), " +
@@ -250,21 +258,6 @@ void PlanningSceneDisplay::rebuild(const sixdof_msgs::PlanningScene& scene) {
 }
 
 void PlanningSceneDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
-  std::optional<sixdof_msgs::PlanningScene> scene;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    scene.swap(received_);
-    if (poll_error_) {
-      setStatusStd(rviz::StatusProperty::Error, "Service", *poll_error_);
-    } else {
-      deleteStatusStd("Service");
-    }
-  }
-  // Polling returns the same scene most of the time: rebuild the shapes only when it changed.
-  if (scene && !(shown_scene_ && *shown_scene_ == *scene)) {
-    shown_scene_ = *scene;
-    rebuild(*scene);
-  }
   std::string missing_frame;
   for (auto& object : objects_) {
     Ogre::Vector3 position;

@@ -1,15 +1,12 @@
 #pragma once
 
-#include <condition_variable>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include <moveit_msgs/PlanningScene.h>
 #include <rviz/display.h>
-#include <sixdof_msgs/PlanningScene.h>
 
 namespace Ogre {
 class SceneNode;
@@ -17,15 +14,16 @@ class SceneNode;
 namespace rviz {
 class ColorProperty;
 class FloatProperty;
+class RosTopicProperty;
 class Shape;
-class StringProperty;
 }  // namespace rviz
 
 namespace sixdof_rviz {
 
-// "sixdof_rviz/PlanningScene": polls move_group's get_planning_scene and draws the world's collision objects
-// and the objects attached to robot links (e.g. a grasped cube in the gripper), following tf: their primitives
-// (boxes, spheres, cylinders) and their triangle meshes.
+// "sixdof_rviz/PlanningScene": draws the world's collision objects and the objects attached to robot links (e.g. a
+// grasped cube in the gripper) of the full scene move_group publishes, latched, after each change
+// (move_group/monitored_planning_scene), following tf: their primitives (boxes, spheres, cylinders) and their
+// triangle meshes, in the scene's object colours where it gives them.
 class PlanningSceneDisplay : public rviz::Display {
   Q_OBJECT
  public:
@@ -33,13 +31,13 @@ class PlanningSceneDisplay : public rviz::Display {
   ~PlanningSceneDisplay() override;
 
  protected:
-  void onInitialize() override;
   void onEnable() override;
   void onDisable() override;
   void update(float wall_dt, float ros_dt) override;
   void reset() override;
 
  private Q_SLOTS:
+  void updateTopic();
   void updateSettings();
 
  private:
@@ -49,30 +47,22 @@ class PlanningSceneDisplay : public rviz::Display {
     std::vector<std::unique_ptr<rviz::Shape>> shapes;
   };
 
-  void pollLoop();
-  void rebuild(const sixdof_msgs::PlanningScene& scene);
-  void addObject(const sixdof_msgs::CollisionObject& object, const std::string& frame, bool attached);
+  void subscribe();
+  void incomingScene(const moveit_msgs::PlanningScene::ConstPtr& scene);
+  void rebuild(const moveit_msgs::PlanningScene& scene);
+  void addObject(const moveit_msgs::CollisionObject& object, const std::string& frame, bool attached,
+                 const std::optional<std_msgs::ColorRGBA>& color);
   void clearObjects();
 
-  rviz::StringProperty* service_property_;
-  rviz::FloatProperty* rate_property_;
+  rviz::RosTopicProperty* topic_property_;
   rviz::ColorProperty* world_color_property_;
   rviz::ColorProperty* attached_color_property_;
   rviz::FloatProperty* alpha_property_;
 
   std::vector<DrawnObject> objects_;
   std::vector<std::string> object_statuses_;  // "Object <id>" warnings of the scene drawn now
-  std::optional<sixdof_msgs::PlanningScene> shown_scene_;
-
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  bool polling_ = false;
-  std::string service_;
-  double period_ = 0.5;
-  std::optional<sixdof_msgs::PlanningScene> received_;
-  std::optional<std::string> poll_error_;
-  std::thread worker_;
+  std::optional<moveit_msgs::PlanningScene> shown_scene_;
+  ros::Subscriber sub_;
 };
 
 }  // namespace sixdof_rviz

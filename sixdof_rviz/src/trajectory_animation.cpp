@@ -5,11 +5,16 @@
 
 namespace sixdof_rviz {
 
-std::optional<TrajectoryStates> toTrajectoryStates(const sixdof_msgs::DisplayTrajectory& msg, std::string* error) {
+std::optional<TrajectoryStates> toTrajectoryStates(const moveit_msgs::DisplayTrajectory& msg, std::string* error) {
   const auto& start = msg.trajectory_start.joint_state;
   if (start.position.size() != start.name.size()) {
     *error = "trajectory_start has " + std::to_string(start.position.size()) + " positions for " +
              std::to_string(start.name.size()) + " joints";
+    return std::nullopt;
+  }
+  if (!msg.trajectory_start.multi_dof_joint_state.joint_names.empty()) {
+    *error = "trajectory_start has multi-DOF joints ('" + msg.trajectory_start.multi_dof_joint_state.joint_names[0] +
+             "'), which are not supported";
     return std::nullopt;
   }
   TrajectoryStates out;
@@ -17,6 +22,11 @@ std::optional<TrajectoryStates> toTrajectoryStates(const sixdof_msgs::DisplayTra
   for (size_t i = 0; i < start.name.size(); ++i) state[start.name[i]] = start.position[i];
   double offset = 0.0;
   for (size_t t = 0; t < msg.trajectory.size(); ++t) {
+    const auto& multi_dof = msg.trajectory[t].multi_dof_joint_trajectory;
+    if (!multi_dof.joint_names.empty() || !multi_dof.points.empty()) {
+      *error = "trajectory " + std::to_string(t) + " has a multi_dof_joint_trajectory, which is not supported";
+      return std::nullopt;
+    }
     const auto& jt = msg.trajectory[t].joint_trajectory;
     double last = 0.0;
     for (size_t p = 0; p < jt.points.size(); ++p) {

@@ -140,11 +140,11 @@ TEST(JointKinds, ForwardKinematicsOfEveryKind) {
   EXPECT_TRUE(right.isApprox(Eigen::Vector3d(0.1, -0.04, 0.0), 1e-12));
 }
 
-sixdof_msgs::DisplayTrajectory makeTrajectory(const std::vector<double>& times) {
-  sixdof_msgs::DisplayTrajectory msg;
+moveit_msgs::DisplayTrajectory makeTrajectory(const std::vector<double>& times) {
+  moveit_msgs::DisplayTrajectory msg;
   msg.trajectory_start.joint_state.name = {"joint1", "joint2"};
   msg.trajectory_start.joint_state.position = {0.5, 0.25};
-  sixdof_msgs::RobotTrajectory trajectory;
+  moveit_msgs::RobotTrajectory trajectory;
   trajectory.joint_trajectory.joint_names = {"joint1"};
   for (size_t i = 0; i < times.size(); ++i) {
     trajectory_msgs::JointTrajectoryPoint point;
@@ -157,7 +157,7 @@ sixdof_msgs::DisplayTrajectory makeTrajectory(const std::vector<double>& times) 
 }
 
 TEST(TrajectoryStates, MergesStartStateAndConcatenates) {
-  sixdof_msgs::DisplayTrajectory msg = makeTrajectory({0.0, 1.0, 2.0});
+  moveit_msgs::DisplayTrajectory msg = makeTrajectory({0.0, 1.0, 2.0});
   msg.trajectory.push_back(msg.trajectory.front());
   std::string error;
   auto states = toTrajectoryStates(msg, &error);
@@ -178,6 +178,14 @@ TEST(TrajectoryStates, RejectsMalformedMessages) {
   EXPECT_EQ(error, "trajectory 0 point 1 has 2 positions for 1 joints");
   EXPECT_FALSE(toTrajectoryStates(makeTrajectory({1.0, 0.5}), &error));
   EXPECT_EQ(error, "trajectory 0 point 1 goes back in time");
+  msg = makeTrajectory({0.0, 1.0});
+  msg.trajectory[0].multi_dof_joint_trajectory.joint_names = {"base_joint"};
+  EXPECT_FALSE(toTrajectoryStates(msg, &error));
+  EXPECT_EQ(error, "trajectory 0 has a multi_dof_joint_trajectory, which is not supported");
+  msg = makeTrajectory({0.0, 1.0});
+  msg.trajectory_start.multi_dof_joint_state.joint_names = {"base_joint"};
+  EXPECT_FALSE(toTrajectoryStates(msg, &error));
+  EXPECT_EQ(error, "trajectory_start has multi-DOF joints ('base_joint'), which are not supported");
 }
 
 TEST(TrajectoryAnimation, RealtimeFollowsTimeFromStartAndStopsAtEnd) {

@@ -85,7 +85,7 @@ TEST_F(PlanningPanelLogicTest, GripperGoalUsesOnlyItsActiveJoint) {
 }
 
 TEST_F(PlanningPanelLogicTest, MoveGroupGoalPlanOnlyFlag) {
-  sixdof_msgs::MotionPlanRequest request;
+  moveit_msgs::MotionPlanRequest request;
   request.group_name = "arm";
   auto plan = PlanningPanelLogic::buildMoveGroupGoal(request, true);
   EXPECT_TRUE(plan.planning_options.plan_only);
@@ -129,31 +129,24 @@ TEST_F(PlanningPanelLogicTest, BadGoalsAreRejectedNamingTheJoint) {
   EXPECT_EQ(error, "group 'arm' has no named state 'dance'");
 }
 
-TEST_F(PlanningPanelLogicTest, ErrorCodeNamesAndStatusTexts) {
-  EXPECT_EQ(PlanningPanelLogic::errorCodeName(sixdof_msgs::MoveItErrorCodes::NO_IK_SOLUTION), "NO_IK_SOLUTION");
-  EXPECT_EQ(PlanningPanelLogic::errorCodeName(sixdof_msgs::MoveItErrorCodes::GOAL_IN_COLLISION), "GOAL_IN_COLLISION");
-  EXPECT_EQ(PlanningPanelLogic::errorCodeName(sixdof_msgs::MoveItErrorCodes::INVALID_REQUEST), "INVALID_REQUEST");
-  EXPECT_EQ(PlanningPanelLogic::errorCodeName(-1234), "UNKNOWN_ERROR_CODE");
-
-  sixdof_msgs::MoveItErrorCodes code;
-  code.val = sixdof_msgs::MoveItErrorCodes::SUCCESS;
-  PanelStatus ok = PlanningPanelLogic::describeResult("Plan", code, 0.1534, "12 waypoints, duration 2.000 s");
+TEST_F(PlanningPanelLogicTest, StatusTextsNameTheCodeAndCarryMoveGroupsWords) {
+  moveit_msgs::MoveItErrorCodes code;
+  code.val = moveit_msgs::MoveItErrorCodes::SUCCESS;
+  PanelStatus ok = PlanningPanelLogic::describeResult("Plan", code, "", 0.1534, "12 waypoints, duration 2.000 s");
   EXPECT_EQ(ok.level, PanelStatus::Level::kOk);
   EXPECT_EQ(ok.text, "Plan succeeded: 12 waypoints, duration 2.000 s (planning time 0.153 s)");
 
-  code.val = sixdof_msgs::MoveItErrorCodes::PLANNING_FAILED;
-  code.message = "no path found within 5 s";
-  code.source = "OMPL RRTConnect";
-  PanelStatus failed = PlanningPanelLogic::describeResult("Plan", code, 5.0);
+  code.val = moveit_msgs::MoveItErrorCodes::PLANNING_FAILED;
+  PanelStatus failed = PlanningPanelLogic::describeResult("Plan", code, "no path found within 5 s", 5.0);
   EXPECT_EQ(failed.level, PanelStatus::Level::kError);
-  EXPECT_EQ(failed.text,
-            "Plan failed: PLANNING_FAILED (-1): no path found within 5 s [OMPL RRTConnect] (planning time 5.000 s)");
+  EXPECT_EQ(failed.text, "Plan failed: PLANNING_FAILED (-1): no path found within 5 s (planning time 5.000 s)");
 
-  code.val = sixdof_msgs::MoveItErrorCodes::CONTROL_FAILED;
-  code.message = "";
-  code.source = "";
-  EXPECT_EQ(PlanningPanelLogic::describeResult("Execute", code, std::nullopt).text,
+  code.val = moveit_msgs::MoveItErrorCodes::CONTROL_FAILED;
+  EXPECT_EQ(PlanningPanelLogic::describeResult("Execute", code, "", std::nullopt).text,
             "Execute failed: CONTROL_FAILED (-4)");
+  code.val = -1234;
+  EXPECT_EQ(PlanningPanelLogic::describeResult("Execute", code, "", std::nullopt).text,
+            "Execute failed: unknown MoveIt error code -1234");
 }
 
 TEST_F(PlanningPanelLogicTest, MarkerGoalComesFromTheGoalStateTopic) {

@@ -23,22 +23,22 @@ from sensor_msgs.msg import JointState
 from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from sixdof_msgs.msg import (
+from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
     ContactInformation,
     DisplayTrajectory,
     MoveItErrorCodes,
+    PlanningScene,
     RobotTrajectory,
 )
-from sixdof_msgs.srv import (
-    GetPlanningScene,
-    GetPlanningSceneResponse,
+from moveit_msgs.srv import (
     GetPositionIK,
     GetPositionIKResponse,
     GetStateValidity,
     GetStateValidityResponse,
 )
+from sixdof_msgs.msg import ErrorReport
 
 ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
@@ -123,30 +123,30 @@ def pose(x: float, y: float, z: float) -> Pose:
     return p
 
 
-def scene_response(meshes: bool = False) -> GetPlanningSceneResponse:
+def full_scene(meshes: bool = False) -> PlanningScene:
     """A table-top box beside the robot and a cube held between the fingers (0.08 m along link6's z axis).
     With `meshes`, also a mesh cube on the robot's other side (screen-right of it) and, above the box, a malformed
     mesh (a triangle's vertex index out of range), which the display skips."""
-    response = GetPlanningSceneResponse()
+    scene = PlanningScene(name="test_scene", is_diff=False)
     obstacle = CollisionObject(id="obstacle", primitives=[box(0.15)], primitive_poses=[pose(0, 0, 0)])
     obstacle.header.frame_id = "base_link"
     obstacle.pose = pose(0.25, -0.45, 0.075)
-    response.scene.world.collision_objects.append(obstacle)
+    scene.world.collision_objects.append(obstacle)
     if meshes:
         block = CollisionObject(id="mesh_block", meshes=[cube_mesh(0.12)], mesh_poses=[pose(0, 0, 0)])
         block.header.frame_id = "base_link"
         block.pose = pose(0.25, 0.45, 0.06)
-        response.scene.world.collision_objects.append(block)
+        scene.world.collision_objects.append(block)
         malformed = cube_mesh(0.12)
         malformed.triangles.append(MeshTriangle(vertex_indices=[0, 1, len(malformed.vertices)]))
         obstacle.meshes.append(malformed)
         obstacle.mesh_poses.append(pose(0, 0, 0.25))
     held = CollisionObject(id="held_cube", primitives=[box(0.04)], primitive_poses=[pose(0, 0, 0)])
     held.pose = pose(0, 0, 0.08)
-    response.scene.robot_state.attached_collision_objects.append(
+    scene.robot_state.attached_collision_objects.append(
         AttachedCollisionObject(link_name="link6", object=held, touch_links=["finger1", "finger2"])
     )
-    return response
+    return scene
 
 
 def trajectory_to(joint1: float) -> DisplayTrajectory:
@@ -272,6 +272,9 @@ class RvizPluginsTest(unittest.TestCase):
         self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_state", True), "GoalState goal publisher")
         self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_state", False), "panel goal subscription")
         self.wait_for(lambda: self.graph_has("/joint_states", False), "joint_states subscription")
+        # The Planning Scene display takes move_group's full scenes; the panel and the goal's IK its error reports.
+        self.wait_for(lambda: self.graph_has("/move_group/monitored_planning_scene", False), "scene subscription")
+        self.wait_for(lambda: self.graph_has("/move_group/error_reports", False), "error report subscription")
         goal = rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
         # The goal starts at the current state (all zero here).
         self.assertEqual(sorted(goal.name), sorted(ALL_JOINTS))
@@ -308,9 +311,9 @@ class RvizPluginsTest(unittest.TestCase):
         baseline = read_screenshot(os.path.join(self.shot_dir, "3_scene_before.png"))
         # The marker's green arrow and the panel's icons share the world colour: only new pixels count.
         world_before, attached_before = world_mask(baseline), attached_mask(baseline)
-        # Stands in for move_group's get_planning_scene: the display polls it.
-        scene = {"response": scene_response()}
-        service = rospy.Service("get_planning_scene", GetPlanningScene, lambda _request: scene["response"])
+        # Stands in for move_group's monitored_planning_scene: the full scene, latched, after each change.
+        scene_pub = rospy.Publisher("move_group/monitored_planning_scene", PlanningScene, queue_size=1, latch=True)
+        scene_pub.publish(full_scene())
         try:
             for _ in range(100):
                 image = read_screenshot(os.path.join(self.shot_dir, "4_scene.png"))
@@ -322,12 +325,12 @@ class RvizPluginsTest(unittest.TestCase):
             self.assertGreater(attached.sum(), 100, "attached cube not drawn")
             # Then the mesh cube and the malformed mesh: the cube is drawn in the world colour right of the box, the
             # malformed mesh (above the box) is not, and the rest is still drawn.
-            scene["response"] = scene_response(meshes=True)
+            scene_pub.publish(full_scene(meshes=True))
             self.wait_for_pixels("4_scene_meshes_appear", world_mask, world_before | world, 500)
             rospy.sleep(1.0)  # a few more frames
             meshes_image = read_screenshot(os.path.join(self.shot_dir, "4_scene_meshes.png"))
         finally:
-            service.shutdown()
+            scene_pub.unregister()
         meshes_world = world_mask(meshes_image) & ~world_before
         mesh_cube = meshes_world & ~world
         box_columns = np.argwhere(world)[:, 1]
@@ -350,8 +353,10 @@ class RvizPluginsTest(unittest.TestCase):
         self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_pose", False), "GoalState goal pose subscription")
         rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
         red_before = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "5_goal_before.png")))
-        # Stand-ins for move_group's compute_ik / check_state_validity with scripted answers.
+        # Stand-ins for move_group's compute_ik / check_state_validity with scripted answers; as move_group, the
+        # failed IK call's words go to move_group/error_reports before the answer.
         answers = {"ik": MoveItErrorCodes.NO_IK_SOLUTION, "valid": True}
+        report_pub = rospy.Publisher("move_group/error_reports", ErrorReport, queue_size=10)
         ik_requests = []
         solution = dict(zip(ARM_JOINTS, [0.4, 0.1, 0.2, 0.0, 0.3, 0.0], strict=True))
 
@@ -363,12 +368,15 @@ class RvizPluginsTest(unittest.TestCase):
                 response.solution.joint_state.name = list(solution)
                 response.solution.joint_state.position = list(solution.values())
             else:
-                response.error_code.message = "pose out of reach"
+                report = ErrorReport(caller_id=request._connection_header["callerid"], interface="/compute_ik")
+                report.header.stamp = rospy.Time.now()
+                report.error_code.val = answers["ik"]
+                report.message = "pose out of reach"
+                report_pub.publish(report)
             return response
 
         def check_state_validity(_request):
             response = GetStateValidityResponse(valid=answers["valid"])
-            response.error_code.val = MoveItErrorCodes.SUCCESS
             if not answers["valid"]:
                 response.contacts.append(ContactInformation(contact_body_1="link6", contact_body_2="base_link"))
             return response
@@ -419,6 +427,7 @@ class RvizPluginsTest(unittest.TestCase):
             self.assertEqual(len(goals), published)
         finally:
             goal_sub.unregister()
+            report_pub.unregister()
             for service in services:
                 service.shutdown()
 

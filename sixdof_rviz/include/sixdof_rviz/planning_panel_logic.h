@@ -10,10 +10,10 @@
 #include <actionlib/client/simple_action_client.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
-#include <sixdof_msgs/ExecuteTrajectoryAction.h>
-#include <sixdof_msgs/MoveGroupAction.h>
-#include <sixdof_msgs/MoveItErrorCodes.h>
+#include <moveit_msgs/ExecuteTrajectoryAction.h>
+#include <moveit_msgs/MoveGroupAction.h>
 
+#include "sixdof_rviz/error_reports.h"
 #include "sixdof_rviz/semantic_model.h"
 
 namespace sixdof_rviz {
@@ -43,10 +43,11 @@ struct PanelStatus {
   std::string text;
 };
 
-// Everything the MotionPlanningPanel does, without any GUI: builds MotionPlanRequest / MoveGroup goals from
-// the panel's settings, talks to move_group (actions move_group and execute_trajectory, service
-// check_state_validity) and turns MoveItErrorCodes into the status line. Callbacks run on the node
-// handle's callback queue (in rviz: the GUI thread).
+// Everything the MotionPlanningPanel does, without any GUI: builds moveit_msgs MotionPlanRequest / MoveGroup goals
+// from the panel's settings, talks to move_group (actions move_group and execute_trajectory, service
+// check_state_validity) and turns its answers into the status line: the MoveItErrorCodes name and move_group's
+// words (an action's status text; a service's ErrorReport). Callbacks run on the node handle's callback queue (in
+// rviz: the GUI thread).
 class PlanningPanelLogic {
  public:
   using StatusCallback = std::function<void(const PanelStatus&)>;
@@ -59,16 +60,16 @@ class PlanningPanelLogic {
   // Joint goal of `group` from `spec`; nullopt with `error` set when it cannot be resolved.
   std::optional<JointValues> resolveGoal(const std::string& group, const GoalSpec& spec, std::string* error);
   // nullopt with `error` set when settings or goal are unusable.
-  std::optional<sixdof_msgs::MotionPlanRequest> buildRequest(const PlanningSettings& settings, const JointValues& goal,
+  std::optional<moveit_msgs::MotionPlanRequest> buildRequest(const PlanningSettings& settings, const JointValues& goal,
                                                             std::string* error) const;
-  static sixdof_msgs::MoveGroupGoal buildMoveGroupGoal(const sixdof_msgs::MotionPlanRequest& request, bool plan_only);
+  static moveit_msgs::MoveGroupGoal buildMoveGroupGoal(const moveit_msgs::MotionPlanRequest& request, bool plan_only);
 
-  // Name of an error code value (e.g. "NO_IK_SOLUTION"), "UNKNOWN_ERROR_CODE" for values not in MoveItErrorCodes.
-  static std::string errorCodeName(int32_t val);
-  // Status line for the result of `operation` ("Plan", "Execute", "Plan & Execute"); `success_detail` is
-  // appended after "succeeded" (e.g. the number of waypoints).
-  static PanelStatus describeResult(const std::string& operation, const sixdof_msgs::MoveItErrorCodes& code,
-                                    std::optional<double> planning_time, const std::string& success_detail = "");
+  // Status line for the result of `operation` ("Plan", "Execute", "Plan & Execute"): on success `success_detail`
+  // after "succeeded" (e.g. the number of waypoints); on failure the code's name and value, then `message`
+  // (move_group's words) when there is one.
+  static PanelStatus describeResult(const std::string& operation, const moveit_msgs::MoveItErrorCodes& code,
+                                    const std::string& message, std::optional<double> planning_time,
+                                    const std::string& success_detail = "");
 
   // Asynchronous; the outcome arrives through the status callback.
   void plan(const PlanningSettings& settings, const GoalSpec& goal);
@@ -84,8 +85,8 @@ class PlanningPanelLogic {
   static constexpr int kRandomGoalAttempts = 100;
 
  private:
-  using MoveGroupClient = actionlib::SimpleActionClient<sixdof_msgs::MoveGroupAction>;
-  using ExecuteClient = actionlib::SimpleActionClient<sixdof_msgs::ExecuteTrajectoryAction>;
+  using MoveGroupClient = actionlib::SimpleActionClient<moveit_msgs::MoveGroupAction>;
+  using ExecuteClient = actionlib::SimpleActionClient<moveit_msgs::ExecuteTrajectoryAction>;
 
   void sendMoveGroupGoal(const std::string& operation, const PlanningSettings& settings, const GoalSpec& goal,
                          bool plan_only);
@@ -98,11 +99,12 @@ class PlanningPanelLogic {
   std::unique_ptr<MoveGroupClient> move_group_client_;
   std::unique_ptr<ExecuteClient> execute_client_;
   ros::ServiceClient validity_client_;
+  ErrorReports reports_;
   ros::Subscriber joint_state_sub_;
   ros::Subscriber goal_state_sub_;
   std::optional<sensor_msgs::JointState> current_state_;
   std::optional<sensor_msgs::JointState> marker_goal_;
-  std::optional<sixdof_msgs::RobotTrajectory> last_plan_;
+  std::optional<moveit_msgs::RobotTrajectory> last_plan_;
   std::mt19937 rng_{42};
 };
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <sixdof_msgs/DisplayTrajectory.h>
+#include <moveit_msgs/DisplayTrajectory.h>
 
 #include "sixdof_rviz/semantic_model.h"
 
@@ -16,9 +16,10 @@ struct TrajectoryStates {
   std::vector<double> times;  // non-decreasing, seconds since the first state
 };
 
-// nullopt with `error` naming the problem for malformed messages (no points, size mismatches, time going back).
+// nullopt with `error` naming the problem for malformed messages (no points, size mismatches, time going back) and
+// for multi-DOF joints (in trajectory_start or a trajectory), which sixdof models do not have.
 // Consecutive trajectories are concatenated in time.
-std::optional<TrajectoryStates> toTrajectoryStates(const sixdof_msgs::DisplayTrajectory& msg, std::string* error);
+std::optional<TrajectoryStates> toTrajectoryStates(const moveit_msgs::DisplayTrajectory& msg, std::string* error);
 
 // Which state to show while animating. Realtime follows time_from_start; otherwise every state is shown for
 // a fixed time. Without looping the animation ends on the last state. A trajectory offered while another is

@@ -318,8 +318,7 @@ Visualization Manager:
     - Class: sixdof_rviz/PlanningScene
       Enabled: false
       Name: Planning Scene
-      Scene Service: get_planning_scene
-      Refresh Rate: 2
+      Scene Topic: move_group/monitored_planning_scene
       World Object Color: 60; 170; 60
       Attached Object Color: 140; 60; 220
       Alpha: 0.9

@@ -28,7 +28,12 @@ void ErrorReports::receive(const sixdof_msgs::ErrorReport::ConstPtr& report) {
   arrived_.notify_all();
 }
 
-uint64_t ErrorReports::mark() const {
+uint64_t ErrorReports::mark() {
+  if (!connection_awaited_) {
+    connection_awaited_ = true;
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(kConnectWait);
+    while (sub_.getNumPublishers() == 0 && ros::WallTime::now() < deadline) ros::WallDuration(0.01).sleep();
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   return received_;
 }

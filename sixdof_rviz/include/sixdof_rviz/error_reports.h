@@ -36,8 +36,10 @@ class ErrorReports {
   ErrorReports(const ErrorReports&) = delete;
   ErrorReports& operator=(const ErrorReports&) = delete;
 
-  // Taken before a call: only reports received after it can belong to that call.
-  uint64_t mark() const;
+  // Taken before a call: only reports received after it can belong to that call. The first mark waits up to
+  // kConnectWait seconds for a publisher of the topic to connect, so that the reports of a call made right after
+  // construction are not missed (a publisher that is there connects in milliseconds). One caller thread at a time.
+  uint64_t mark();
   // The first report for `interface` (a resolved name, e.g. "/compute_ik") received after `mark`, waiting up to
   // `timeout` seconds for it; nullopt when none came.
   std::optional<sixdof_msgs::ErrorReport> waitFor(const std::string& interface, uint64_t mark, double timeout) const;
@@ -49,6 +51,7 @@ class ErrorReports {
 
   // Reports kept; older ones are dropped.
   static constexpr size_t kKept = 64;
+  static constexpr double kConnectWait = 0.5;
 
  private:
   struct Received {
@@ -65,6 +68,7 @@ class ErrorReports {
   mutable std::mutex mutex_;
   mutable std::condition_variable arrived_;
   uint64_t received_ = 0;
+  bool connection_awaited_ = false;
   std::deque<Received> reports_;
 };
 

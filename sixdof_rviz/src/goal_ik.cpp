@@ -28,7 +28,10 @@ GoalIkOutcome GoalIk::solve(const GoalIkRequest& request) {
   if (!ik_client.call(ik)) return {Kind::kError, {}, callFailure(ik_client, mark)};
   const int32_t code = ik.response.error_code.val;
   if (code == moveit_msgs::MoveItErrorCodes::NO_IK_SOLUTION) {
-    return {Kind::kNoSolution, {}, reports_.explainFailure("no IK solution", ik_client.getService(), mark)};
+    // move_group's words say that there is no solution, and why.
+    const auto report = reports_.waitFor(ik_client.getService(), mark, kErrorReportWait);
+    if (report) return {Kind::kNoSolution, {}, describeReport(*report)};
+    return {Kind::kNoSolution, {}, "no IK solution (no error report from move_group on " + reports_.topic() + ")"};
   }
   if (code != moveit_msgs::MoveItErrorCodes::SUCCESS) {
     return {Kind::kError, {},

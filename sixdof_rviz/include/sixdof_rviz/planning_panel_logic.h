@@ -78,6 +78,8 @@ class PlanningPanelLogic {
   void stop();
 
   bool hasPlan() const { return last_plan_.has_value(); }
+  // Both of move_group's action servers (move_group, execute_trajectory) are connected.
+  bool connected() const { return move_group_client_->isServerConnected() && execute_client_->isServerConnected(); }
   const std::optional<sensor_msgs::JointState>& currentState() const { return current_state_; }
   const std::optional<sensor_msgs::JointState>& markerGoal() const { return marker_goal_; }
   void setRandomSeed(uint32_t seed) { rng_.seed(seed); }

@@ -13,6 +13,7 @@
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/string_property.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/InteractiveMarker.h>
 
 #include "ghost_robot.h"
@@ -265,17 +266,7 @@ void GoalStateDisplay::startFromCurrentState(const sensor_msgs::JointState& stat
 }
 
 void GoalStateDisplay::placeMarker() {
-  const Eigen::Isometry3d tip = fk_->compute(goal_).at(tip_link_);
-  const Eigen::Quaterniond q(tip.rotation());
-  geometry_msgs::Pose pose;
-  pose.position.x = tip.translation().x();
-  pose.position.y = tip.translation().y();
-  pose.position.z = tip.translation().z();
-  pose.orientation.w = q.w();
-  pose.orientation.x = q.x();
-  pose.orientation.y = q.y();
-  pose.orientation.z = q.z();
-  placeMarkerAt(pose);
+  placeMarkerAt(tf2::toMsg(fk_->compute(goal_).at(tip_link_)));
 }
 
 void GoalStateDisplay::placeMarkerAt(const geometry_msgs::Pose& pose) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <moveit_msgs/PlanningScene.h>
 #include <ros/ros.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include "sixdof_rviz/goal_ik.h"
 #include "sixdof_rviz/link_poses.h"
@@ -131,15 +132,7 @@ GoalIkRequest ikRequest(const std::string& group, const Eigen::Isometry3d& pose,
   request.group = group;
   request.tip_link = "link6";
   request.pose.header.frame_id = frame;
-  const Eigen::Quaterniond rotation(pose.rotation());
-  auto& p = request.pose.pose;
-  p.position.x = pose.translation().x();
-  p.position.y = pose.translation().y();
-  p.position.z = pose.translation().z();
-  p.orientation.w = rotation.w();
-  p.orientation.x = rotation.x();
-  p.orientation.y = rotation.y();
-  p.orientation.z = rotation.z();
+  request.pose.pose = tf2::toMsg(pose);
   return request;
 }
 

@@ -10,10 +10,6 @@ import xml.etree.ElementTree as ElementTree
 import actionlib
 import rospy
 from geometry_msgs.msg import Pose, Quaternion
-from sensor_msgs.msg import JointState
-from shape_msgs.msg import SolidPrimitive
-from trajectory_msgs.msg import JointTrajectory
-
 from moveit_msgs.msg import (
     CollisionObject,
     Constraints,
@@ -39,6 +35,10 @@ from moveit_msgs.srv import (
     GetPositionIK,
     GetStateValidity,
 )
+from sensor_msgs.msg import JointState
+from shape_msgs.msg import SolidPrimitive
+from trajectory_msgs.msg import JointTrajectory
+
 from sixdof_msgs.msg import ErrorReport
 
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]

@@ -10,9 +10,6 @@ import rospy
 import rostest
 import yaml
 from geometry_msgs.msg import Pose, Quaternion
-from sensor_msgs.msg import JointState
-from shape_msgs.msg import SolidPrimitive
-
 from moveit_msgs.msg import CollisionObject, MoveItErrorCodes, PlanningScene, RobotState
 from moveit_msgs.srv import (
     ApplyPlanningScene,
@@ -20,6 +17,8 @@ from moveit_msgs.srv import (
     GetStateValidity,
     GetStateValidityResponse,
 )
+from sensor_msgs.msg import JointState
+from shape_msgs.msg import SolidPrimitive
 
 PKG = "sixdof_planning"
 

@@ -25,10 +25,6 @@ from move_group_test_helpers import (
     quaternion_angle,
     robot_state,
 )
-from shape_msgs.msg import Plane
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
-from visualization_msgs.msg import Marker, MarkerArray
-
 from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
@@ -43,6 +39,9 @@ from moveit_msgs.msg import (
     RobotState,
 )
 from moveit_msgs.srv import GetCartesianPathRequest
+from shape_msgs.msg import Plane
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+from visualization_msgs.msg import Marker, MarkerArray
 
 PKG = "sixdof_planning"
 

@@ -11,9 +11,6 @@ import rospy
 import rostest
 from geometry_msgs.msg import Pose, Quaternion
 from move_group_test_helpers import ARM, MoveGroupTestCase, box, joint_goal, robot_state
-from shape_msgs.msg import SolidPrimitive
-from std_msgs.msg import ColorRGBA
-
 from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
@@ -27,6 +24,8 @@ from moveit_msgs.msg import (
     PlanningSceneComponents,
     PositionConstraint,
 )
+from shape_msgs.msg import SolidPrimitive
+from std_msgs.msg import ColorRGBA
 
 PKG = "sixdof_planning"
 C = PlanningSceneComponents

@@ -14,9 +14,8 @@ import threading
 
 import actionlib
 import rospy
-from sensor_msgs.msg import JointState
-
 from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult
+from sensor_msgs.msg import JointState
 
 JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "finger1_joint", "finger2_joint"]
 CONTROLLERS = {

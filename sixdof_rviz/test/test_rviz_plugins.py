@@ -18,11 +18,6 @@ import rospy
 import rostest
 import yaml
 from geometry_msgs.msg import Point, Pose, PoseStamped
-from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import JointState
-from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
-from trajectory_msgs.msg import JointTrajectoryPoint
-
 from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
@@ -38,6 +33,11 @@ from moveit_msgs.srv import (
     GetStateValidity,
     GetStateValidityResponse,
 )
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import JointState
+from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
+from trajectory_msgs.msg import JointTrajectoryPoint
+
 from sixdof_msgs.msg import ErrorReport
 
 ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]

@@ -5,10 +5,10 @@ import threading
 import xml.etree.ElementTree as ET
 
 import rospy
+from control_msgs.msg import FollowJointTrajectoryGoal
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from control_msgs.msg import FollowJointTrajectoryGoal
 from sixdof_msgs.msg import GraspEvent
 
 ARM_JOINTS = [f"joint{i}" for i in range(1, 7)]

@@ -9,10 +9,6 @@ import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
-from shape_msgs.msg import SolidPrimitive
-from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
-from std_srvs.srv import Empty
-
 from control_msgs.msg import (
     FollowJointTrajectoryAction,
     FollowJointTrajectoryResult,
@@ -20,6 +16,10 @@ from control_msgs.msg import (
     JointTrajectoryControllerState,
 )
 from control_msgs.srv import QueryTrajectoryState
+from shape_msgs.msg import SolidPrimitive
+from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
+from std_srvs.srv import Empty
+
 from sixdof_msgs.msg import SimObject
 from sixdof_msgs.srv import GetObjectState, SpawnObject
 

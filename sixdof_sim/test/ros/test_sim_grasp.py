@@ -9,6 +9,7 @@ import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
+from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, GripperCommandAction, GripperCommandGoal
 from sim_test_util import (
     ARM_JOINTS,
     FINGER_JOINTS,
@@ -20,7 +21,6 @@ from sim_test_util import (
 )
 from std_srvs.srv import Empty
 
-from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, GripperCommandAction, GripperCommandGoal
 from sixdof_msgs.msg import GraspEvent
 from sixdof_msgs.srv import GetObjectState, SetObjectState
 

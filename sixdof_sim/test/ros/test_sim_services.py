@@ -8,13 +8,13 @@ import rospy
 import rostest
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
+from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, GripperCommandAction, GripperCommandGoal
+from control_msgs.srv import QueryTrajectoryState
 from rosgraph_msgs.msg import Clock
 from shape_msgs.msg import SolidPrimitive
 from sim_test_util import FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
 from std_srvs.srv import Empty
 
-from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, GripperCommandAction, GripperCommandGoal
-from control_msgs.srv import QueryTrajectoryState
 from sixdof_msgs.msg import ObjectStates, SimObject
 from sixdof_msgs.srv import (
     DeleteObject,

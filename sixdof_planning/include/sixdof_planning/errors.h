@@ -3,6 +3,7 @@
 #include <string>
 
 #include <moveit_msgs/MoveItErrorCodes.h>
+#include <sixdof_msgs/error_code_names.h>
 
 namespace sixdof_planning {
 
@@ -21,7 +22,7 @@ inline bool isSuccess(const ErrorCode& code) { return code.val == ErrorCode::SUC
 // FAILURE, and the caller knows which code its field's failure is (INVALID_GOAL_CONSTRAINTS for a goal ...).
 ErrorCode recode(ErrorCode code, int val);
 
-// The symbolic name of a code ("GOAL_IN_COLLISION"), for log lines.
-std::string errorCodeName(int val);
+// The symbolic name of a code ("GOAL_IN_COLLISION"), for log lines: sixdof_msgs' one table of the names.
+using sixdof_msgs::errorCodeName;
 
 }  // namespace sixdof_planning

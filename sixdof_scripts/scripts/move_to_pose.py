@@ -9,7 +9,6 @@ import sys
 
 import rospy
 from sixdof_commander import MoveGroup, SixdofCommanderError, rad
-from sixdof_commander.arm_driver import describe_error
 from sixdof_commander.cli import add_group_arguments, report_motion, scale
 
 
@@ -28,7 +27,7 @@ def main() -> int:
             ok, trajectory, planning_time, code = group.plan()
             points = len(trajectory.joint_trajectory.points)
             print(
-                f"plan: {'ok' if ok else 'FAILED'} in {planning_time:.3f} s, {points} points ({describe_error(code)})"
+                f"plan: {'ok' if ok else 'FAILED'} in {planning_time:.3f} s, {points} points ({group.last_error})"
             )
             return 0 if ok else 1
         return report_motion(str(args.values), group.go(wait=True), group)

@@ -1,15 +1,15 @@
-"""ArmDriver's pure helpers: rad(), pose conversions, error descriptions."""
+"""ArmDriver's pure helpers (rad(), pose conversions) and the descriptions of failed calls."""
 
 import math
 
 import numpy as np
 import pytest
+from moveit_msgs.msg import MoveItErrorCodes
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, PlanningScene, SixdofCommanderError, rad
-from sixdof_commander.arm_driver import describe_error, matrix_from_pose, pose_from_matrix
+from sixdof_commander.arm_driver import matrix_from_pose, pose_from_matrix
+from sixdof_commander.error_reports import ERROR_NAMES, CallError, error_name
 from sixdof_commander.goals import pose_stamped_from_target
 from sixdof_commander.transforms import homogeneous, matrix_from_rpy
-
-from sixdof_msgs.msg import MoveItErrorCodes
 
 
 def test_rad_returns_a_plain_list_of_radians():
@@ -50,10 +50,25 @@ def test_pose_matrix_round_trip():
     np.testing.assert_allclose(matrix_from_pose(pose_from_matrix(matrix)), matrix, atol=1e-12)
 
 
-def test_describe_error_names_the_code():
-    code = MoveItErrorCodes(val=MoveItErrorCodes.NO_IK_SOLUTION, message="pose unreachable")
-    assert describe_error(code) == "NO_IK_SOLUTION (-31): pose unreachable"
-    assert describe_error(MoveItErrorCodes(val=1)) == "SUCCESS (1)"
+def test_a_failed_call_is_described_by_its_code_name_and_words():
+    error = CallError(MoveItErrorCodes.NO_IK_SOLUTION, "pose unreachable", "compute_ik")
+    assert str(error) == "NO_IK_SOLUTION (-31): pose unreachable"
+    assert (error.name, error.code) == ("NO_IK_SOLUTION", MoveItErrorCodes(val=-31))
+    assert str(CallError(MoveItErrorCodes.SUCCESS)) == "SUCCESS (1)"
+    assert str(CallError(12345)) == "UNKNOWN (12345)"
+
+
+def test_every_moveit_error_code_has_its_name():
+    # The constants of the message definition itself, one per line: "int32 NAME=value".
+    constants = {}
+    for line in MoveItErrorCodes._full_text.splitlines():
+        words = line.split("#")[0].split()
+        if len(words) == 2 and words[0] == "int32" and "=" in words[1]:
+            name, value = words[1].split("=")
+            constants[int(value)] = name
+    assert len(constants) == 30  # moveit_msgs 0.11's codes
+    assert ERROR_NAMES == constants
+    assert error_name(MoveItErrorCodes.GOAL_IN_COLLISION) == "GOAL_IN_COLLISION"
 
 
 @pytest.mark.parametrize("make", [lambda: MoveGroup("arm"), PlanningScene, Gripper])

@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped
+from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import SixdofCommanderError
 from sixdof_commander.goals import GoalBuilder, pose_stamped_from_target
 from sixdof_commander.robot_model import resolve_group
@@ -124,10 +125,14 @@ def test_pose_target_becomes_position_and_orientation_constraints(builder):
     (position,) = goal.position_constraints
     assert position.link_name == "link6"
     assert position.header.frame_id == "base_link"
-    assert (position.position.x, position.position.y, position.position.z) == pytest.approx((0.3, 0.1, 0.2))
+    # MoveIt's goal region: a sphere of the tolerance's radius centred on the target position.
+    (sphere,) = position.constraint_region.primitives
+    assert (sphere.type, list(sphere.dimensions)) == (SolidPrimitive.SPHERE, [0.002])
+    (centre,) = position.constraint_region.primitive_poses
+    assert xyz(centre) == pytest.approx((0.3, 0.1, 0.2))
+    assert quat(centre) == (0.0, 0.0, 0.0, 1.0)
     offset = position.target_point_offset
     assert (offset.x, offset.y, offset.z) == (0.0, 0.0, 0.0)
-    assert position.tolerance == 0.002
     assert position.weight == 1.0
     (orientation,) = goal.orientation_constraints
     assert orientation.link_name == "link6"
@@ -176,7 +181,7 @@ def test_position_target_has_no_orientation_constraint(builder):
     goal = builder.goal_constraints()
     assert len(goal.position_constraints) == 1
     assert goal.orientation_constraints == []
-    assert goal.position_constraints[0].tolerance == 1e-4
+    assert list(goal.position_constraints[0].constraint_region.primitives[0].dimensions) == [1e-4]
 
 
 def test_position_target_keeps_previous_orientation(builder):

@@ -3,12 +3,16 @@ kinematics (Jacobian, bounds) and the iterative time parameterization, on the fi
 
 import inspect
 import math
+import sys
+from pathlib import Path
 
 import moveit_commander
 import moveit_msgs.msg
 import moveit_msgs.srv
 import numpy as np
 import pytest
+import sixdof_commander.move_group
+import sixdof_commander.planning_scene
 from geometry_msgs.msg import Pose, Transform
 from moveit_commander import conversions
 from sixdof_commander import MoveItCommanderException, SixdofCommanderError
@@ -17,20 +21,17 @@ from sixdof_commander.exceptions import UnknownGroupError
 from sixdof_commander.kinematics import bounded, iterative_parabolic_times, jacobian, link_pose
 from sixdof_commander.robot_model import resolve_group
 
-import sixdof_msgs.msg
-import sixdof_msgs.srv
 
-
-def test_moveit_msgs_are_the_sixdof_msgs_classes():
-    for name in moveit_msgs.msg.__all__:
-        assert getattr(moveit_msgs.msg, name) is getattr(sixdof_msgs.msg, name)
-    for name in moveit_msgs.srv.__all__:
-        assert getattr(moveit_msgs.srv, name) is getattr(sixdof_msgs.srv, name)
-    for name in ("RobotState", "RobotTrajectory", "DisplayTrajectory", "MoveItErrorCodes", "CollisionObject",
-                 "AttachedCollisionObject", "PlanningScene", "Constraints", "JointConstraint", "PositionConstraint",
-                 "OrientationConstraint", "MoveGroupAction", "ExecuteTrajectoryGoal"):
-        assert name in moveit_msgs.msg.__all__
-    assert moveit_msgs.msg.DisplayTrajectory._type == "sixdof_msgs/DisplayTrajectory"
+def test_moveit_msgs_is_the_generated_package_the_commander_uses():
+    assert moveit_msgs.msg.DisplayTrajectory._type == "moveit_msgs/DisplayTrajectory"
+    assert moveit_msgs.srv.GetMotionPlan._type == "moveit_msgs/GetMotionPlan"
+    assert sixdof_commander.move_group.RobotTrajectory is moveit_msgs.msg.RobotTrajectory
+    assert sixdof_commander.planning_scene.CollisionObject is moveit_msgs.msg.CollisionObject
+    # No second moveit_msgs on the path (sixdof_scripts installs none): every one found is the generated package.
+    found = [Path(entry) / "moveit_msgs" for entry in sys.path if (Path(entry) / "moveit_msgs").is_dir()]
+    assert found
+    for package in found:
+        assert (package / "msg" / "_MoveItErrorCodes.py").is_file(), f"{package} is not the generated moveit_msgs"
 
 
 def test_one_exception_hierarchy():
@@ -116,7 +117,8 @@ def test_cartesian_path_bad_arguments(args, kwargs, message):
 def test_pose_targets_are_alternative_goals(builder):
     builder.set_pose_targets([[0.4, 0.0, 0.3, math.pi, 0.0, 0.0], [0.3, 0.1, 0.3, math.pi, 0.0, 0.0]])
     request = builder.motion_plan_request()
-    assert [g.position_constraints[0].position.y for g in request.goal_constraints] == [0.0, 0.1]
+    centres = [g.position_constraints[0].constraint_region.primitive_poses[0] for g in request.goal_constraints]
+    assert [centre.position.y for centre in centres] == [0.0, 0.1]
     builder.set_pose_target([0.4, 0.0, 0.3, math.pi, 0.0, 0.0])
     assert len(builder.motion_plan_request().goal_constraints) == 1
     with pytest.raises(SixdofCommanderError, match="non-empty list of poses"):

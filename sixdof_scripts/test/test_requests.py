@@ -1,11 +1,21 @@
-"""Requests the commander sends: the move_group goal of go(), Cartesian-path requests, scene diffs."""
+"""Requests the commander sends: the move_group goal of go() (workspace, path constraints), Cartesian-path requests,
+scene diffs."""
 
 import math
 
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped
+from moveit_msgs.msg import (
+    CollisionObject,
+    Constraints,
+    JointConstraint,
+    OrientationConstraint,
+    PositionConstraint,
+    VisibilityConstraint,
+)
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import SixdofCommanderError
+from sixdof_commander.path_constraints import check_path_constraints
 from sixdof_commander.planning_scene import (
     attach_request,
     detach_request,
@@ -14,8 +24,6 @@ from sixdof_commander.planning_scene import (
     resolve_resource,
     scene_diff,
 )
-
-from sixdof_msgs.msg import CollisionObject
 
 
 def pose(x, y, z):
@@ -35,9 +43,59 @@ def test_go_goal_plans_and_executes_in_the_current_scene(builder):
     assert [c.joint_name for c in goal.request.goal_constraints[0].joint_constraints][0] == "joint1"
 
 
-def test_cartesian_request_carries_waypoints_link_and_scaling(builder):
+def test_request_has_moveit_s_default_workspace_until_one_is_set(builder):
+    builder.set_named_target("home pose")
+    workspace = builder.motion_plan_request().workspace_parameters
+    assert workspace.header.frame_id == ""
+    assert (workspace.min_corner.x, workspace.max_corner.z) == (0.0, 0.0)
+    builder.set_workspace([-1.0, -2.0, -0.5, 1.0, 2.0, 1.5])
+    workspace = builder.motion_plan_request().workspace_parameters
+    assert workspace.header.frame_id == "base_link"
+    corners = workspace.min_corner, workspace.max_corner
+    assert [(c.x, c.y, c.z) for c in corners] == [(-1.0, -2.0, -0.5), (1.0, 2.0, 1.5)]
+    # Four values are x and y (z 0), as MoveIt's set_workspace; none resets it to zero.
+    builder.set_workspace([-1.0, -2.0, 1.0, 2.0])
+    corners = builder.motion_plan_request().workspace_parameters.min_corner, builder.workspace.max_corner
+    assert [(c.x, c.y, c.z) for c in corners] == [(-1.0, -2.0, 0.0), (1.0, 2.0, 0.0)]
+    builder.set_workspace([])
+    assert builder.workspace.max_corner.y == 0.0
+
+
+def joint_path_constraint(name, position, tolerance):
+    constraints = Constraints()
+    constraints.joint_constraints.append(
+        JointConstraint(
+            joint_name=name, position=position, tolerance_above=tolerance, tolerance_below=tolerance, weight=1.0
+        )
+    )
+    return constraints
+
+
+def test_path_constraints_go_with_every_plan(builder):
+    builder.set_named_target("home pose")
+    assert builder.motion_plan_request().path_constraints == Constraints()
+    builder.path_constraints = check_path_constraints(joint_path_constraint("joint4", 0.0, 0.2), "set_path_constraints")
+    request = builder.move_group_goal().request
+    assert [(c.joint_name, c.tolerance_above) for c in request.path_constraints.joint_constraints] == [("joint4", 0.2)]
+    assert request.goal_constraints[0].joint_constraints
+
+
+def test_path_constraints_move_group_refuses_are_refused_here():
+    position = Constraints(position_constraints=[PositionConstraint(link_name="link6")])
+    assert check_path_constraints(position, "set_path_constraints") == position
+    refused = [
+        (Constraints(orientation_constraints=[OrientationConstraint()]), "orientation_constraints"),
+        (Constraints(visibility_constraints=[VisibilityConstraint()]), "visibility_constraints"),
+    ]
+    for constraints, field in refused:
+        with pytest.raises(SixdofCommanderError, match=rf"set_path_constraints\(constraints with {field}\) is not"):
+            check_path_constraints(constraints, "set_path_constraints")
+    with pytest.raises(SixdofCommanderError, match="path_constraints must be a moveit_msgs/Constraints, got dict"):
+        check_path_constraints({}, "compute_cartesian_path", "path_constraints")
+
+
+def test_cartesian_request_carries_waypoints_link_and_path_constraints(builder):
     builder.set_max_velocity_scaling_factor(0.3)
-    builder.set_max_acceleration_scaling_factor(0.2)
     request = builder.cartesian_path_request([pose(0.4, 0.0, 0.2), pose(0.4, 0.0, 0.1)], 0.005, 0.0, True)
     assert request.header.frame_id == "base_link"
     assert request.group_name == "arm"
@@ -47,7 +105,11 @@ def test_cartesian_request_carries_waypoints_link_and_scaling(builder):
     assert request.jump_threshold == 0.0
     assert request.avoid_collisions is True
     assert request.start_state.is_diff is True
-    assert (request.max_velocity_scaling_factor, request.max_acceleration_scaling_factor) == (0.3, 0.2)
+    assert request.path_constraints == Constraints()
+    assert request.max_cartesian_speed == 0.0  # timed at full speed; the commander retimes to its scaling
+    constrained = joint_path_constraint("joint1", 0.0, 0.1)
+    request = builder.cartesian_path_request([pose(0.4, 0.0, 0.2)], 0.005, 0.0, True, constrained)
+    assert request.path_constraints == constrained
 
 
 @pytest.mark.parametrize(

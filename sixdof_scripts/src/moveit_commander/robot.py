@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 from geometry_msgs.msg import PoseStamped
+from moveit_msgs.msg import RobotState
 from sixdof_commander._ros import JointStateMonitor, load_robot_model, require_node, resolve
 from sixdof_commander.exceptions import SixdofCommanderError
 from sixdof_commander.kinematics import link_pose
 from sixdof_commander.robot_model import Group, resolve_group
 from sixdof_commander.transforms import quaternion_from_matrix
-
-from sixdof_msgs.msg import RobotState
 
 from .move_group import MoveGroupCommander
 

@@ -85,7 +85,7 @@ def query_robot_model(
     except (rospy.ServiceException, rospy.ROSException) as err:
         raise SixdofCommanderError(f"robot model: call to '{rospy.resolve_name(name)}' failed: {err}") from err
     if response.error_code.val != response.error_code.SUCCESS:
-        raise SixdofCommanderError(f"robot model: '{rospy.resolve_name(name)}' failed: {response.error_code.message}")
+        raise SixdofCommanderError(f"robot model: '{rospy.resolve_name(name)}' failed: {response.error_message}")
     return model_from_response(response, collision=bool(collision_geometry))
 
 
@@ -273,6 +273,15 @@ class ServerWaiter:
         threading.Thread(target=wait, daemon=True).start()
         if not ready.wait(self._remaining()):
             self.missing.append(f"action '{rospy.resolve_name(name)}'")
+
+    def subscriber(self, publisher: rospy.Publisher) -> None:
+        """Waits until the publisher's topic has a subscriber (a message published earlier would be lost)."""
+        while publisher.get_num_connections() == 0:
+            remaining = self._remaining()
+            if (remaining is not None and remaining <= 0.001) or rospy.is_shutdown():
+                self.missing.append(f"subscriber of topic '{publisher.resolved_name}'")
+                return
+            time.sleep(0.01)
 
     def check(self, who: str) -> None:
         if self.missing:

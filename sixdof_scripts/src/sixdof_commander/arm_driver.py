@@ -11,10 +11,10 @@ import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
 
-from sixdof_msgs.msg import MoveItErrorCodes
 from sixdof_msgs.srv import GetObjectState
 
 from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, query_robot_model, resolve
+from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .grasping import (
@@ -32,10 +32,6 @@ from .planning_scene import PlanningScene
 from .robot_model import resolve_group
 from .transforms import matrix_from_pose, quaternion_from_matrix
 
-ERROR_NAMES = {
-    value: name for name, value in vars(MoveItErrorCodes).items() if name.isupper() and isinstance(value, int)
-}
-
 
 def rad(degrees: Sequence[float]) -> list[float]:
     """Degrees to radians, as a plain list (so that `xyz + rad(rpy)` concatenates)."""
@@ -51,12 +47,6 @@ def pose_from_matrix(matrix: np.ndarray) -> Pose:
     q = quaternion_from_matrix(matrix[:3, :3])
     pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
     return pose
-
-
-def describe_error(code: MoveItErrorCodes) -> str:
-    """'NAME (val): message' of an error code."""
-    text = f"{ERROR_NAMES.get(code.val, 'UNKNOWN')} ({code.val})"
-    return f"{text}: {code.message}" if code.message else text
 
 
 @dataclass
@@ -149,8 +139,8 @@ class ArmDriver:
             tcp_in_tip=tcp_in_tip, finger_axis=axis, max_width=2.0 * self.gripper.open_position, reach=reach
         )
 
-    def _fail(self, what: str, code: MoveItErrorCodes | None = None) -> bool:
-        self.last_failure = f"{what}: {describe_error(code)}" if code is not None else what
+    def _fail(self, what: str, error: CallError | None = None) -> bool:
+        self.last_failure = f"{what}: {error}" if error is not None else what
         rospy.logerr(self.last_failure)
         return False
 
@@ -182,9 +172,11 @@ class ArmDriver:
 
     def gripper_open(self) -> bool:
         """Open the gripper; True when the fingers reached the 'open' position."""
-        result = self._require_gripper("gripper_open")[0].open()
+        gripper = self._require_gripper("gripper_open")[0]
+        result = gripper.open()
         if not result.reached_goal:
-            return self._fail(f"gripper did not open (position {result.position:.4f}, stalled {result.stalled})")
+            said = f": {gripper.last_status_text}" if gripper.last_status_text else ""
+            return self._fail(f"gripper did not open (position {result.position:.4f}, stalled {result.stalled}){said}")
         return True
 
     def gripper_close(self) -> bool:

@@ -1,18 +1,18 @@
-"""MoveGroup's Cartesian paths: compute_cartesian_path under both MoveIt signatures (compute_cartesian_path service)."""
+"""MoveGroup's Cartesian paths: compute_cartesian_path under both MoveIt signatures (compute_cartesian_path service,
+then retime_trajectory to the group's scaling factors)."""
 
 from __future__ import annotations
 
 import numbers
 from collections.abc import Sequence
 
-import rospy
 from geometry_msgs.msg import Pose
+from moveit_msgs.msg import Constraints, MoveItErrorCodes, RobotTrajectory
 
-from sixdof_msgs.msg import Constraints, MoveItErrorCodes, RobotTrajectory
-
-from ._ros import SERVICE_TIMEOUT, call_service
 from .exceptions import SixdofCommanderError
-from .move_group_base import MoveGroupBase, error_code, has_constraints, refuse
+from .move_group_base import MoveGroupBase
+from .path_constraints import check_path_constraints
+from .retiming import retime_time_optimal
 
 
 class CartesianPath(MoveGroupBase):
@@ -27,24 +27,34 @@ class CartesianPath(MoveGroupBase):
         **kwargs: object,
     ) -> tuple[RobotTrajectory, float]:
         """Straight-line path of the end-effector link through waypoints (Poses in the pose reference frame),
-        interpolated every eef_step metres: (trajectory, fraction of the path achieved; -1 on error).
+        interpolated every eef_step metres: (trajectory, fraction of the path achieved; -1 on error). The path keeps
+        to `path_constraints` (joint and position constraints; the group's own path constraints do not apply, as in
+        MoveIt). move_group times it at full speed; it is retimed here to the group's scaling factors.
 
         Both MoveIt signatures: (waypoints, eef_step, avoid_collisions=True, path_constraints=None) (1.1.15 on) and
         (waypoints, eef_step, jump_threshold, avoid_collisions=True) (before): a number (not a bool) in third
         place is the jump threshold (0 = no jump check)."""
         jump_threshold, avoid_collisions = _cartesian_arguments(args, kwargs)
-        if path_constraints is not None and has_constraints(path_constraints):
-            raise refuse("compute_cartesian_path(path_constraints=...)", "path constraints are not supported")
-        request = self._goal.cartesian_path_request(waypoints, eef_step, jump_threshold, avoid_collisions)
-        try:
-            response = call_service(self._cartesian_service, request, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            self._last_error = error_code(MoveItErrorCodes.COMMUNICATION_FAILURE, f"compute_cartesian_path: {err}")
-            return RobotTrajectory(), -1.0
-        self._last_error = response.error_code
-        if response.error_code.val != MoveItErrorCodes.SUCCESS:
-            return response.solution, -1.0
-        return response.solution, response.fraction
+        constraints = None
+        if path_constraints is not None:
+            constraints = check_path_constraints(path_constraints, "compute_cartesian_path", "path_constraints")
+        request = self._goal.cartesian_path_request(
+            waypoints, eef_step, jump_threshold, avoid_collisions, constraints
+        )
+        response, self._last_error = self._reports.call(self._cartesian_service, request)
+        if response is None or self._last_error.val != MoveItErrorCodes.SUCCESS:
+            return (RobotTrajectory() if response is None else response.solution), -1.0
+        solution = response.solution
+        if len(solution.joint_trajectory.points) >= 2:
+            solution, self._last_error = retime_time_optimal(
+                self._retime_service,
+                solution,
+                self._goal.max_velocity_scaling_factor,
+                self._goal.max_acceleration_scaling_factor,
+            )
+            if solution is None:
+                return RobotTrajectory(), -1.0
+        return solution, response.fraction
 
 
 def _cartesian_arguments(args: tuple[object, ...], kwargs: dict[str, object]) -> tuple[float, bool]:

@@ -3,7 +3,6 @@ group they name and the one-line report of a motion."""
 
 import argparse
 
-from .arm_driver import describe_error
 from .move_group import MoveGroup
 
 
@@ -22,5 +21,5 @@ def scale(group: MoveGroup, args: argparse.Namespace) -> None:
 
 def report_motion(target: str, ok: bool, group: MoveGroup) -> int:
     """Prints 'move to <target>: ok' or the group's last error; the script's exit code (0 or 1)."""
-    print(f"move to {target}: {'ok' if ok else 'FAILED: ' + describe_error(group.last_error)}")
+    print(f"move to {target}: {'ok' if ok else f'FAILED: {group.last_error}'}")
     return 0 if ok else 1

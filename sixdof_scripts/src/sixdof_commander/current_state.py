@@ -6,13 +6,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-import rospy
 from geometry_msgs.msg import PoseStamped
+from moveit_msgs.msg import MoveItErrorCodes, RobotState
+from moveit_msgs.srv import GetPositionFK
 
-from sixdof_msgs.msg import MoveItErrorCodes, RobotState
-from sixdof_msgs.srv import GetPositionFK
-
-from ._ros import SERVICE_TIMEOUT, call_service
 from .exceptions import SixdofCommanderError
 from .goals import check_number
 from .kinematics import bounded, jacobian, random_value
@@ -54,14 +51,11 @@ class CurrentState(MoveGroupBase):
         request.header.frame_id = self._planning_frame
         request.fk_link_names = [link]
         request.robot_state = state
-        try:
-            response = call_service(self._fk_service, request, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"compute_fk call failed: {err}") from err
-        if response.error_code.val != MoveItErrorCodes.SUCCESS or len(response.pose_stamped) != 1:
-            raise SixdofCommanderError(
-                f"compute_fk failed for link '{link}': {response.error_code.val} {response.error_code.message}"
-            )
+        response, outcome = self._reports.call(self._fk_service, request)
+        if response is None:
+            raise SixdofCommanderError(f"compute_fk call failed: {outcome.message}")
+        if outcome.val != MoveItErrorCodes.SUCCESS or len(response.pose_stamped) != 1:
+            raise SixdofCommanderError(f"compute_fk failed for link '{link}': {outcome}")
         return response.pose_stamped[0]
 
     def get_current_pose(self, end_effector_link: str = "") -> PoseStamped:

@@ -1,4 +1,4 @@
-"""Targets and planning parameters of a group, turned into sixdof_msgs requests as MoveIt's commander does.
+"""Targets and planning parameters of a group, turned into moveit_msgs requests as MoveIt's commander does.
 
 Everything here is plain data and message construction: no ROS communication, so it is unit-testable.
 """
@@ -11,8 +11,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 from geometry_msgs.msg import Pose, PoseStamped
-
-from sixdof_msgs.msg import (
+from moveit_msgs.msg import (
     Constraints,
     JointConstraint,
     MotionPlanRequest,
@@ -20,8 +19,10 @@ from sixdof_msgs.msg import (
     OrientationConstraint,
     PositionConstraint,
     RobotState,
+    WorkspaceParameters,
 )
-from sixdof_msgs.srv import GetCartesianPathRequest
+from moveit_msgs.srv import GetCartesianPathRequest
+from shape_msgs.msg import SolidPrimitive
 
 from .exceptions import SixdofCommanderError
 from .robot_model import Group
@@ -134,10 +135,14 @@ def _link_constraint(constraint: object, link: str, target: PoseStamped) -> obje
 
 
 def position_constraint(link: str, target: PoseStamped, tolerance: float) -> PositionConstraint:
-    """The link's origin within `tolerance` metres of the target position (a sphere, as MoveIt builds it)."""
+    """The link's origin within `tolerance` metres of the target position: the constraint region is a sphere of
+    that radius centred there, as MoveIt's constructGoalConstraints builds it."""
     constraint = _link_constraint(PositionConstraint(), link, target)
-    constraint.position = target.pose.position
-    constraint.tolerance = tolerance
+    constraint.constraint_region.primitives.append(SolidPrimitive(type=SolidPrimitive.SPHERE, dimensions=[tolerance]))
+    centre = Pose()
+    centre.position = target.pose.position
+    centre.orientation.w = 1.0
+    constraint.constraint_region.primitive_poses.append(centre)
     return constraint
 
 
@@ -186,6 +191,8 @@ class GoalBuilder:
         self.max_velocity_scaling_factor = 0.1
         self.max_acceleration_scaling_factor = 0.1
         self.start_state: RobotState | None = None
+        self.path_constraints = Constraints()
+        self.workspace = WorkspaceParameters()  # MoveGroupInterface's default: zero, no frame
         self.remembered: dict[str, dict[str, float]] = {}
         # The frame of pose targets and waypoints given without one (MoveIt's pose reference frame).
         self.pose_reference_frame = planning_frame
@@ -349,6 +356,18 @@ class GoalBuilder:
     def set_goal_orientation_tolerance(self, value: float) -> None:
         self.goal_orientation_tolerance = check_positive(value, "goal orientation tolerance")
 
+    def set_workspace(self, values: Sequence[float]) -> None:
+        """The workspace box in the planning frame, as MoveIt's set_workspace: [] (all zero),
+        [minX, minY, maxX, maxY] (z 0) or [minX, minY, minZ, maxX, maxY, maxZ] (checked numbers)."""
+        corners = [0.0] * 6 if not values else list(values)
+        if len(corners) == 4:
+            corners = [corners[0], corners[1], 0.0, corners[2], corners[3], 0.0]
+        workspace = WorkspaceParameters()
+        workspace.header.frame_id = self.planning_frame
+        low, high = workspace.min_corner, workspace.max_corner
+        low.x, low.y, low.z, high.x, high.y, high.z = corners
+        self.workspace = workspace
+
     def set_end_effector_link(self, link: str, known_links: frozenset[str]) -> None:
         if link not in known_links:
             raise SixdofCommanderError(f"end-effector link '{link}' is not a link of the robot")
@@ -397,8 +416,10 @@ class GoalBuilder:
 
     def motion_plan_request(self) -> MotionPlanRequest:
         request = MotionPlanRequest()
+        request.workspace_parameters = self.workspace
         request.start_state = self.current_start_state()
         request.goal_constraints.extend(self.all_goal_constraints())
+        request.path_constraints = self.path_constraints
         request.planner_id = self.planner_id
         request.group_name = self.group.name
         request.num_planning_attempts = self.num_planning_attempts
@@ -417,9 +438,15 @@ class GoalBuilder:
         return goal
 
     def cartesian_path_request(
-        self, waypoints: Sequence[Pose], eef_step: float, jump_threshold: float, avoid_collisions: bool
+        self,
+        waypoints: Sequence[Pose],
+        eef_step: float,
+        jump_threshold: float,
+        avoid_collisions: bool,
+        path_constraints: Constraints | None = None,
     ) -> GetCartesianPathRequest:
-        """The compute_cartesian_path request for the end-effector link through waypoints."""
+        """The compute_cartesian_path request for the end-effector link through waypoints (the service times the
+        path at full speed, as MoveIt's; the commander retimes it to its scaling factors)."""
         if isinstance(waypoints, Pose | PoseStamped) or not isinstance(waypoints, Sequence) or not waypoints:
             raise SixdofCommanderError("waypoints must be a non-empty list of geometry_msgs/Pose")
         request = GetCartesianPathRequest()
@@ -439,6 +466,6 @@ class GoalBuilder:
         if not isinstance(avoid_collisions, bool):
             raise SixdofCommanderError(f"avoid_collisions must be True or False, got {avoid_collisions!r}")
         request.avoid_collisions = avoid_collisions
-        request.max_velocity_scaling_factor = self.max_velocity_scaling_factor
-        request.max_acceleration_scaling_factor = self.max_acceleration_scaling_factor
+        if path_constraints is not None:
+            request.path_constraints = path_constraints
         return request

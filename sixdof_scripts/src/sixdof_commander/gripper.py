@@ -1,10 +1,11 @@
-"""Gripper: open/close/set_position through the simulator's gripper_controller/gripper_cmd action."""
+"""Gripper: open/close/set_position through a control_msgs/GripperCommand action (the simulator's
+gripper_controller/gripper_cmd)."""
 
 from __future__ import annotations
 
 import threading
 
-from sixdof_msgs.msg import GripperCommandAction, GripperCommandGoal, GripperCommandResult
+from control_msgs.msg import GripperCommandAction, GripperCommandGoal, GripperCommandResult
 
 from ._ros import ActionClient, ServerWaiter, check_timeout, load_robot_model, require_node, resolve, wait_for_done
 from .exceptions import SixdofCommanderError
@@ -50,6 +51,7 @@ class Gripper:
             )
         self._joint = group.joints[0]
         self._group = group
+        self.last_status_text = ""
         self._positions = {}
         for state in ("open", "close"):
             if state not in group.named_states or self._joint.name not in group.named_states[state]:
@@ -110,4 +112,6 @@ class Gripper:
         result = self._client.get_result()
         if result is None:
             raise SixdofCommanderError(f"gripper command got no result (goal status {self._client.get_state()})")
+        # The goal status text of the last command: the controller's words when it aborted or rejected it.
+        self.last_status_text = self._client.get_goal_status_text()
         return result

@@ -14,9 +14,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import rospy
 from geometry_msgs.msg import Pose, PoseStamped
-from sensor_msgs.msg import JointState
-
-from sixdof_msgs.msg import (
+from moveit_msgs.msg import (
     ExecuteTrajectoryAction,
     ExecuteTrajectoryGoal,
     MotionPlanRequest,
@@ -25,20 +23,16 @@ from sixdof_msgs.msg import (
     RobotState,
     RobotTrajectory,
 )
-from sixdof_msgs.srv import (
-    GetCartesianPath,
-    GetMotionPlan,
-    GetPositionFK,
-    GetPositionIK,
-    RetimeTrajectory,
-)
+from moveit_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK, GetPositionIK
+from sensor_msgs.msg import JointState
+
+from sixdof_msgs.srv import RetimeTrajectory
 
 from ._ros import (
     SERVICE_TIMEOUT,
     ActionClient,
     JointStateMonitor,
     ServerWaiter,
-    call_service,
     load_robot_model,
     require_node,
     resolve,
@@ -46,9 +40,10 @@ from ._ros import (
 )
 from .cartesian_path import CartesianPath
 from .current_state import CurrentState
+from .error_reports import SUCCESS, CallError, ErrorReports
 from .exceptions import SixdofCommanderError
 from .goals import GoalBuilder
-from .move_group_base import error_code, refuse
+from .move_group_base import refuse
 from .path_constraints import PathConstraints
 from .planning_options import PlanningOptions
 from .planning_scene import PlanningScene
@@ -63,6 +58,7 @@ SERVICES = (
     "get_planning_scene",
     "apply_planning_scene",
     "get_robot_model",
+    "retime_trajectory",
 )
 
 
@@ -109,7 +105,8 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
                 setter(rospy.get_param(param, 0.1))
             except SixdofCommanderError as err:
                 raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
-        self._last_error = error_code(MoveItErrorCodes.SUCCESS, "")
+        self._last_error = SUCCESS
+        self._reports = ErrorReports(ns)
         self._support_surface = ""
 
         self._plan_service = rospy.ServiceProxy(resolve(ns, "plan_kinematic_path"), GetMotionPlan)
@@ -181,8 +178,10 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
         raise refuse("get_interface_description", "move_group offers one planning pipeline (OMPL) and no query of it")
 
     @property
-    def last_error(self) -> MoveItErrorCodes:
-        """The error code of the last plan/go/execute/compute_cartesian_path call."""
+    def last_error(self) -> CallError:
+        """The outcome of the last plan/go/execute/compute_cartesian_path call: `val` (MoveItErrorCodes), `name`,
+        and `message`, the words of a failure (move_group's error report or the action's status text; the code's
+        name alone when move_group sent none)."""
         return self._last_error
 
     # Planning and execution --------------------------------------------------------------------------
@@ -213,13 +212,15 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
             self._set_target_from(joints, "plan")
         request = self._goal.motion_plan_request()
         start = time.monotonic()
-        try:
-            timeout = request.allowed_planning_time * max(request.num_planning_attempts, 1) + SERVICE_TIMEOUT
-            response = call_service(self._plan_service, request, timeout).motion_plan_response
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            self._last_error = error_code(MoveItErrorCodes.COMMUNICATION_FAILURE, f"plan_kinematic_path: {err}")
-            return False, RobotTrajectory(), time.monotonic() - start, self._last_error
-        self._last_error = response.error_code
+        timeout = request.allowed_planning_time * max(request.num_planning_attempts, 1) + SERVICE_TIMEOUT
+        answer, self._last_error = self._reports.call(
+            self._plan_service, request, timeout, lambda r: r.motion_plan_response.error_code.val
+        )
+        if self._last_error.val != MoveItErrorCodes.SUCCESS:
+            rospy.logwarn(f"plan: {self._last_error}")
+        if answer is None:
+            return False, RobotTrajectory(), time.monotonic() - start, self._last_error.code
+        response = answer.motion_plan_response
         success = response.error_code.val == MoveItErrorCodes.SUCCESS
         return success, response.trajectory, response.planning_time, response.error_code
 
@@ -236,7 +237,7 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
     def execute(self, plan_msg: RobotTrajectory, wait: bool = True) -> bool:
         """Execute a planned trajectory (execute_trajectory action). Without wait, returns once sent."""
         if not isinstance(plan_msg, RobotTrajectory):
-            raise SixdofCommanderError(f"execute() needs a sixdof_msgs/RobotTrajectory, got {type(plan_msg).__name__}")
+            raise SixdofCommanderError(f"execute() needs a moveit_msgs/RobotTrajectory, got {type(plan_msg).__name__}")
         if not plan_msg.joint_trajectory.points:
             raise SixdofCommanderError("execute() got an empty trajectory (did planning fail?)")
         goal = ExecuteTrajectoryGoal()
@@ -247,22 +248,26 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
         done = threading.Event()
         client.send_goal(goal, done_cb=lambda _state, _result: done.set())
         if not wait:
-            self._last_error = error_code(MoveItErrorCodes.SUCCESS, f"{name} goal sent")
+            self._last_error = CallError(MoveItErrorCodes.SUCCESS, f"{name} goal sent")
             return True
         reason = wait_for_done(client, done)
         if reason:
             client.stop_tracking_goal()
-            self._last_error = error_code(MoveItErrorCodes.COMMUNICATION_FAILURE, f"{name}: {reason}")
-            rospy.logerr(self._last_error.message)
+            self._last_error = CallError(MoveItErrorCodes.COMMUNICATION_FAILURE, f"{name}: {reason}")
+            rospy.logerr(str(self._last_error))
             return False
         result = client.get_result()
         if result is None:
-            self._last_error = error_code(
+            self._last_error = CallError(
                 MoveItErrorCodes.COMMUNICATION_FAILURE, f"{name}: no result (goal status {client.get_state()})"
             )
             return False
-        self._last_error = result.error_code
-        return result.error_code.val == MoveItErrorCodes.SUCCESS
+        # The words of a failure are the goal's status text (actionlib's set_aborted(result, text)).
+        success = result.error_code.val == MoveItErrorCodes.SUCCESS
+        self._last_error = CallError(result.error_code.val, "" if success else client.get_goal_status_text(), name)
+        if not success:
+            rospy.logwarn(f"{name}: {self._last_error}")
+        return success
 
     def stop(self) -> None:
         """Stop any motion this group's node is planning or executing."""

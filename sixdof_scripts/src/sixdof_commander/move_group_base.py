@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import rospy
-
-from sixdof_msgs.msg import Constraints, MoveItErrorCodes
+from moveit_msgs.msg import Constraints
 
 from ._ros import ActionClient, JointStateMonitor
+from .error_reports import CallError, ErrorReports
 from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .goals import GoalBuilder
 from .planning_scene import PlanningScene
@@ -25,7 +25,8 @@ class MoveGroupBase:
     _group: Group
     _planning_frame: str
     _goal: GoalBuilder  # targets and planning parameters, and the requests built from them
-    _last_error: MoveItErrorCodes
+    _last_error: CallError  # the outcome of the last plan/go/execute/compute_cartesian_path call
+    _reports: ErrorReports
     _support_surface: str
     _move_action: ActionClient
     _execute_action: ActionClient
@@ -39,15 +40,6 @@ class MoveGroupBase:
     _rng: np.random.Generator
 
 
-def error_code(value: int, message: str, source: str = "sixdof_commander") -> MoveItErrorCodes:
-    """A MoveItErrorCodes message."""
-    code = MoveItErrorCodes()
-    code.val = value
-    code.message = message
-    code.source = source
-    return code
-
-
 def refuse(method: str, why: str) -> MoveItCommanderException:
     """The error a MoveGroupCommander method sixdof does not offer raises."""
     call = method if "(" in method else f"{method}()"
@@ -56,4 +48,9 @@ def refuse(method: str, why: str) -> MoveItCommanderException:
 
 def has_constraints(value: Constraints) -> bool:
     """True when the Constraints message holds any constraint."""
-    return bool(value.joint_constraints or value.position_constraints or value.orientation_constraints)
+    return bool(
+        value.joint_constraints
+        or value.position_constraints
+        or value.orientation_constraints
+        or value.visibility_constraints
+    )

@@ -1,39 +1,64 @@
-"""MoveGroup's path and trajectory constraints: move_group plans without them, so only empty ones are accepted."""
+"""MoveGroup's path and trajectory constraints: joint and position path constraints go with every plan; what
+move_group refuses (orientation and visibility path constraints, trajectory constraints) is refused here first."""
 
 from __future__ import annotations
 
-from sixdof_msgs.msg import Constraints
+import copy
 
+from moveit_msgs.msg import Constraints
+
+from .exceptions import SixdofCommanderError
 from .move_group_base import MoveGroupBase, has_constraints, refuse
 
 
+def check_path_constraints(value: object, method: str, argument: str = "constraints") -> Constraints:
+    """A copy of `value` if move_group can keep a path within it: a Constraints of joint and position constraints
+    only (docs/design.md); SixdofCommanderError naming the method, its argument and what it holds otherwise."""
+    if not isinstance(value, Constraints):
+        what = type(value).__name__
+        raise SixdofCommanderError(f"{method}: {argument} must be a moveit_msgs/Constraints, got {what}")
+    for field, kind in (("orientation_constraints", "orientation"), ("visibility_constraints", "visibility")):
+        if getattr(value, field):
+            raise refuse(
+                f"{method}({argument} with {field})",
+                f"move_group keeps paths within joint and position constraints only, not {kind} constraints",
+            )
+    return copy.deepcopy(value)
+
+
 class PathConstraints(MoveGroupBase):
-    """MoveGroupCommander's constraint methods: empty constraints are accepted, real ones raise."""
+    """MoveGroupCommander's constraint methods."""
 
     def get_known_constraints(self) -> list[str]:
         """Names of stored constraints: none (MoveIt reads them from its warehouse database; there is none)."""
         return []
 
     def get_path_constraints(self) -> Constraints:
-        """The path constraints: always empty (move_group plans without path constraints)."""
-        return Constraints()
+        """The path constraints every plan and go() keeps to (empty: none)."""
+        return copy.deepcopy(self._goal.path_constraints)
 
     def set_path_constraints(self, value: Constraints | str | None) -> None:
-        """None or an empty Constraints clears them; any real path constraint raises (move_group's planner does
-        not support path constraints: a plan would silently ignore them)."""
-        if value is None or (isinstance(value, Constraints) and not has_constraints(value)):
-            return
-        raise refuse("set_path_constraints", "move_group's planner does not support path constraints")
+        """Path constraints for the following plans: a Constraints with joint constraints (each joint within
+        [position - tolerance_below, position + tolerance_above] along the path) and position constraints (a
+        link's point inside a region); None or an empty Constraints clears them. A name (constraints stored in
+        MoveIt's warehouse) and orientation or visibility constraints raise."""
+        if value is None:
+            self.clear_path_constraints()
+        elif isinstance(value, str):
+            raise refuse(f"set_path_constraints('{value}')", "there is no warehouse database of named constraints")
+        else:
+            self._goal.path_constraints = check_path_constraints(value, "set_path_constraints")
 
     def clear_path_constraints(self) -> None:
-        """No path constraints (the only setting move_group supports)."""
+        """No path constraints."""
+        self._goal.path_constraints = Constraints()
 
     def get_trajectory_constraints(self) -> Constraints:
         """The trajectory constraints: always empty."""
         return Constraints()
 
     def set_trajectory_constraints(self, value: Constraints | None) -> None:
-        """None or an empty Constraints; anything else raises (not supported by move_group)."""
+        """None or an empty Constraints; anything else raises (move_group refuses trajectory constraints)."""
         if value is None or (isinstance(value, Constraints) and not has_constraints(value)):
             return
         raise refuse("set_trajectory_constraints", "move_group's planner does not support trajectory constraints")

@@ -103,9 +103,10 @@ class PlanningOptions(MoveGroupBase):
             )
 
     def set_workspace(self, ws: Sequence[float]) -> None:
-        """[] (no workspace), [minX, minY, maxX, maxY] or [minX, minY, minZ, maxX, maxY, maxZ]. As in MoveIt it bounds
-        only the position of a floating or planar base joint; a robot with a fixed base has none, so it has no
-        effect there. Robots with such joints raise (sixdof does not plan for them)."""
+        """[] (none), [minX, minY, maxX, maxY] (z 0) or [minX, minY, minZ, maxX, maxY, maxZ], in the planning frame,
+        sent as every request's workspace_parameters. As in MoveIt it bounds only the position of a floating or
+        planar base joint; a robot with a fixed base has none, so it does not restrict an arm. Robots with such
+        joints raise (sixdof does not plan for them)."""
         if isinstance(ws, str) or not isinstance(ws, Sequence | np.ndarray) or len(ws) not in (0, 4, 6):
             raise SixdofCommanderError(
                 f"set_workspace needs [], [minX, minY, maxX, maxY] or [minX, minY, minZ, maxX, maxY, maxZ], got {ws!r}"
@@ -117,6 +118,7 @@ class PlanningOptions(MoveGroupBase):
         mobile = [j.name for j in self._urdf.joints.values() if j.type in ("floating", "planar")]
         if values and mobile:
             raise refuse("set_workspace", f"the robot's base joints {mobile} are not planned by sixdof")
+        self._goal.set_workspace(values)
 
     def set_support_surface_name(self, value: str) -> None:
         """The support surface of pick/place (MoveIt uses it only there). Stored and reported by

@@ -2,20 +2,18 @@
 
 from __future__ import annotations
 
-import queue
-import threading
 from collections.abc import Sequence
 
 import rospkg
 import rospy
 from geometry_msgs.msg import Pose
+from moveit_msgs.msg import AttachedCollisionObject, CollisionObject, MoveItErrorCodes, PlanningSceneComponents
+from moveit_msgs.msg import PlanningScene as SceneMsg
+from moveit_msgs.srv import ApplyPlanningScene, GetPlanningScene, GetPlanningSceneRequest
 from shape_msgs.msg import SolidPrimitive
 
-from sixdof_msgs.msg import AttachedCollisionObject, CollisionObject, MoveItErrorCodes
-from sixdof_msgs.msg import PlanningScene as SceneMsg
-from sixdof_msgs.srv import ApplyPlanningScene, GetPlanningScene
-
 from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, load_robot_model, require_node, resolve
+from .error_reports import SUCCESS, CallError, ErrorReports
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_positive, pose_stamped_from_target
 from .mesh import load_stl
@@ -119,13 +117,21 @@ def scene_diff(
     return diff
 
 
+# The parts of the scene the queries need (GetPlanningScene's components, as MoveIt's PlanningSceneInterface asks).
+WORLD_NAMES = PlanningSceneComponents.WORLD_OBJECT_NAMES
+WORLD_GEOMETRY = PlanningSceneComponents.WORLD_OBJECT_GEOMETRY
+ATTACHED = PlanningSceneComponents.ROBOT_STATE_ATTACHED_OBJECTS
+
+
 class PlanningScene:
-    """The move_group node's planning scene, through its apply_planning_scene/get_planning_scene services.
+    """The move_group node's planning scene: changes through its apply_planning_scene service or its planning_scene
+    topic, queries through get_planning_scene.
 
     Poses are PoseStamped (or anything set_pose_target accepts); an empty frame means the planning frame.
-    Synchronous (the default): every change returns True when the node applied it. Asynchronous: changes are
-    queued and applied in order by a background thread; they return True once queued, and a refused change is
-    logged with its error (last_error).
+    Synchronous (the default): every change is applied through the service and returns True when the node
+    applied it (last_error says why not). Asynchronous: changes are published as planning-scene diffs on
+    `planning_scene`, as MoveIt's C++ PlanningSceneInterface does (one topic, so they apply in order), and return
+    True at once; a change move_group refuses is logged here from its error report (and kept in last_error).
     """
 
     def __init__(
@@ -139,43 +145,37 @@ class PlanningScene:
         waiter = ServerWaiter(wait_for_servers)
         for name in ("apply_planning_scene", "get_planning_scene", "get_robot_model"):
             waiter.service(resolve(ns, name))
+        self._synchronous = bool(synchronous)
+        self._publisher = None
+        if not self._synchronous:
+            self._publisher = rospy.Publisher(resolve(ns, "planning_scene"), SceneMsg, queue_size=100)
+            waiter.subscriber(self._publisher)
         waiter.check("PlanningScene")
         self._urdf, self._srdf = load_robot_model(ns, robot_description, wait_for_servers)
         self._planning_frame = self._srdf.virtual_joint_parent or self._urdf.root_link
         self._apply = rospy.ServiceProxy(resolve(ns, "apply_planning_scene"), ApplyPlanningScene)
         self._get = rospy.ServiceProxy(resolve(ns, "get_planning_scene"), GetPlanningScene)
-        self.last_error = MoveItErrorCodes()
-        self._synchronous = bool(synchronous)
-        self._queue: queue.Queue[SceneMsg] = queue.Queue()
-        self._worker: threading.Thread | None = None
+        self.last_error: CallError = SUCCESS
+        self._reports = ErrorReports(ns)
+        if self._publisher is not None:
+            self._reports.listen(self._publisher.resolved_name, self._refused)
 
     # Applying changes --------------------------------------------------------------------------------
-    def _call_apply(self, diff: SceneMsg) -> bool:
-        try:
-            response = call_service(self._apply, diff, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            self.last_error = MoveItErrorCodes(val=MoveItErrorCodes.COMMUNICATION_FAILURE, message=str(err))
-            return False
-        self.last_error = response.error_code
-        return bool(response.success)
+    def _refused(self, error: CallError) -> None:
+        self.last_error = error
+        rospy.logerr(f"PlanningScene (asynchronous): move_group refused a change: {error}")
 
-    def _work(self) -> None:
-        while not rospy.is_shutdown():
-            try:
-                diff = self._queue.get(timeout=0.5)
-            except queue.Empty:
-                continue
-            if not self._call_apply(diff):
-                rospy.logerr(f"PlanningScene (asynchronous): a change was refused: {self.last_error.message}")
-            self._queue.task_done()
+    def _call_apply(self, diff: SceneMsg) -> bool:
+        # ApplyPlanningScene answers only success; the code and the words come with the error report.
+        _, self.last_error = self._reports.call(
+            self._apply, diff, code=lambda r: MoveItErrorCodes.SUCCESS if r.success else 0
+        )
+        return self.last_error.val == MoveItErrorCodes.SUCCESS
 
     def _submit(self, diff: SceneMsg) -> bool:
-        if self._synchronous:
+        if self._publisher is None:
             return self._call_apply(diff)
-        if self._worker is None:
-            self._worker = threading.Thread(target=self._work, name="planning_scene_updates", daemon=True)
-            self._worker.start()
-        self._queue.put(diff)
+        self._publisher.publish(diff)
         return True
 
     def _apply_diff(
@@ -186,7 +186,7 @@ class PlanningScene:
         return self._submit(scene_diff(world_objects, attached))
 
     def apply_planning_scene(self, planning_scene_message: SceneMsg) -> bool:
-        """Apply a PlanningScene message (objects only: the robot's joints follow joint_states); True if applied."""
+        """Apply a PlanningScene message through the service (in both modes, as MoveIt's); True if applied."""
         if not isinstance(planning_scene_message, SceneMsg):
             raise SixdofCommanderError(
                 f"apply_planning_scene needs a PlanningScene message, got {type(planning_scene_message).__name__}"
@@ -316,27 +316,37 @@ class PlanningScene:
             return self.detach_object("")
         if link not in self._urdf.links:
             raise SixdofCommanderError(f"link '{link}' is not a link of the robot")
-        names = [a.object.id for a in self._scene().robot_state.attached_collision_objects if a.link_name == link]
-        return self._apply_diff(attached=[detach_request(n) for n in names])
+        attached = self._scene(ATTACHED).robot_state.attached_collision_objects
+        return self._apply_diff(attached=[detach_request(a.object.id) for a in attached if a.link_name == link])
 
     def clear(self) -> bool:
-        """Remove every attached and world object."""
-        detached = self.remove_attached_object()
-        if not self._synchronous:
-            self._queue.join()
-        return self.remove_world_object() and detached
+        """Remove every attached and world object: detach them all, then remove them with the world's objects
+        (two diffs, applied in this order in both modes)."""
+        names = self.get_known_object_names() + self.get_attached_object_names()
+        detached = self.detach_object("")
+        removed = self._apply_diff(world_objects=[removal(n, self._planning_frame) for n in names])
+        return detached and removed
 
     # Queries -----------------------------------------------------------------------------------------
-    def _scene(self) -> SceneMsg:
+    def _scene(self, components: int) -> SceneMsg:
+        """The parts `components` (PlanningSceneComponents flags) of move_group's scene."""
+        request = GetPlanningSceneRequest()
+        request.components.components = components
         try:
-            return call_service(self._get, GetPlanningScene._request_class(), SERVICE_TIMEOUT).scene
+            return call_service(self._get, request, SERVICE_TIMEOUT).scene
         except (rospy.ServiceException, rospy.ROSException) as err:
             raise SixdofCommanderError(f"get_planning_scene call failed: {err}") from err
 
+    def _world(self, with_type: bool = False) -> list[CollisionObject]:
+        """The world's objects with their geometry; with_type: only those with a type (`type.key` set)."""
+        objects = self._scene(WORLD_GEOMETRY).world.collision_objects
+        return [obj for obj in objects if obj.type.key] if with_type else list(objects)
+
     def get_known_object_names(self, with_type: bool = False) -> list[str]:
-        """Ids of the world (not attached) objects. with_type: only objects with a recognised type, which
-        sixdof's collision objects never have (no object recognition), so none."""
-        return [] if with_type else [obj.id for obj in self._scene().world.collision_objects]
+        """Ids of the world (not attached) objects; with_type: only those with a recognised type (`type.key`)."""
+        if with_type:
+            return [obj.id for obj in self._world(with_type=True)]
+        return [obj.id for obj in self._scene(WORLD_NAMES).world.collision_objects]
 
     def get_known_object_names_in_roi(
         self,
@@ -348,12 +358,11 @@ class PlanningScene:
         maxz: float,
         with_type: bool = False,
     ) -> list[str]:
-        """Ids of world objects all of whose shapes' origins lie in the box (planning frame), as MoveIt's."""
+        """Ids of world objects all of whose shapes' origins lie in the box (planning frame), as MoveIt's;
+        with_type: only those with a recognised type."""
         bounds = [check_number(v, f"ROI bound {i}") for i, v in enumerate((minx, miny, minz, maxx, maxy, maxz))]
-        if with_type:
-            return []
         names = []
-        for obj in self._scene().world.collision_objects:
+        for obj in self._world(with_type):
             origin = matrix_from_pose(obj.pose)
             shapes = list(obj.primitive_poses) + list(obj.mesh_poses)
             inside = bool(shapes)
@@ -366,25 +375,24 @@ class PlanningScene:
 
     def get_attached_object_names(self) -> list[str]:
         """Ids of the objects attached to the robot."""
-        return [a.object.id for a in self._scene().robot_state.attached_collision_objects]
+        return [a.object.id for a in self._scene(ATTACHED).robot_state.attached_collision_objects]
 
     def get_object_poses(self, object_ids: Sequence[str] | None = None) -> dict[str, Pose]:
         """Poses of world objects (all when object_ids is None), by id; unknown ids are left out, as in MoveIt."""
-        objects = self._scene().world.collision_objects
         wanted = None if object_ids is None else set(object_ids)
-        return {obj.id: obj.pose for obj in objects if wanted is None or obj.id in wanted}
+        return {obj.id: obj.pose for obj in self._world() if wanted is None or obj.id in wanted}
 
     def get_objects(self, object_ids: Sequence[str] | None = None) -> dict[str, CollisionObject]:
         """World objects by id (all when object_ids is empty or None)."""
         wanted = set(object_ids) if object_ids else None
-        return {o.id: o for o in self._scene().world.collision_objects if wanted is None or o.id in wanted}
+        return {o.id: o for o in self._world() if wanted is None or o.id in wanted}
 
     def get_attached_objects(
         self, object_ids: Sequence[str] | None = None
     ) -> dict[str, AttachedCollisionObject]:
         """Attached objects by id (all when object_ids is empty or None)."""
         wanted = set(object_ids) if object_ids else None
-        attached = self._scene().robot_state.attached_collision_objects
+        attached = self._scene(ATTACHED).robot_state.attached_collision_objects
         return {a.object.id: a for a in attached if wanted is None or a.object.id in wanted}
 
 

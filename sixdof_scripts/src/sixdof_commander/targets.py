@@ -6,14 +6,11 @@ from __future__ import annotations
 import numbers
 from collections.abc import Mapping, Sequence
 
-import rospy
 from geometry_msgs.msg import Pose, PoseStamped
+from moveit_msgs.msg import MoveItErrorCodes, RobotState
+from moveit_msgs.srv import GetPositionIK
 from sensor_msgs.msg import JointState
 
-from sixdof_msgs.msg import MoveItErrorCodes, RobotState
-from sixdof_msgs.srv import GetPositionIK
-
-from ._ros import SERVICE_TIMEOUT, call_service
 from .exceptions import SixdofCommanderError
 from .goals import check_number, pose_stamped_from_target
 from .move_group_base import MoveGroupBase, refuse
@@ -146,16 +143,13 @@ class Targets(MoveGroupBase):
         request.ik_request.robot_state.is_diff = True
         request.ik_request.ik_link_name = link
         request.ik_request.pose_stamped = pose_stamped_from_target(pose, self._goal.pose_reference_frame)
-        try:
-            response = call_service(self._ik_service, request, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"set_joint_value_target: compute_ik call failed: {err}") from err
-        if response.error_code.val != MoveItErrorCodes.SUCCESS:
+        response, outcome = self._reports.call(self._ik_service, request)
+        if response is None:
+            raise SixdofCommanderError(f"set_joint_value_target: compute_ik call failed: {outcome.message}")
+        if outcome.val != MoveItErrorCodes.SUCCESS:
             # An exact solution is also the best approximate one; the solvers have no approximate mode beyond it.
             hint = " (approximate IK: the solvers return exact solutions only)" if approx else ""
-            raise SixdofCommanderError(
-                f"set_joint_value_target: no IK solution for link '{link}': {response.error_code.message}{hint}"
-            )
+            raise SixdofCommanderError(f"set_joint_value_target: no IK solution for link '{link}': {outcome}{hint}")
         solution = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=False))
         return {name: solution[name] for name in self._group.joint_names if name in solution}
 

@@ -16,12 +16,11 @@ from pathlib import Path
 
 import rospy
 import rostest
+from moveit_msgs.msg import MoveItErrorCodes, RobotTrajectory
+from moveit_msgs.srv import GetPositionFK
 from sixdof_commander import Gripper, MoveGroup, SixdofCommanderError
 from sixdof_commander._ros import call_service
 from trajectory_msgs.msg import JointTrajectoryPoint
-
-from sixdof_msgs.msg import MoveItErrorCodes, RobotTrajectory
-from sixdof_msgs.srv import GetPositionFK
 
 STAND_IN = Path(__file__).resolve().parent / "stand_in_move_group.py"
 HANG_GUARD = 60.0
@@ -108,7 +107,8 @@ class CommanderServerDeath(unittest.TestCase):
         success, trajectory, _, code = outcome["value"]
         self.assertFalse(success)
         self.assertEqual(code.val, MoveItErrorCodes.COMMUNICATION_FAILURE)
-        self.assertIn("plan_kinematic_path", code.message)
+        self.assertEqual(arm.last_error.val, MoveItErrorCodes.COMMUNICATION_FAILURE)
+        self.assertIn("plan_kinematic_path", arm.last_error.message)
         # The node is gone: the next call fails at once instead of waiting.
         success, _, _, code = arm.plan()
         self.assertFalse(success)

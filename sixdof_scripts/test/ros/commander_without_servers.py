@@ -1,18 +1,23 @@
 #!/usr/bin/env python3
-"""rostest: the commander's errors when its servers or parameters are missing, and joint_states reading."""
+"""rostest: the commander's errors when its servers or parameters are missing, joint_states reading, and how it
+matches move_group's error reports to its calls."""
 
 import threading
+import time
 import unittest
 
 import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
+from control_msgs.msg import GripperCommandAction, GripperCommandFeedback, GripperCommandGoal
+from moveit_msgs.msg import MoveItErrorCodes
 from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, PlanningScene, SixdofCommanderError
 from sixdof_commander._ros import ActionClient, JointStateMonitor
+from sixdof_commander.error_reports import ErrorReports
 
-from sixdof_msgs.msg import GripperCommandAction, GripperCommandFeedback, GripperCommandGoal
+from sixdof_msgs.msg import ErrorReport
 
 
 class _FastServerHandle:
@@ -69,6 +74,7 @@ class CommanderWithoutServers(unittest.TestCase):
             "service '/get_planning_scene'",
             "service '/apply_planning_scene'",
             "service '/get_robot_model'",
+            "service '/retime_trajectory'",
         ):
             self.assertIn(name, message)
         self.assertIn("not available after 0.5 s", message)
@@ -144,6 +150,46 @@ class CommanderWithoutServers(unittest.TestCase):
             monitor.positions(["joint1", "joint9"], timeout=0.2)
         state = monitor.joint_state()
         self.assertEqual(dict(zip(state.name, state.position, strict=True)), {"joint1": 0.25, "joint2": -0.5})
+
+    def test_error_reports_are_matched_by_node_and_interface_in_order(self):
+        publisher = rospy.Publisher("move_group/error_reports", ErrorReport, queue_size=10)
+        reports = ErrorReports()  # waits for the connection (its side of it)
+        deadline = time.monotonic() + 10.0
+        while publisher.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        self.assertEqual(publisher.get_num_connections(), 1)
+        me = rospy.get_name()
+
+        def report(caller, interface, message, val=MoveItErrorCodes.FAILURE):
+            code = MoveItErrorCodes(val=val)
+            publisher.publish(ErrorReport(caller_id=caller, interface=interface, message=message, error_code=code))
+
+        report("/someone_else", "/compute_ik", "not mine")
+        report(me, "/compute_ik", "first", MoveItErrorCodes.NO_IK_SOLUTION)
+        report(me, "/plan_kinematic_path", "a plan's")
+        report(me, "/compute_ik", "second")
+        self.assertEqual(reports.take("compute_ik", timeout=10.0).message, "first")
+        self.assertEqual(reports.take("/compute_ik", timeout=10.0).message, "second")
+        self.assertIsNone(reports.take("compute_ik", timeout=0.2))
+        # The answer's code wins; the report's words come with it.
+        failure = reports.failure("plan_kinematic_path", MoveItErrorCodes.PLANNING_FAILED)
+        self.assertEqual(str(failure), "PLANNING_FAILED (-1): a plan's")
+        # No report: the code's name alone (after the wait); an answer without a code takes FAILURE.
+        self.assertEqual(str(reports.failure("compute_fk", 0)), "FAILURE (99999)")
+        # Reports nobody took are dropped before the next call to that interface.
+        report(me, "/compute_fk", "stale")
+        report(me, "/compute_ik", "marker")  # one connection keeps the order: once it is here, so is the stale one
+        self.assertEqual(reports.take("compute_ik", timeout=10.0).message, "marker")
+        reports.forget("compute_fk")
+        self.assertIsNone(reports.take("compute_fk", timeout=0.2))
+        # A topic's refusals go to its listener.
+        heard = []
+        reports.listen("planning_scene", heard.append)
+        report(me, "/planning_scene", "object 'x': planes are not supported", MoveItErrorCodes.INVALID_OBJECT_NAME)
+        deadline = time.monotonic() + 10.0
+        while not heard and time.monotonic() < deadline:
+            time.sleep(0.01)
+        self.assertEqual([str(e) for e in heard], ["INVALID_OBJECT_NAME (-19): object 'x': planes are not supported"])
 
 
 if __name__ == "__main__":

@@ -14,14 +14,13 @@ import numpy as np
 import rospy
 import rostest
 from moveit_commander import RobotCommander
+from moveit_msgs.msg import RobotState
+from moveit_msgs.srv import GetPositionFK
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import MoveGroup
 from sixdof_commander._ros import query_robot_model
 from sixdof_commander.robot_model import resolve_group
 from sixdof_commander.transforms import matrix_from_pose
-
-from sixdof_msgs.msg import RobotState
-from sixdof_msgs.srv import GetPositionFK
 
 LINKS = ["mount", "base_link", "turntable", "carriage", "head", "sensor_frame", "left_finger", "right_finger"]
 
@@ -73,7 +72,7 @@ class RobotModelQuery(unittest.TestCase):
             state = RobotState(is_diff=False)
             state.joint_state.name, state.joint_state.position = [*names, "finger_left"], [*values, 0.0]
             response = fk(fk_link_names=["head"], robot_state=state)
-            self.assertEqual(response.error_code.val, response.error_code.SUCCESS, response.error_code.message)
+            self.assertEqual(response.error_code.val, response.error_code.SUCCESS)
             return matrix_from_pose(response.pose_stamped[0].pose)
 
         step = 1e-6

@@ -8,16 +8,11 @@ import threading
 
 import actionlib
 import rospy
+from control_msgs.msg import GripperCommandAction
+from moveit_msgs.msg import ExecuteTrajectoryAction, MoveGroupAction
+from moveit_msgs.srv import ApplyPlanningScene, GetCartesianPath, GetMotionPlan, GetPlanningScene, GetPositionFK
 
-from sixdof_msgs.msg import ExecuteTrajectoryAction, GripperCommandAction, MoveGroupAction
-from sixdof_msgs.srv import (
-    ApplyPlanningScene,
-    GetCartesianPath,
-    GetMotionPlan,
-    GetPlanningScene,
-    GetPositionFK,
-    GetRobotModel,
-)
+from sixdof_msgs.srv import GetRobotModel, RetimeTrajectory
 
 MODEL_SOURCE = "/model_source/get_robot_model"
 
@@ -50,6 +45,7 @@ def main() -> None:
             ("compute_cartesian_path", GetCartesianPath),
             ("get_planning_scene", GetPlanningScene),
             ("apply_planning_scene", ApplyPlanningScene),
+            ("retime_trajectory", RetimeTrajectory),
         )
     ]
     rospy.wait_for_service(MODEL_SOURCE, timeout=60.0)

@@ -4,6 +4,7 @@ import math
 
 import pytest
 from geometry_msgs.msg import Pose, Vector3
+from moveit_msgs.msg import CollisionObject
 from shape_msgs.msg import Mesh, SolidPrimitive
 
 from sixdof_bringup.mirror import (
@@ -14,7 +15,7 @@ from sixdof_bringup.mirror import (
     rotation_angle,
     template_from_sim_object,
 )
-from sixdof_msgs.msg import CollisionObject, SimObject
+from sixdof_msgs.msg import SimObject
 
 FINGERS = ["link6", "palm", "finger1", "finger2"]
 

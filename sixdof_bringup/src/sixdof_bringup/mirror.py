@@ -13,9 +13,10 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 from geometry_msgs.msg import Pose
+from moveit_msgs.msg import AttachedCollisionObject, CollisionObject
 from shape_msgs.msg import Mesh, SolidPrimitive
 
-from sixdof_msgs.msg import AttachedCollisionObject, CollisionObject, SimObject
+from sixdof_msgs.msg import SimObject
 
 
 @dataclass(frozen=True)

@@ -2,8 +2,9 @@
 
 The robot model comes from move_group's `get_robot_model` (sixdof_commander's query_robot_model: the core's
 RobotModel is the project's only URDF/SRDF reader), the scene is read and changed through move_group's
-get_planning_scene / apply_planning_scene, and every wait for move_group is bounded: a node started without
-it exits with one line naming the missing services instead of waiting forever.
+get_planning_scene (the world objects and the attached ones) / apply_planning_scene (a refusal is logged in the
+words of move_group's error report), and every wait for move_group is bounded: a node started without it exits
+with one line naming the missing services instead of waiting forever.
 """
 
 from __future__ import annotations
@@ -16,14 +17,15 @@ from typing import Protocol
 
 import rospy
 import yaml
+from moveit_msgs.msg import MoveItErrorCodes, PlanningScene, PlanningSceneComponents
+from moveit_msgs.srv import ApplyPlanningScene, GetPlanningScene, GetPlanningSceneRequest
 from sixdof_commander import SixdofCommanderError
 from sixdof_commander._ros import ServerWaiter, query_robot_model
+from sixdof_commander.error_reports import ErrorReports
 from sixdof_commander.planning_scene import default_touch_links
 from sixdof_commander.robot_model import RobotDescription, SemanticDescription
 
 from sixdof_bringup.mirror import Updates
-from sixdof_msgs.msg import PlanningScene
-from sixdof_msgs.srv import ApplyPlanningScene, GetPlanningScene
 
 # Default of the nodes' ~wait_for_move_group: they start beside move_group, which may load for a while on a
 # loaded machine; the bound only turns "move_group never came" into an error instead of a silent hang.
@@ -80,10 +82,16 @@ class MoveGroupScene:
         self.robot = SceneRobot(urdf=urdf, srdf=srdf, planning_frame=srdf.virtual_joint_parent or urdf.root_link)
         self._get_scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
         self._apply = rospy.ServiceProxy("apply_planning_scene", ApplyPlanningScene)
+        self._reports = ErrorReports()
 
     def scene(self) -> PlanningScene:
-        """The current planning scene (get_planning_scene)."""
-        return self._get_scene().scene
+        """The world objects (with their poses and shapes) and the attached objects of the current planning scene
+        (get_planning_scene)."""
+        request = GetPlanningSceneRequest()
+        request.components.components = (
+            PlanningSceneComponents.WORLD_OBJECT_GEOMETRY | PlanningSceneComponents.ROBOT_STATE_ATTACHED_OBJECTS
+        )
+        return self._get_scene(request).scene
 
     def apply(self, updates: Updates) -> None:
         """Sends a SceneMirror's updates as one planning-scene diff; a refusal is logged (the next cycle re-reads
@@ -94,9 +102,13 @@ class MoveGroupScene:
         diff.robot_state.is_diff = True
         diff.world.collision_objects = updates.world_objects
         diff.robot_state.attached_collision_objects = updates.attached_objects
-        response = self._apply(diff)
-        if not response.success:
-            rospy.logwarn("%s: apply_planning_scene failed: %s", self.who, response.error_code.message)
+        response, outcome = self._reports.call(
+            self._apply, diff, code=lambda r: MoveItErrorCodes.SUCCESS if r.success else 0
+        )
+        if response is None:
+            raise rospy.ServiceException(outcome.message)
+        if outcome.val != MoveItErrorCodes.SUCCESS:
+            rospy.logwarn("%s: apply_planning_scene failed: %s", self.who, outcome)
 
 
 class CyclingNode(Protocol):

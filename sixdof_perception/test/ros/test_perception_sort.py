@@ -12,12 +12,14 @@ import unittest
 
 import rospy
 import rostest
+from moveit_msgs.msg import PlanningSceneComponents
+from moveit_msgs.srv import GetPlanningScene, GetPlanningSceneRequest
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander.sorting import color_class
 from std_msgs.msg import ColorRGBA
 
 from sixdof_msgs.msg import DetectedObjectArray, ObjectStates, SimObject
-from sixdof_msgs.srv import DeleteObject, GetObjectState, GetPlanningScene, SpawnObject
+from sixdof_msgs.srv import DeleteObject, GetObjectState, SpawnObject
 
 # Hang guards only: the tests assert outcomes, never durations.
 STARTUP_TIMEOUT = 240.0
@@ -48,7 +50,9 @@ def frames(count: int, after: rospy.Time) -> list[DetectedObjectArray]:
 
 
 def scene_ids() -> set:
-    scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)().scene
+    request = GetPlanningSceneRequest()
+    request.components.components = PlanningSceneComponents.WORLD_OBJECT_NAMES
+    scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)(request).scene
     return {o.id for o in scene.world.collision_objects}
 
 

@@ -32,8 +32,8 @@ from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, SixdofCommanderError
 from urdf_parser_py.urdf import URDF
 
-from sixdof_msgs.msg import RobotState
-from sixdof_msgs.srv import GetPositionFK, GetStateValidity
+from moveit_msgs.msg import RobotState
+from moveit_msgs.srv import GetPositionFK, GetStateValidity
 
 REPO = Path(__file__).resolve().parents[2]
 FIXTURES = REPO / "test" / "robots"
@@ -187,7 +187,7 @@ def fk(link: str, names: list[str], positions: list[float]) -> PoseStamped:
     state.joint_state.name = list(names)
     state.joint_state.position = list(positions)
     response = rospy.ServiceProxy("compute_fk", GetPositionFK)(fk_link_names=[link], robot_state=state)
-    assert response.error_code.val == response.error_code.SUCCESS, response.error_code.message
+    assert response.error_code.val == response.error_code.SUCCESS, f"compute_fk of '{link}': {response.error_code.val}"
     return response.pose_stamped[0]
 
 

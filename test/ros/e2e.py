@@ -10,9 +10,11 @@ import unittest
 import numpy as np
 import rospy
 import tf2_ros
+from moveit_msgs.msg import PlanningSceneComponents
+from moveit_msgs.srv import GetPlanningScene, GetPlanningSceneRequest
 from sensor_msgs.msg import JointState
 
-from sixdof_msgs.srv import GetObjectState, GetPlanningScene
+from sixdof_msgs.srv import GetObjectState
 
 # Hang guard only (the tests assert results, never durations): the stack is up in seconds when healthy.
 STARTUP_TIMEOUT = 240.0
@@ -33,17 +35,24 @@ def wait_for_stack(object_name: str = "red_cube") -> None:
     """Until move_group answers and the scene mirror has put object_name into the planning scene."""
     rospy.wait_for_service("get_planning_scene", timeout=STARTUP_TIMEOUT)
     rospy.wait_for_service("sixdof_sim/get_object_state", timeout=STARTUP_TIMEOUT)
-    scene = rospy.ServiceProxy("get_planning_scene", GetPlanningScene)
     deadline = time.monotonic() + STARTUP_TIMEOUT
     while time.monotonic() < deadline:
-        if object_name in [o.id for o in scene().scene.world.collision_objects]:
+        names = planning_scene(PlanningSceneComponents.WORLD_OBJECT_NAMES).world.collision_objects
+        if object_name in [o.id for o in names]:
             return
         time.sleep(0.1)
     raise AssertionError(f"'{object_name}' never appeared in the planning scene")
 
 
-def planning_scene():
-    return rospy.ServiceProxy("get_planning_scene", GetPlanningScene)().scene
+# The world objects (poses and shapes) and the attached objects.
+OBJECTS = PlanningSceneComponents.WORLD_OBJECT_GEOMETRY | PlanningSceneComponents.ROBOT_STATE_ATTACHED_OBJECTS
+
+
+def planning_scene(components: int = OBJECTS):
+    """These parts (PlanningSceneComponents flags) of move_group's planning scene."""
+    request = GetPlanningSceneRequest()
+    request.components.components = components
+    return rospy.ServiceProxy("get_planning_scene", GetPlanningScene)(request).scene
 
 
 def object_state(name: str):

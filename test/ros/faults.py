@@ -17,10 +17,9 @@ import rosnode
 import rospy
 from actionlib import CommState
 from e2e import wait_for_stack
+from moveit_msgs.msg import ExecuteTrajectoryAction
+from moveit_msgs.srv import GetMotionPlan
 from sixdof_commander import MoveGroup
-
-from sixdof_msgs.msg import ExecuteTrajectoryAction
-from sixdof_msgs.srv import GetMotionPlan
 
 _POOL = concurrent.futures.ThreadPoolExecutor(max_workers=4)
 

@@ -24,8 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-
-from sixdof_msgs.msg import MoveItErrorCodes
+from moveit_msgs.msg import MoveItErrorCodes
 
 HERE = Path(__file__).resolve().parent
 DROP_SECONDS = 5.0

@@ -16,14 +16,9 @@ import rospy
 import rostest
 from e2e import case
 from faults import bounded_call, connect, node_pid, signal_node, wait_for_action, wait_until
+from moveit_msgs.msg import ExecuteTrajectoryGoal, MotionPlanRequest, MoveItErrorCodes
 from sensor_msgs.msg import JointState
-
-from sixdof_msgs.msg import (
-    Constraints,
-    ExecuteTrajectoryGoal,
-    MotionPlanRequest,
-    MoveItErrorCodes,
-)
+from sixdof_commander.goals import joint_constraints
 
 SIM = "/sixdof_sim"
 MOVE_GROUP = "/move_group"
@@ -61,21 +56,25 @@ class Faults(unittest.TestCase):
                 return math.dist([values[j] for j in current], list(current.values()))
 
             target = max(self.group.get_named_targets(), key=distance)
-        request = MotionPlanRequest(group_name=GROUP, goal_constraints=[Constraints(name=target)])
+        # The named state as joint constraints, as MoveGroupInterface sends it.
+        goal = joint_constraints(self.group.get_named_target_values(target), 1e-4)
+        request = MotionPlanRequest(group_name=GROUP, goal_constraints=[goal])
+        request.start_state.is_diff = True
         request.max_velocity_scaling_factor = VELOCITY_SCALING
         request.max_acceleration_scaling_factor = VELOCITY_SCALING
         response = bounded_call(self.plan_service, request, timeout=CALL_TIMEOUT, what="plan_kinematic_path")
         result = response.motion_plan_response
-        self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS, result.error_code.message)
+        self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS, f"planning to '{target}'")
         points = result.trajectory.joint_trajectory.points
         return result.trajectory, points[-1].time_from_start.to_sec()
 
     def allowed(self, expected: float) -> float:
         return expected * self.scaling + self.margin
 
-    def execute_with_fault(self, sig: signal.Signals) -> tuple[float, object, float, int]:
+    def execute_with_fault(self, sig: signal.Signals) -> tuple[float, object, str, float, int]:
         """Starts a slow motion, sends sig to the simulator FAULT_AFTER s into it and waits for the execution's
-        result: (wall seconds from the goal to the result, result, allowed duration, the simulator's pid)."""
+        result: (wall seconds from the goal to the result, result, its status text, allowed duration, the
+        simulator's pid)."""
         trajectory, expected = self.plan()
         allowed = self.allowed(expected)
         self.assertGreater(expected, FAULT_AFTER + 1.0, "the motion must outlast the fault's delay")
@@ -86,14 +85,14 @@ class Faults(unittest.TestCase):
         # Hang guard far above the bound: the bound itself is asserted on the measured time below.
         wait_for_action(self.execute, allowed + 60.0, "execute_trajectory result after the fault")
         elapsed = time.monotonic() - start
+        text = self.execute.get_goal_status_text()
         rospy.loginfo("%s %.1f s into a %.1f s motion: execution ended after %.2f s (bound %.2f s): %s",
-                      sig.name, FAULT_AFTER, expected, elapsed, allowed, self.execute.get_result().error_code.message)
-        return elapsed, self.execute.get_result(), allowed, pid
+                      sig.name, FAULT_AFTER, expected, elapsed, allowed, text)
+        return elapsed, self.execute.get_result(), text, allowed, pid
 
-    def assert_failed_in_bound(self, elapsed, result, allowed, causes):
+    def assert_failed_in_bound(self, elapsed, result, text, allowed, causes):
         self.assertIn(result.error_code.val, (MoveItErrorCodes.CONTROL_FAILED, MoveItErrorCodes.TIMED_OUT))
-        self.assertTrue(any(c in result.error_code.message for c in causes),
-                        f"'{result.error_code.message}' names none of {causes}")
+        self.assertTrue(any(c in text for c in causes), f"'{text}' names none of {causes}")
         self.assertLessEqual(elapsed, allowed + DELIVERY_SLACK, "the execution outlived MoveIt's bound")
 
     def move_group_state_is_current(self) -> bool:
@@ -112,7 +111,7 @@ class Faults(unittest.TestCase):
         self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=trajectory))
         wait_for_action(self.execute, self.allowed(expected) + 60.0, "execute_trajectory after recovery")
         result = self.execute.get_result()
-        self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS, result.error_code.message)
+        self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS, self.execute.get_goal_status_text())
 
     def assert_move_group_serves(self):
         """move_group is the same process and plans (from the last known state) while the simulator is silent."""
@@ -120,10 +119,12 @@ class Faults(unittest.TestCase):
         self.plan()
 
     def test_1_stopped_simulator_ends_the_execution_and_move_group_keeps_answering(self):
-        elapsed, result, allowed, pid = self.execute_with_fault(signal.SIGSTOP)
+        elapsed, result, text, allowed, pid = self.execute_with_fault(signal.SIGSTOP)
         try:
             with case(fault="SIGSTOP"):
-                self.assert_failed_in_bound(elapsed, result, allowed, ("/clock has not advanced", "joint_states stale"))
+                self.assert_failed_in_bound(
+                    elapsed, result, text, allowed, ("/clock has not advanced", "joint_states stale")
+                )
             with case(fault="SIGSTOP", check="planning while stopped"):
                 self.assert_move_group_serves()
             with case(fault="SIGSTOP", check="executing while stopped"):
@@ -131,19 +132,19 @@ class Faults(unittest.TestCase):
                 trajectory, expected = self.plan()
                 self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=trajectory))
                 wait_for_action(self.execute, CALL_TIMEOUT, "execute_trajectory while stopped")
-                error = self.execute.get_result().error_code
-                self.assertEqual(error.val, MoveItErrorCodes.CONTROL_FAILED, error.message)
-                self.assertIn("no current robot state: joint_states stale for", error.message)
+                error, text = self.execute.get_result().error_code, self.execute.get_goal_status_text()
+                self.assertEqual(error.val, MoveItErrorCodes.CONTROL_FAILED, text)
+                self.assertIn("no current robot state: joint_states stale for", text)
         finally:
             os.kill(pid, signal.SIGCONT)
         with case(fault="SIGSTOP", check="next motion"):
             self.assert_next_motion_works()
 
     def test_2_killed_simulator_ends_the_execution_and_a_respawned_one_is_picked_up(self):
-        elapsed, result, allowed, pid = self.execute_with_fault(signal.SIGKILL)
+        elapsed, result, text, allowed, pid = self.execute_with_fault(signal.SIGKILL)
         with case(fault="SIGKILL"):
             self.assert_failed_in_bound(
-                elapsed, result, allowed, ("lost", "/clock has not advanced", "joint_states stale")
+                elapsed, result, text, allowed, ("lost", "/clock has not advanced", "joint_states stale")
             )
         with case(fault="SIGKILL", check="planning while dead"):
             self.assert_move_group_serves()

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""Fuzzing (issue 13 item 6): seeded random and malformed requests to every move_group service and action and to
-the simulator's services and controller actions. Values are drawn per field type from the message definitions
-(NaN, inf, huge and tiny numbers, empty, unknown and real names, unknown frames, unnormalised quaternions, empty,
-mismatched and huge arrays, negative and non-monotonic times), most of them starting from a valid request with a
-few fields broken, so that the checks past the first one are reached too. Every request must be answered (a
-service response, an action result) within CALL_TIMEOUT, failures must say why (error code and message), and no
-node may die. The count is printed. ~requests (default in faults_headless.test) sets how many per target; ~seed
-the seed (`make fuzz` runs a bigger count)."""
+"""Fuzzing (issue 13 item 6): seeded random and malformed requests to every move_group service, action and
+subscribed topic and to the simulator's services and controller actions. Values are drawn per field type from
+the message definitions (NaN, inf, huge and tiny numbers, empty, unknown and real names, unknown frames,
+unnormalised quaternions, empty, mismatched and huge arrays, negative and non-monotonic times), most of them
+starting from a valid request with a few fields broken, so that the checks past the first one are reached too.
+Every request must be answered (a service response, an action result) within CALL_TIMEOUT, failures must say why
+where the standard puts the words (move_group's error report for a moveit_msgs service or a refused topic message,
+the goal status text for move_group's actions and gripper_cmd, error_string for FollowJointTrajectory, the
+sixdof_msgs services' own message), and no node may die. The count is printed. ~requests (default in
+faults_headless.test) sets how many per target; ~seed the seed (`make fuzz` runs a bigger count)."""
 
 import io
 import math
@@ -21,39 +23,45 @@ import actionlib
 import genpy
 import rospy
 import rostest
-from e2e import planning_scene, wait_for_stack
-from faults import bounded_call, node_pid, wait_for_action
-from std_srvs.srv import Empty
-
-from sixdof_msgs.msg import (
-    Constraints,
-    ExecuteTrajectoryAction,
-    ExecuteTrajectoryGoal,
+from actionlib_msgs.msg import GoalStatus
+from control_msgs.msg import (
     FollowJointTrajectoryAction,
     FollowJointTrajectoryGoal,
     GripperCommandAction,
     GripperCommandGoal,
+)
+from control_msgs.srv import QueryTrajectoryState
+from e2e import planning_scene, wait_for_stack
+from faults import bounded_call, node_pid, wait_for_action
+from moveit_msgs.msg import (
+    AttachedCollisionObject,
+    CollisionObject,
+    ExecuteTrajectoryAction,
+    ExecuteTrajectoryGoal,
     MotionPlanRequest,
     MoveGroupAction,
     MoveGroupGoal,
     MoveItErrorCodes,
+    PlanningScene,
+    PlanningSceneWorld,
 )
-from sixdof_msgs.srv import (
+from moveit_msgs.srv import (
     ApplyPlanningScene,
-    DeleteObject,
     GetCartesianPath,
     GetMotionPlan,
-    GetObjectState,
     GetPlanningScene,
     GetPositionFK,
     GetPositionIK,
     GetStateValidity,
-    QueryTrajectoryState,
-    SetObjectState,
-    SpawnObject,
-    StepSimulation,
 )
+from sixdof_commander import MoveGroup
+from sixdof_commander.error_reports import ErrorReports
+from sixdof_commander.goals import joint_constraints
+from std_srvs.srv import Empty
 
+from sixdof_msgs.srv import DeleteObject, GetObjectState, SetObjectState, SpawnObject, StepSimulation
+
+TOPICS = ("planning_scene", "collision_object", "attached_collision_object")
 CALL_TIMEOUT = 60.0  # s of wall time: a request unanswered by then hangs (planning alone is bounded by its time)
 GOAL_TIMEOUT = 10.0  # s of wall time after which a goal still running is cancelled
 NODES = ("/move_group", "/sixdof_sim", "/robot_state_publisher", "/scene_mirror")
@@ -154,19 +162,38 @@ def _fields(msg):
 
 
 def explains_failure(response) -> str:
-    """'' when the response is a success or a failure that says why; otherwise what is wrong."""
+    """'' when a sixdof_msgs service's or FollowJointTrajectory's answer is a success or a failure that says why;
+    otherwise what is wrong (move_group's answers are checked by their error reports and status texts)."""
     code = getattr(response, "error_code", None)
     if isinstance(code, int):  # FollowJointTrajectory: 0 is SUCCESSFUL, error_string says why otherwise
         return f"error code {code} without an error_string" if code != 0 and not response.error_string else ""
-    if code is not None:
-        if code.val != MoveItErrorCodes.SUCCESS and not code.message:
-            return f"error code {code.val} without a message"
+    if hasattr(response, "error_message"):  # sixdof_msgs services with moveit_msgs' code and words of their own
+        if code.val != MoveItErrorCodes.SUCCESS and not response.error_message:
+            return f"error code {code.val} without an error_message"
+        return ""
+    if code is not None:  # move_group's action results: their words are the goal's status text (run_action)
         return ""
     if hasattr(response, "success"):
         message = getattr(response, "status_message", getattr(response, "message", None))
         if not response.success and not message:
             return "success false without a message"
     return ""
+
+
+def failed_code(response) -> bool:
+    """A moveit_msgs service's answer with a MoveItErrorCodes other than SUCCESS."""
+    return response.error_code.val != MoveItErrorCodes.SUCCESS
+
+
+# Per moveit_msgs service: which of its answers are failures whose words move_group must report.
+MOVEIT_FAILURES = {
+    "plan_kinematic_path": lambda r: failed_code(r.motion_plan_response),
+    "compute_cartesian_path": failed_code,
+    "compute_fk": failed_code,
+    "compute_ik": failed_code,
+    "get_planning_scene": lambda _r: False,
+    "apply_planning_scene": lambda r: not r.success,
+}
 
 
 class Fuzz(unittest.TestCase):
@@ -183,6 +210,10 @@ class Fuzz(unittest.TestCase):
         names |= set(re.findall(r'<(?:group|group_state)\s+name="([^"]+)"', srdf))
         names |= {o.id for o in planning_scene().world.collision_objects} | {"world"}
         cls.names = sorted(names)
+        cls.reports = ErrorReports()
+        cls.topic_reports = []  # move_group's reports of refused topic messages
+        for topic in TOPICS:
+            cls.reports.listen(topic, cls.topic_reports.append)
 
     def dump(self, target: str, i: int, message) -> str:
         """Writes a request that failed to a file (for replaying it) and names it."""
@@ -199,7 +230,24 @@ class Fuzz(unittest.TestCase):
         for name, pid in self.pids.items():
             self.assertEqual(node_pid(name), pid, f"{name} died or was restarted")
 
-    def run_service(self, name, srv_class, base, rng, count):
+    def problem(self, name, response) -> str:
+        """'' when the answer is a success or says why it failed, where the standard puts the words."""
+        if name == "check_state_validity":
+            # 'Not valid' is an answer, not a failure; a refused request is reported, and then with words.
+            report = self.reports.take(name, timeout=0.2)
+            return "an error report without a message" if report is not None and not report.message else ""
+        if name not in MOVEIT_FAILURES:
+            return explains_failure(response)
+        if not MOVEIT_FAILURES[name](response):
+            return ""
+        report = self.reports.take(name)
+        if report is None:
+            return "a failure without an error report on move_group/error_reports"
+        return "" if report.message else "an error report without a message"
+
+    def run_service(self, name, srv_class, base, rng, count, refusal_is_an_error=False):
+        """refusal_is_an_error: the service refuses a request by failing the call (control_msgs/QueryTrajectoryState,
+        as joint_trajectory_controller): such an error answer counts as answered."""
         proxy = rospy.ServiceProxy(name, srv_class)
         fuzzer = Fuzzer(rng, self.names)
         request_class = srv_class._request_class
@@ -209,11 +257,17 @@ class Fuzz(unittest.TestCase):
                 request = fuzzer.message(request_class)
             else:
                 request = fuzzer.mutate(base, rng.randint(1, 3))
+            self.reports.forget(name)
             try:
                 response = bounded_call(proxy, request, timeout=CALL_TIMEOUT, what=f"{name} request {i}")
-            except (rospy.ServiceException, AssertionError) as exc:
+            except rospy.ServiceException as exc:
+                if refusal_is_an_error and "responded with an error" in str(exc):
+                    answered += 1
+                    continue
                 self.fail(f"{name} request {i}: no response ({exc}): {self.dump(name, i, request)}")
-            problem = explains_failure(response)
+            except AssertionError as exc:
+                self.fail(f"{name} request {i}: no response ({exc}): {self.dump(name, i, request)}")
+            problem = self.problem(name, response)
             if problem:
                 self.fail(f"{name} request {i}: {problem}: {self.dump(name, i, request)}")
             answered += 1
@@ -239,17 +293,43 @@ class Fuzz(unittest.TestCase):
             result = client.get_result()
             self.assertIsNotNone(result, f"{name} goal {i}: no result message")
             problem = explains_failure(result)
+            # move_group's actions and gripper_cmd say why in the goal's status text (set_aborted(result, text));
+            # FollowJointTrajectory in error_string (explains_failure).
+            code = getattr(result, "error_code", None)
+            if hasattr(code, "val"):
+                failed = code.val != MoveItErrorCodes.SUCCESS
+            else:
+                failed = code is None and client.get_state() in (GoalStatus.ABORTED, GoalStatus.REJECTED)
+            if not problem and failed and not client.get_goal_status_text():
+                problem = f"a failure (state {client.get_state()}) without a goal status text"
             if problem:
                 self.fail(f"{name} goal {i}: {problem}: {self.dump(name, i, goal)}")
             answered += 1
         return answered
 
+    def run_topic(self, name, msg_class, base, rng, count):
+        """Publishes random and broken messages on a topic move_group subscribes to; what it refuses it reports,
+        with words (the reports are checked after the run, by the caller)."""
+        publisher = rospy.Publisher(name, msg_class, queue_size=count)
+        deadline = time.monotonic() + 30.0
+        while publisher.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        self.assertGreater(publisher.get_num_connections(), 0, f"nobody subscribes to {name}")
+        fuzzer = Fuzzer(rng, self.names)
+        for i in range(count):
+            publisher.publish(fuzzer.message(msg_class) if i % 4 == 0 else fuzzer.mutate(base, rng.randint(1, 3)))
+            time.sleep(0.01)
+        publisher.unregister()
+        return count
+
     def test_every_request_is_answered_and_no_node_dies(self):
         rng = random.Random(self.seed)
         n = self.requests
         arm = "arm" if "arm" in self.names else self.names[0]
-        valid_plan = MotionPlanRequest(group_name=arm, goal_constraints=[Constraints(name="home pose")],
-                                       allowed_planning_time=1.0)
+        group = MoveGroup(arm, wait_for_servers=60.0)
+        goal = joint_constraints(group.get_named_target_values("home pose"), 1e-4)
+        valid_plan = MotionPlanRequest(group_name=arm, goal_constraints=[goal], allowed_planning_time=1.0)
+        valid_plan.start_state.is_diff = True
         plan = bounded_call(rospy.ServiceProxy("plan_kinematic_path", GetMotionPlan), valid_plan,
                             timeout=CALL_TIMEOUT, what="a valid plan").motion_plan_response
         trajectory = plan.trajectory
@@ -267,12 +347,15 @@ class Fuzz(unittest.TestCase):
             ("sixdof_sim/set_object_state", SetObjectState, SetObjectState._request_class()),
             ("sixdof_sim/delete_object", DeleteObject, DeleteObject._request_class()),
             ("sixdof_sim/step", StepSimulation, StepSimulation._request_class()),
-            ("arm_controller/query_state", QueryTrajectoryState, QueryTrajectoryState._request_class()),
         ]
         start = time.monotonic()
         for name, srv_class, base in services:
             counts[name] = self.run_service(name, srv_class, base, rng, n)
             self.check_nodes()
+        counts["arm_controller/query_state"] = self.run_service(
+            "arm_controller/query_state", QueryTrajectoryState, QueryTrajectoryState._request_class(), rng, n, True
+        )
+        self.check_nodes()
         actions = [
             ("move_group", MoveGroupAction, MoveGroupGoal, MoveGroupGoal(request=valid_plan)),
             ("execute_trajectory", ExecuteTrajectoryAction, ExecuteTrajectoryGoal,
@@ -284,6 +367,21 @@ class Fuzz(unittest.TestCase):
         for name, action_class, goal_class, base in actions:
             counts[name] = self.run_action(name, action_class, goal_class, base, rng, max(n // 4, 1))
             self.check_nodes()
+        box = CollisionObject(id="fuzz_box", operation=CollisionObject.ADD)
+        box.header.frame_id = "world"
+        diff = PlanningScene(is_diff=True, world=PlanningSceneWorld(collision_objects=[box]))
+        topics = [
+            ("planning_scene", PlanningScene, diff),
+            ("collision_object", CollisionObject, box),
+            ("attached_collision_object", AttachedCollisionObject, AttachedCollisionObject(object=box)),
+        ]
+        for name, msg_class, base in topics:
+            counts[name] = self.run_topic(name, msg_class, base, rng, max(n // 4, 1))
+        # move_group still answers, and every refusal it reported said why.
+        bounded_call(planning_scene, timeout=CALL_TIMEOUT, what="get_planning_scene after the topics")
+        self.check_nodes()
+        silent = [r for r in self.topic_reports if not r.message]
+        self.assertEqual(silent, [], "refused topic messages reported without words")
         # The simulator's world is put back for whatever runs next on this stack.
         rospy.ServiceProxy("sixdof_sim/reset_world", Empty)()
         total = sum(counts.values())

@@ -10,15 +10,9 @@ import unittest
 import rospy
 import rostest
 from faults import bounded_call, connect, wait_for_action, wait_until
+from moveit_msgs.msg import ExecuteTrajectoryActionResult, ExecuteTrajectoryGoal, MotionPlanRequest, MoveItErrorCodes
+from sixdof_commander.goals import joint_constraints
 from tf2_msgs.msg import TFMessage
-
-from sixdof_msgs.msg import (
-    Constraints,
-    ExecuteTrajectoryActionResult,
-    ExecuteTrajectoryGoal,
-    MotionPlanRequest,
-    MoveItErrorCodes,
-)
 
 GROUP = "arm"
 MOTIONS = 4
@@ -51,10 +45,13 @@ class HeadlessTf(unittest.TestCase):
         delays = []
         names = self.group.get_named_targets()
         for i in range(MOTIONS):
-            request = MotionPlanRequest(group_name=GROUP, goal_constraints=[Constraints(name=names[i % 2])])
+            # The named state as joint constraints, as MoveGroupInterface sends it.
+            goal = joint_constraints(self.group.get_named_target_values(names[i % 2]), 1e-4)
+            request = MotionPlanRequest(group_name=GROUP, goal_constraints=[goal])
+            request.start_state.is_diff = True
             response = bounded_call(self.plan_service, request, timeout=30.0, what="plan_kinematic_path")
             error = response.motion_plan_response.error_code
-            self.assertEqual(error.val, MoveItErrorCodes.SUCCESS, error.message)
+            self.assertEqual(error.val, MoveItErrorCodes.SUCCESS, f"planning to '{names[i % 2]}'")
             with self.lock:
                 self.results.clear()
             self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=response.motion_plan_response.trajectory))

@@ -19,9 +19,8 @@ from e2e import (
     settled_joint_state,
     wait_for_stack,
 )
+from moveit_msgs.msg import MoveItErrorCodes
 from sixdof_commander import ArmDriver, MoveGroup, rad
-
-from sixdof_msgs.msg import MoveItErrorCodes
 
 # docs/design.md: the paper's poses of link6 in base_link (rpy fixed axes, degrees).
 PAPER_POSES = {

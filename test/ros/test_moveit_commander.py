@@ -2,8 +2,8 @@
 """End-to-end: scripts written for MoveIt run unchanged. A MoveIt-tutorial-style script (sixdof_scripts'
 moveit_tutorial.py) runs as a user would run it; then, on the same stack, what MoveIt's own commander tests check:
 target setting in every form, planning (the Noetic 4-tuple), go with every argument form, a stale plan refused,
-Cartesian paths in both signatures, retiming, the planning scene synchronous and asynchronous, RobotCommander,
-the planned path display, and upstream's exceptions for bad input."""
+path constraints, Cartesian paths in both signatures, retiming, the planning scene synchronous and asynchronous,
+RobotCommander, the planned path display, and upstream's exceptions for bad input."""
 
 import copy
 import subprocess
@@ -20,7 +20,14 @@ import rostest
 from e2e import case, settled_joint_state, wait_for_stack
 from geometry_msgs.msg import PoseStamped
 from moveit_commander import MoveItCommanderException
-from moveit_msgs.msg import Constraints, JointConstraint, MoveItErrorCodes, RobotState, RobotTrajectory
+from moveit_msgs.msg import (
+    Constraints,
+    JointConstraint,
+    MoveItErrorCodes,
+    OrientationConstraint,
+    RobotState,
+    RobotTrajectory,
+)
 from sensor_msgs.msg import JointState
 
 HANG_GUARD = 120.0  # outcome bound for calls that must return (not a speed claim)
@@ -195,9 +202,10 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         with self.assertRaisesRegex(MoveItCommanderException, "outside its limits"):
             self.arm.set_joint_value_target(names[1], 10.0)
         # What sixdof cannot honour is refused by name, never silently ignored.
-        constraint = Constraints(joint_constraints=[JointConstraint(joint_name=names[0], tolerance_above=0.1)])
+        orientation = Constraints(orientation_constraints=[OrientationConstraint(link_name="link6")])
         for call, name in (
-            (lambda: self.arm.set_path_constraints(constraint), "set_path_constraints"),
+            (lambda: self.arm.set_path_constraints(orientation), "set_path_constraints"),
+            (lambda: self.arm.set_path_constraints("upright"), "set_path_constraints"),
             (lambda: self.arm.allow_replanning(True), "allow_replanning"),
             (lambda: self.arm.set_orientation_target([0, 0, 0, 1]), "set_orientation_target"),
             (lambda: self.arm.pick("red_cube"), "pick"),
@@ -208,6 +216,33 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         self.arm.set_path_constraints(None)
         self.arm.clear_path_constraints()
         self.assertEqual(self.arm.get_known_constraints(), [])
+
+    def test_path_constraints_keep_a_joint_in_its_range(self):
+        self.assertTrue(self.arm.go("home pose"), self.arm.last_error.message)
+        names = self.arm.get_active_joints()
+        home = self.home_values()
+        target = list(home)
+        target[0] += 0.4
+        # joint4 (the wrist roll) kept within 0.05 rad of home along the whole path, joint1 free to move.
+        kept = JointConstraint(joint_name=names[3], position=home[3], tolerance_above=0.05, tolerance_below=0.05)
+        self.arm.set_path_constraints(Constraints(joint_constraints=[kept], name="wrist kept"))
+        try:
+            self.assertEqual(self.arm.get_path_constraints().joint_constraints[0].joint_name, names[3])
+            success, plan, _, code = self.arm.plan(target)
+            self.assertTrue(success, self.arm.last_error)
+            column = plan.joint_trajectory.joint_names.index(names[3])
+            for point in plan.joint_trajectory.points:
+                self.assertLessEqual(abs(point.positions[column] - home[3]), 0.05 + 1e-6)
+            # A goal outside the range cannot be reached: the failure comes with move_group's words.
+            outside = list(home)
+            outside[3] += 0.5
+            success, _, _, code = self.arm.plan(outside)
+            self.assertFalse(success)
+            self.assertNotEqual(code.val, MoveItErrorCodes.SUCCESS)
+            self.assertTrue(self.arm.last_error.message, self.arm.last_error)
+        finally:
+            self.arm.clear_path_constraints()
+        self.assertEqual(self.arm.get_path_constraints(), Constraints())
 
     # Cartesian paths and retiming --------------------------------------------------------------------
     def test_cartesian_path_in_both_signatures_and_retiming(self):
@@ -341,7 +376,7 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
         )
         try:
             # sixdof_rviz's Planned Path display subscribes to exactly this type.
-            self.assertEqual(moveit_msgs.msg.DisplayTrajectory._type, "sixdof_msgs/DisplayTrajectory")
+            self.assertEqual(moveit_msgs.msg.DisplayTrajectory._type, "moveit_msgs/DisplayTrajectory")
             self.assertTrue(wait_until(lambda: subscriber.get_num_connections() > 0))
             self.arm.set_named_target("home pose")
             success, plan, _, _ = self.arm.plan()

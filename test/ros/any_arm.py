@@ -11,8 +11,6 @@ from __future__ import annotations
 import os
 import re
 import shutil
-import signal
-import socket
 import subprocess
 import tempfile
 import threading
@@ -26,17 +24,15 @@ import pytest
 import rosgraph
 import rospy
 from e2e import STARTUP_TIMEOUT, quaternion_matrix, rotation_angle, settled_joint_state
+from generated import generate_package, start_master, stop
 from geometry_msgs.msg import PoseStamped
+from moveit_msgs.msg import RobotState
+from moveit_msgs.srv import GetPositionFK, GetStateValidity
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, SixdofCommanderError
 from urdf_parser_py.urdf import URDF
 
-from moveit_msgs.msg import RobotState
-from moveit_msgs.srv import GetPositionFK, GetStateValidity
-
-REPO = Path(__file__).resolve().parents[2]
-FIXTURES = REPO / "test" / "robots"
 # robot name -> (description file in test/robots, has a gripper)
 ROBOTS = {
     "ur_like": ("urdf/ur_like.urdf.xacro", False),
@@ -56,42 +52,12 @@ HARMLESS = ("no such package media_export", "error while executing command")
 GL_READY = "OpenGL device:"
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def stop(process: subprocess.Popen, timeout: float = 60.0) -> None:
-    """SIGINT to the process group (roslaunch stops its nodes), SIGKILL if it is still there after timeout."""
-    if process.poll() is not None:
-        return
-    os.killpg(process.pid, signal.SIGINT)
-    try:
-        process.wait(timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)
-        process.wait()
-
-
 @pytest.fixture(scope="session")
 def workspace(request: pytest.FixtureRequest) -> Iterator[Path]:
     """A temporary workspace on ROS_PACKAGE_PATH (with the fixture robots' package) and a ROS master of this test's
     own, which every robot's stack uses in turn; this process's node follows its simulated clock."""
     root = Path(tempfile.mkdtemp(prefix="any_arm_"))
-    port = free_port()
-    os.environ["ROS_MASTER_URI"] = f"http://localhost:{port}"
-    os.environ["ROS_PACKAGE_PATH"] = os.pathsep.join([str(root), str(FIXTURES), os.environ.get("ROS_PACKAGE_PATH", "")])
-    os.environ["ROS_LOG_DIR"] = str(root / "log")
-    with open(root / "roscore.log", "w") as log:
-        core = subprocess.Popen(
-            ["roscore", "-p", str(port)], stdout=log, stderr=subprocess.STDOUT, start_new_session=True
-        )
-    deadline = time.monotonic() + STARTUP_TIMEOUT
-    while not rosgraph.is_master_online():
-        assert core.poll() is None, f"roscore exited (see {root / 'roscore.log'})"
-        assert time.monotonic() < deadline, "the ROS master did not come up"
-        time.sleep(0.2)
+    core = start_master(root)
     rosgraph.Master("/any_arm").setParam("/use_sim_time", True)
     rospy.init_node("any_arm_test", disable_signals=True)
     yield root
@@ -126,24 +92,7 @@ def stack(request: pytest.FixtureRequest, workspace: Path) -> Iterator[Stack]:
     """The robot's generated package and its demo.launch headless, up until move_group and the simulator answer."""
     robot = request.param
     description, has_gripper = ROBOTS[robot]
-    generated = subprocess.run(
-        [
-            "rosrun",
-            "sixdof_core",
-            "setup_assistant",
-            "--urdf",
-            str(FIXTURES / description),
-            "--package-out",
-            str(workspace),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=STARTUP_TIMEOUT,
-    )
-    assert generated.returncode == 0, f"setup_assistant failed on {description}: {generated.stderr}"
-    name = f"{robot}_sixdof_config"
-    package = workspace / name
-    assert (package / "launch" / "demo.launch").is_file(), generated.stdout
+    name, package = generate_package(robot, description, workspace)
     with open(workspace / f"{robot}_demo.log", "w") as log:
         launch = subprocess.Popen(
             ["roslaunch", name, "demo.launch", "headless:=true"],

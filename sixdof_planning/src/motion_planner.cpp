@@ -65,12 +65,12 @@ sixdof_core::CollisionReport checkStateCollision(const sixdof_core::RobotState& 
   return scene.checkCollision(poses);
 }
 
-std::string boundsViolation(const sixdof_core::RobotState& state) {
+std::string boundsViolation(const sixdof_core::RobotState& state, double tolerance) {
   const auto& model = state.model();
   for (size_t i = 0; i < model.variableCount(); ++i) {
     const auto& joint = model.variableJoint(i);
     const double value = state.positions()[i];
-    if (joint.limits.bounded && (value < joint.limits.lower || value > joint.limits.upper)) {
+    if (joint.limits.bounded && (value < joint.limits.lower - tolerance || value > joint.limits.upper + tolerance)) {
       return joint.name + " = " + formatNumber(value) + " is outside [" + formatNumber(joint.limits.lower) + ", " +
              formatNumber(joint.limits.upper) + "]";
     }

@@ -54,7 +54,10 @@ ErrorCode StateValidityService::handle(const moveit_msgs::GetStateValidityReques
     info.body_type_2 = bodyType(contact.type2);
     response.contacts.push_back(info);
   }
-  const std::string bounds = boundsViolation(state);
+  // A measured state reads a hair past a limit (a closed finger at -2e-8 m): within start_state_max_bounds_error it
+  // is on the limit, as for planning.
+  const std::string bounds = boundsViolation(state, context_->config().start_state_max_bounds_error);
+  if (!bounds.empty()) ROS_DEBUG_STREAM(service_ << ": state not valid: " << bounds);
   bool constraints_met = true;
   for (const auto& result : response.constraint_result) constraints_met = constraints_met && result.result;
   response.valid = !report.colliding && bounds.empty() && constraints_met;

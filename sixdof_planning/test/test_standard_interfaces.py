@@ -181,6 +181,13 @@ class StandardInterfacesTest(MoveGroupTestCase):
         self.assertFalse(response.valid)
         self.assert_refused(MoveItErrorCodes.FAILURE, "'knee'")
 
+    def test_a_hair_past_a_limit_is_on_it_further_is_not_valid(self) -> None:
+        home = self.states[("arm", "home pose")]
+        upper = self.states[("gripper", "open")]["finger1_joint"]  # the open fingers are at their upper limit
+        for past, valid in ((1e-9, True), (0.01, False)):
+            state = robot_state(dict(home, finger1_joint=upper + past, finger2_joint=upper + past))
+            self.assertEqual(self.validity(robot_state=state, group_name="arm").valid, valid, f"{past} past the limit")
+
     # --- the planning scene ----------------------------------------------------------------------------
     def test_get_planning_scene_answers_the_components_asked_for(self) -> None:
         scene = PlanningScene()

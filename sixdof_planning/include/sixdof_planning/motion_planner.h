@@ -17,8 +17,9 @@ namespace sixdof_planning {
 // Collision report of a full robot state in a scene (every colliding pair, one contact each).
 sixdof_core::CollisionReport checkStateCollision(const sixdof_core::RobotState& state,
                                                  const sixdof_core::CollisionScene& scene);
-// "joint2 = 2.5 is outside [-1.92, 1.92]" for the first active joint out of its limits, else "".
-std::string boundsViolation(const sixdof_core::RobotState& state);
+// "joint2 = 2.5 is outside [-1.92, 1.92]" for the first active joint further than `tolerance` out of its limits,
+// else "".
+std::string boundsViolation(const sixdof_core::RobotState& state, double tolerance = 0.0);
 
 // Moves every bounded joint that is at most `max_error` outside its limits onto the limit; returns a description
 // of what was moved ("finger1_joint -2e-08 -> 0"), or "" when nothing was. Joints further out are left as they are

@@ -10,8 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sixdof_sim/gripper_controller.h"
-#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_sim/controllers.h"
 #include "sixdof_sim/world_types.h"
 
 namespace sixdof_sim {

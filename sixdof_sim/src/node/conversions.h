@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_sim/controllers.h"
 #include "sixdof_sim/world_types.h"
 
 namespace sixdof_sim {

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "joint_driver.h"
-#include "sixdof_sim/gripper_controller.h"
+#include "sixdof_sim/controllers.h"
 #include "sixdof_sim/world.h"
 
 namespace sixdof_sim {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "joint_driver.h"
-#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_sim/controllers.h"
 #include "sixdof_sim/world.h"
 
 namespace sixdof_sim {

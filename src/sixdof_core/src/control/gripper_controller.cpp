@@ -1,4 +1,4 @@
-#include "sixdof_sim/gripper_controller.h"
+#include "sixdof_core/control/gripper_controller.h"
 
 #include <cmath>
 #include <sstream>
@@ -27,20 +27,20 @@ GripperController::GripperController(GripperControllerConfig config) : config_(s
 
 GripperResult GripperController::validate(const GripperGoal& goal) const {
   std::ostringstream s;
-  Status status = Status::kOk;
+  GripperStatus status = GripperStatus::kOk;
   if (!std::isfinite(goal.position) || !std::isfinite(goal.max_effort)) {
-    status = Status::kInvalidArgument;
+    status = GripperStatus::kInvalidArgument;
     s << "position and max_effort must be finite (got " << goal.position << ", " << goal.max_effort << ")";
   } else if (goal.position < config_.lower || goal.position > config_.upper) {
-    status = Status::kOutOfLimits;
+    status = GripperStatus::kOutOfLimits;
     s << "position " << goal.position << " of joint '" << config_.joint << "' is outside its limits ["
       << config_.lower << ", " << config_.upper << "]";
   } else if (goal.max_effort < 0.0) {
-    status = Status::kInvalidArgument;
+    status = GripperStatus::kInvalidArgument;
     s << "max_effort " << goal.max_effort << " is negative (0 means the effort limit " << config_.effort_limit
       << ")";
   } else if (goal.max_effort > config_.effort_limit) {
-    status = Status::kOutOfLimits;
+    status = GripperStatus::kOutOfLimits;
     s << "max_effort " << goal.max_effort << " exceeds the effort limit " << config_.effort_limit << " of joint '"
       << config_.joint << "'";
   }

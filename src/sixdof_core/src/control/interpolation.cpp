@@ -1,4 +1,4 @@
-#include "sixdof_sim/interpolation.h"
+#include "sixdof_core/control/interpolation.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -3,7 +3,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "sixdof_sim/interpolation.h"
+#include "sixdof_core/control/interpolation.h"
 
 namespace sixdof_sim {
 namespace {

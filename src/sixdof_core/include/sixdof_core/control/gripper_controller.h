@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "sixdof_sim/trajectory_controller.h"
-#include "sixdof_sim/world_types.h"
+#include "sixdof_core/control/trajectory_controller.h"
+#include "sixdof_core/result.h"
 
 namespace sixdof_sim {
 
@@ -31,8 +31,14 @@ struct GripperGoal {
   double max_effort = 0.0;  // N; 0 = the URDF effort limit
 };
 
-// A rejected goal: kInvalidArgument (not finite, negative effort) or kOutOfLimits (position, effort).
-using GripperResult = Result;
+// Why a goal was rejected.
+enum class GripperStatus {
+  kOk = 0,
+  kInvalidArgument,  // not finite, negative effort
+  kOutOfLimits,      // position outside the joint limits, effort above the effort limit
+};
+
+using GripperResult = sixdof_core::Result<GripperStatus>;
 
 // One control step's command and the goal's status.
 struct GripperUpdate {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "sixdof_core/result.h"
-#include "sixdof_sim/interpolation.h"
+#include "sixdof_core/control/interpolation.h"
 
 namespace sixdof_sim {
 

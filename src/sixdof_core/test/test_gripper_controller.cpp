@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sixdof_sim/gripper_controller.h"
+#include "sixdof_core/control/gripper_controller.h"
 
 namespace sixdof_sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_core/control/trajectory_controller.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "sixdof_sim/trajectory_controller.h"
+#include "sixdof_core/control/trajectory_controller.h"
 
 namespace sixdof_sim {
 namespace {

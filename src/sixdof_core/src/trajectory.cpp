@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-
-#include "sixdof_core/spline.h"
+#include <stdexcept>
 
 namespace sixdof_core {
 namespace {
@@ -13,84 +12,98 @@ bool allFinite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
 
-}  // namespace
-
-std::string validateTrajectory(const Trajectory& trajectory) {
+// Empty when the trajectory can be sampled, else the problem. `strict` adds validateTrajectory's rules: the same
+// derivatives on every point, and times from 0.
+std::string problem(const Trajectory& trajectory, bool strict) {
   const std::size_t n = trajectory.joint_names.size();
   if (n == 0) return "trajectory has no joint names";
   if (trajectory.points.empty()) return "trajectory has no points";
   const bool has_v = !trajectory.points.front().velocities.empty();
   const bool has_a = !trajectory.points.front().accelerations.empty();
-  double last_time = -1.0;
   for (std::size_t i = 0; i < trajectory.points.size(); ++i) {
     const TrajectoryPoint& p = trajectory.points[i];
+    const auto sized = [&](const std::vector<double>& v, bool required) {
+      return strict ? v.size() == (required ? n : 0) : v.empty() || v.size() == n;
+    };
     std::ostringstream where;
     where << "trajectory point " << i << ": ";
     if (p.positions.size() != n) return where.str() + "positions size differs from the joint names";
-    if (p.velocities.size() != (has_v ? n : 0)) return where.str() + "velocities size is inconsistent";
-    if (p.accelerations.size() != (has_a ? n : 0)) return where.str() + "accelerations size is inconsistent";
+    if (!sized(p.velocities, has_v)) return where.str() + "velocities size is inconsistent";
+    if (!sized(p.accelerations, has_a)) return where.str() + "accelerations size is inconsistent";
     if (!allFinite(p.positions) || !allFinite(p.velocities) || !allFinite(p.accelerations)) {
       return where.str() + "non-finite value";
     }
-    if (!std::isfinite(p.time_from_start) || p.time_from_start < 0.0) {
-      return where.str() + "time_from_start must be finite and >= 0";
+    if (!std::isfinite(p.time_from_start) || (strict && p.time_from_start < 0.0)) {
+      return where.str() + (strict ? "time_from_start must be finite and >= 0" : "time_from_start must be finite");
     }
-    if (p.time_from_start <= last_time) return where.str() + "time_from_start is not strictly increasing";
-    last_time = p.time_from_start;
+    if (i > 0 && !(p.time_from_start > trajectory.points[i - 1].time_from_start)) {
+      return where.str() + "time_from_start is not strictly increasing";
+    }
   }
   return "";
 }
 
-TrajectorySample sampleTrajectory(const Trajectory& trajectory, double time) {
-  TrajectorySample sample;
-  const std::string invalid = validateTrajectory(trajectory);
+}  // namespace
+
+std::string validateTrajectory(const Trajectory& trajectory) { return problem(trajectory, true); }
+
+InterpolationType interpolationType(const TrajectoryPoint& from, const TrajectoryPoint& to) {
+  if (from.velocities.empty() || to.velocities.empty()) return InterpolationType::kLinear;
+  if (from.accelerations.empty() || to.accelerations.empty()) return InterpolationType::kCubic;
+  return InterpolationType::kQuintic;
+}
+
+TrajectorySampler::TrajectorySampler(Trajectory trajectory) : trajectory_(std::move(trajectory)) {
+  const std::string invalid = problem(trajectory_, false);
   if (!invalid.empty()) {
-    sample.message = invalid;
-    return sample;
+    throw std::invalid_argument("TrajectorySampler: " + invalid);
   }
-  if (!std::isfinite(time) || time < 0.0 || time > trajectory.duration()) {
-    std::ostringstream msg;
-    msg << "sample time " << time << " outside [0, " << trajectory.duration() << "]";
-    sample.message = msg.str();
-    return sample;
-  }
-  const auto& points = trajectory.points;
-  const std::size_t n = trajectory.joint_names.size();
-  sample.ok = true;
-  if (time <= points.front().time_from_start) {
-    sample.point = points.front();
-    sample.point.time_from_start = time;
-    sample.point.velocities.assign(n, 0.0);
-    sample.point.accelerations.assign(n, 0.0);
-    if (points.size() == 1 || time == points.front().time_from_start) sample.point = points.front();
-    return sample;
-  }
-  // First point strictly later than time; the segment is [hi - 1, hi].
-  auto it = std::upper_bound(points.begin(), points.end(), time,
-                             [](double t, const TrajectoryPoint& p) { return t < p.time_from_start; });
-  if (it == points.end()) {
-    sample.point = points.back();
-    if (sample.point.velocities.empty()) sample.point.velocities.assign(n, 0.0);
-    if (sample.point.accelerations.empty()) sample.point.accelerations.assign(n, 0.0);
-    return sample;
-  }
-  const TrajectoryPoint& p1 = *it;
-  const TrajectoryPoint& p0 = *(it - 1);
-  const InterpolationType type = interpolationType(p0, p1);
-  const double T = p1.time_from_start - p0.time_from_start;
-  const double tau = time - p0.time_from_start;
+  dof_ = trajectory_.joint_names.size();
   const auto at = [](const std::vector<double>& v, std::size_t j) { return v.empty() ? 0.0 : v[j]; };
-  TrajectoryPoint& out = sample.point;
-  out.time_from_start = time;
-  out.positions.resize(n);
-  out.velocities.resize(n);
-  out.accelerations.resize(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const JointSpline spline(type, T, p0.positions[j], at(p0.velocities, j), at(p0.accelerations, j),
-                             p1.positions[j], at(p1.velocities, j), at(p1.accelerations, j));
-    spline.sample(tau, out.positions[j], out.velocities[j], out.accelerations[j]);
+  const std::vector<TrajectoryPoint>& points = trajectory_.points;
+  for (std::size_t s = 0; s + 1 < points.size(); ++s) {
+    const TrajectoryPoint& a = points[s];
+    const TrajectoryPoint& b = points[s + 1];
+    const InterpolationType type = interpolationType(a, b);
+    std::vector<JointSpline> joints;
+    joints.reserve(dof_);
+    for (std::size_t j = 0; j < dof_; ++j) {
+      joints.emplace_back(type, b.time_from_start - a.time_from_start, a.positions[j], at(a.velocities, j),
+                          at(a.accelerations, j), b.positions[j], at(b.velocities, j), at(b.accelerations, j));
+    }
+    types_.push_back(type);
+    splines_.push_back(std::move(joints));
   }
-  return sample;
+}
+
+TrajectorySample TrajectorySampler::sample(double time) const {
+  if (!std::isfinite(time)) {
+    throw std::invalid_argument("TrajectorySampler: sample time must be finite");
+  }
+  const std::vector<TrajectoryPoint>& points = trajectory_.points;
+  TrajectorySample out;
+  out.velocity.assign(dof_, 0.0);
+  out.acceleration.assign(dof_, 0.0);
+  if (time < startTime() || time > endTime()) {
+    out.position = time < startTime() ? points.front().positions : points.back().positions;
+    return out;
+  }
+  // The first point strictly later than `time`; none when `time` is the last point's.
+  const auto it = std::upper_bound(points.begin(), points.end(), time,
+                                   [](double t, const TrajectoryPoint& p) { return t < p.time_from_start; });
+  if (it == points.end()) {
+    const TrajectoryPoint& last = points.back();
+    out.position = last.positions;
+    if (!last.velocities.empty()) out.velocity = last.velocities;
+    if (!last.accelerations.empty()) out.acceleration = last.accelerations;
+    return out;
+  }
+  const std::size_t s = static_cast<std::size_t>(it - points.begin()) - 1;
+  out.position.resize(dof_);
+  for (std::size_t j = 0; j < dof_; ++j) {
+    splines_[s][j].sample(time - points[s].time_from_start, out.position[j], out.velocity[j], out.acceleration[j]);
+  }
+  return out;
 }
 
 }  // namespace sixdof_core

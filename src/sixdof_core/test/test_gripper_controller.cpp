@@ -6,7 +6,7 @@
 
 #include "sixdof_core/control/gripper_controller.h"
 
-namespace sixdof_sim {
+namespace sixdof_core {
 namespace {
 
 constexpr double kDt = 0.001;
@@ -167,4 +167,4 @@ TEST(GripperController, BadConfigThrows) {
 }
 
 }  // namespace
-}  // namespace sixdof_sim
+}  // namespace sixdof_core

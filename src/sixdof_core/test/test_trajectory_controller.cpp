@@ -8,7 +8,7 @@
 
 #include "sixdof_core/control/trajectory_controller.h"
 
-namespace sixdof_sim {
+namespace sixdof_core {
 namespace {
 
 constexpr double kDt = 0.001;
@@ -392,4 +392,4 @@ TEST(TrajectoryControllerNoState, GoalBeforeAnyUpdateIsRejected) {
 }
 
 }  // namespace
-}  // namespace sixdof_sim
+}  // namespace sixdof_core

@@ -1,14 +1,12 @@
 #pragma once
 // Joint-space polynomial segments with ros_control's joint_trajectory_controller rules: linear between points
-// with positions only, cubic with velocities, quintic with velocities and accelerations. Shared by the
-// core's sampleTrajectory() and the simulator's trajectory controller. Header only (no library to link).
+// with positions only, cubic with velocities, quintic with velocities and accelerations. The segments of
+// TrajectorySampler (trajectory.h). Header only (no library to link).
 
 #include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <string>
-
-#include "sixdof_core/trajectory.h"
 
 namespace sixdof_core {
 
@@ -65,12 +63,5 @@ class JointSpline {
   std::array<double, 6> c_{};
   double duration_;
 };
-
-// The interpolation the two points allow together: the highest derivative order both carry.
-inline InterpolationType interpolationType(const TrajectoryPoint& from, const TrajectoryPoint& to) {
-  if (from.velocities.empty() || to.velocities.empty()) return InterpolationType::kLinear;
-  if (from.accelerations.empty() || to.accelerations.empty()) return InterpolationType::kCubic;
-  return InterpolationType::kQuintic;
-}
 
 }  // namespace sixdof_core

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace sixdof_sim {
+namespace sixdof_core {
 
 GripperController::GripperController(GripperControllerConfig config) : config_(std::move(config)) {
   const std::string who = "GripperController '" + config_.name + "': ";
@@ -107,4 +107,4 @@ GripperUpdate GripperController::update(double now, double position) {
   return out;
 }
 
-}  // namespace sixdof_sim
+}  // namespace sixdof_core

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace sixdof_sim {
+namespace sixdof_core {
 
 namespace {
 
@@ -186,8 +186,7 @@ TrajectoryResult TrajectoryController::setGoal(const TrajectoryGoal& goal, doubl
 
   if (goal.points.empty()) {
     // Stop: hold the current command; no tolerance is checked, so the next update succeeds.
-    trajectory_ = std::make_unique<JointTrajectory>(std::vector<double>{now},
-                                                    std::vector<TrajectoryPoint>{{last_desired_.position, {}, {}}});
+    trajectory_.emplace(Trajectory{config_.joints, {{last_desired_.position, {}, {}, now}}});
     goal_time_ = 0.0;
     state_ = GoalState::kActive;
     return {};
@@ -230,29 +229,27 @@ TrajectoryResult TrajectoryController::setGoal(const TrajectoryGoal& goal, doubl
     return out;
   };
   const double start = goal.start_time > 0.0 ? goal.start_time : now;
-  std::vector<double> times;
-  std::vector<TrajectoryPoint> knots;
+  Trajectory trajectory{config_.joints, {}};
   for (const TrajectoryPoint& p : goal.points) {
     // Points already in the past (old header stamp) are skipped: the bridge below leads to the next one.
     if (start + p.time_from_start < now) {
       continue;
     }
-    times.push_back(start + p.time_from_start);
-    knots.push_back({reorder(p.positions), reorder(p.velocities), reorder(p.accelerations), p.time_from_start});
+    trajectory.points.push_back(
+        {reorder(p.positions), reorder(p.velocities), reorder(p.accelerations), start + p.time_from_start});
   }
-  if (times.front() > now) {
+  if (trajectory.points.front().time_from_start > now) {
     // Bridge from the current command so that a preempting goal continues smoothly.
-    times.insert(times.begin(), now);
-    knots.insert(knots.begin(), {last_desired_.position, last_desired_.velocity, last_desired_.acceleration, 0.0});
+    trajectory.points.insert(trajectory.points.begin(),
+                             {last_desired_.position, last_desired_.velocity, last_desired_.acceleration, now});
   }
-  trajectory_ = std::make_unique<JointTrajectory>(std::move(times), std::move(knots));
+  trajectory_.emplace(std::move(trajectory));
   state_ = GoalState::kActive;
   return {};
 }
 
 void TrajectoryController::holdAt(const std::vector<double>& position) {
-  trajectory_ = std::make_unique<JointTrajectory>(std::vector<double>{0.0},
-                                                  std::vector<TrajectoryPoint>{{position, {}, {}, 0.0}});
+  trajectory_.emplace(Trajectory{config_.joints, {{position, {}, {}, 0.0}}});
   last_desired_ = trajectory_->sample(0.0);
 }
 
@@ -352,4 +349,4 @@ TrajectoryUpdate TrajectoryController::update(double now, const std::vector<doub
   return out;
 }
 
-}  // namespace sixdof_sim
+}  // namespace sixdof_core

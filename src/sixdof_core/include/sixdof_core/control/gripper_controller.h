@@ -5,7 +5,7 @@
 #include "sixdof_core/control/trajectory_controller.h"
 #include "sixdof_core/result.h"
 
-namespace sixdof_sim {
+namespace sixdof_core {
 
 // controllers.yaml gripper_controller/gripper_cmd parameters plus the finger joint's URDF limits.
 // Defaults as in ros_controllers' gripper_action_controller, except allow_stalling (see below).
@@ -38,7 +38,7 @@ enum class GripperStatus {
   kOutOfLimits,      // position outside the joint limits, effort above the effort limit
 };
 
-using GripperResult = sixdof_core::Result<GripperStatus>;
+using GripperResult = Result<GripperStatus>;
 
 // One control step's command and the goal's status.
 struct GripperUpdate {
@@ -90,4 +90,4 @@ class GripperController {
   GoalState state_ = GoalState::kIdle;
 };
 
-}  // namespace sixdof_sim
+}  // namespace sixdof_core

@@ -1,14 +1,13 @@
 #pragma once
 
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sixdof_core/result.h"
-#include "sixdof_core/control/interpolation.h"
+#include "sixdof_core/trajectory.h"
 
-namespace sixdof_sim {
+namespace sixdof_core {
 
 // Result codes, values as in control_msgs/FollowJointTrajectory.
 enum class TrajectoryErrorCode : int {
@@ -21,7 +20,7 @@ enum class TrajectoryErrorCode : int {
 };
 
 // message names the offending joint/point/value on failure.
-using TrajectoryResult = sixdof_core::Result<TrajectoryErrorCode>;
+using TrajectoryResult = Result<TrajectoryErrorCode>;
 
 // Per-joint tolerances on |desired - actual|; 0 means "not checked".
 struct StateTolerance {
@@ -122,7 +121,8 @@ class TrajectoryController {
   std::string jointList() const;
 
   TrajectoryControllerConfig config_;
-  std::unique_ptr<JointTrajectory> trajectory_;  // null until the first hold/goal
+  // Knot times are absolute times of the controller's clock. Empty until the first hold/goal.
+  std::optional<TrajectorySampler> trajectory_;
   std::vector<StateTolerance> path_tolerance_;   // of the active goal
   std::vector<StateTolerance> goal_tolerance_;
   double goal_time_ = 0.0;
@@ -130,4 +130,4 @@ class TrajectoryController {
   TrajectorySample last_desired_;  // empty before the first update
 };
 
-}  // namespace sixdof_sim
+}  // namespace sixdof_core

@@ -1,0 +1,145 @@
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "sixdof_control/hardware_interface.h"
+#include "sixdof_control/joint_limits.h"
+#include "sixdof_control/period_statistics.h"
+#include "sixdof_core/control/trajectory_controller.h"
+
+namespace sixdof_control {
+
+struct ControlLoopConfig {
+  std::vector<std::string> joints;  // the hardware's joints, in its order
+  std::vector<JointLimit> limits;   // one per joint, in the same order
+  // The controllers (controllers.yaml). Each joint belongs to one controller at most; their position limits are
+  // taken from `limits` (what the config says there is replaced).
+  std::vector<sixdof_core::TrajectoryControllerConfig> controllers;
+  double rate = 100.0;  // Hz of read -> update -> write
+  // A goal whose first point is at time 0 (commanded at once) must start this close to every joint's position
+  // (rad or m; MoveIt's allowed_start_tolerance).
+  double start_tolerance = 0.01;
+  // A read that fails, or takes longer than this (s), is a fault.
+  double read_timeout = 0.1;
+  // Commands may exceed max_velocity by this fraction: joint_trajectory_controller's splines through the points of
+  // a trajectory timed at the limits overshoot them slightly between points.
+  double velocity_tolerance = 0.05;
+  std::size_t statistics_window = 1000;  // periods the statistics cover
+};
+
+enum class LoopState {
+  kStopped,  // before start() and after stop()
+  kRunning,
+  kEstop,    // e-stop engaged: holding, goals refused
+  kFault,    // a hardware fault: holding where possible, goals refused until clearFault()
+};
+
+// How a goal ended. result: kSuccessful when it succeeded, else the error code and a message naming the cause
+// (a tolerance, a limit, the fault, the e-stop, a cancel or a preempting goal).
+struct GoalOutcome {
+  std::string controller;
+  sixdof_core::GoalState state = sixdof_core::GoalState::kIdle;  // kSucceeded, kAborted or kCanceled
+  sixdof_core::TrajectoryResult result;
+};
+// Called once per accepted goal, on the thread that ended it (the loop's, or the caller of cancel, setGoal or
+// setEstop), without the loop's lock held.
+using GoalCallback = std::function<void(const GoalOutcome&)>;
+
+struct LoopStatus {
+  LoopState state = LoopState::kStopped;
+  std::string fault;  // the fault's message in kFault
+  double time = 0.0;  // of the last cycle, on the loop's clock (s)
+  std::vector<double> positions;
+  std::vector<double> velocities;
+  std::vector<double> commands;
+};
+
+// ros_control's controller manager loop, without ROS: at a fixed rate it reads the hardware, updates the
+// trajectory controllers (sixdof_core's, as the simulator runs them), checks every command against the joint
+// limits and writes it. Safety:
+// - limits: a goal whose points or segments exceed a joint's position or velocity limit is refused; a command
+//   beyond one during execution (spline overshoot past velocity_tolerance) aborts the goal naming the joint, the
+//   value and the limit, and the joints hold. Nothing is clamped.
+// - faults: a failed or late read, or a failed write, aborts every active goal within that cycle with the plugin's
+//   message (naming the joint or device), holds the last positions read (written while the device takes writes)
+//   and refuses goals until clearFault().
+// - e-stop: setEstop(true) aborts every goal at once and holds; goals are refused until setEstop(false), which
+//   holds wherever the joints are then.
+// - a goal whose first point is at time 0 and away from the current positions (start_tolerance) is refused.
+// Goals and queries are thread-safe; cycle() runs on one thread (spawn()'s, or the caller's in tests).
+class ControlLoop {
+ public:
+  // Throws std::invalid_argument naming the problem: sizes, rate, tolerances, a controller's joint that is not the
+  // hardware's or belongs to two controllers, an invalid controller config. The hardware must be init()ed and
+  // outlive the loop.
+  ControlLoop(ControlLoopConfig config, HardwareInterface& hardware);
+  ~ControlLoop();
+  ControlLoop(const ControlLoop&) = delete;
+  ControlLoop& operator=(const ControlLoop&) = delete;
+
+  // Starts the hardware and reads it once at `now`: every controller holds the positions read.
+  HardwareResult start(double now);
+  // Ends the thread of spawn() if it runs, aborts active goals, stops the hardware.
+  void stop();
+
+  // One cycle at `now` (s on the loop's clock, later than the previous one): read, update, check, write.
+  void cycle(double now);
+  // Runs cycle() at the rate on a thread of its own (steady clock; the loop's clock then counts from start()'s
+  // `now`), until stop().
+  void spawn();
+
+  // Validates and starts a goal on the controller at the last cycle's time (preempting its active goal, which ends
+  // kCanceled). Refused with kInvalidGoal naming why during e-stop or a fault, for an unknown controller, a start
+  // away from the current state or beyond a limit; else the controller's own validation.
+  sixdof_core::TrajectoryResult setGoal(const std::string& controller, const sixdof_core::TrajectoryGoal& goal,
+                                        GoalCallback done);
+  // Cancels the controller's active goal (it holds the current positions).
+  void cancel(const std::string& controller);
+
+  void setEstop(bool engaged);
+  // Leaves kFault: the next good read holds wherever the joints are and goals are accepted again.
+  void clearFault();
+
+  LoopStatus status() const;
+  PeriodSummary statistics() const;
+  // The controller's commanded trajectory at `time` (query_state); nullopt for an unknown controller or before
+  // start().
+  std::optional<sixdof_core::TrajectorySample> sample(const std::string& controller, double time) const;
+  // The controller's last update (desired, error; the state topic); nullopt before its first one.
+  std::optional<sixdof_core::TrajectoryUpdate> lastUpdate(const std::string& controller) const;
+
+ private:
+  struct Controller;
+  int controllerIndex(const std::string& name) const;
+  std::string limitProblem(const sixdof_core::TrajectoryGoal& goal) const;
+  void abortAll(sixdof_core::GoalState state, sixdof_core::TrajectoryErrorCode code, const std::string& message,
+                std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
+  void enterFault(const std::string& message, std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
+  void updateControllers(double now, std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
+  void checkLimits(std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
+
+  ControlLoopConfig config_;
+  HardwareInterface& hardware_;
+  std::vector<Controller> controllers_;
+  std::vector<int> owner_;  // per joint: its controller's index, -1 for none
+
+  mutable std::mutex mutex_;
+  LoopStatus status_;
+  bool estop_ = false;   // engaged, whatever the state (a fault cleared during an e-stop leaves it kEstop)
+  bool rehold_ = false;  // hold wherever the joints are at the next good read (after clearFault, e-stop release)
+  std::vector<double> previous_positions_;
+  std::vector<double> hold_;  // what a fault writes
+  PeriodStatistics statistics_;
+
+  std::atomic<bool> running_{false};
+  std::thread thread_;
+};
+
+}  // namespace sixdof_control

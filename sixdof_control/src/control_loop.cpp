@@ -1,0 +1,266 @@
+#include "sixdof_control/control_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "loop_controller.h"
+
+namespace sixdof_control {
+
+using sixdof_core::GoalState;
+using sixdof_core::TrajectoryController;
+using sixdof_core::TrajectoryErrorCode;
+using sixdof_core::TrajectoryGoal;
+using sixdof_core::TrajectoryResult;
+using sixdof_core::TrajectorySample;
+using sixdof_core::TrajectoryUpdate;
+using Done = std::vector<std::pair<GoalCallback, GoalOutcome>>;
+
+namespace {
+
+void invoke(Done& done) {
+  for (auto& [callback, outcome] : done) {
+    if (callback) callback(outcome);
+  }
+}
+
+std::vector<double> pick(const std::vector<double>& values, const std::vector<std::size_t>& indices) {
+  std::vector<double> out;
+  out.reserve(indices.size());
+  for (std::size_t i : indices) out.push_back(values[i]);
+  return out;
+}
+
+}  // namespace
+
+ControlLoop::ControlLoop(ControlLoopConfig config, HardwareInterface& hardware)
+    : config_(std::move(config)),
+      hardware_(hardware),
+      statistics_(config_.rate > 0.0 ? 1.0 / config_.rate : 1.0, std::max<std::size_t>(config_.statistics_window, 1)) {
+  const std::size_t n = config_.joints.size();
+  if (n == 0) throw std::invalid_argument("ControlLoop: no joints");
+  if (config_.limits.size() != n) throw std::invalid_argument("ControlLoop: one joint limit per joint is needed");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (config_.limits[i].joint != config_.joints[i]) {
+      throw std::invalid_argument("ControlLoop: limits[" + std::to_string(i) + "] is joint '" +
+                                  config_.limits[i].joint + "', expected '" + config_.joints[i] + "'");
+    }
+  }
+  if (!(config_.rate > 0.0) || !std::isfinite(config_.rate)) throw std::invalid_argument("ControlLoop: rate must be > 0");
+  for (double v : {config_.start_tolerance, config_.read_timeout, config_.velocity_tolerance}) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      throw std::invalid_argument("ControlLoop: start_tolerance, read_timeout and velocity_tolerance must be >= 0");
+    }
+  }
+  owner_.assign(n, -1);
+  for (sixdof_core::TrajectoryControllerConfig& c : config_.controllers) {
+    std::vector<std::size_t> indices;
+    c.lower_limits.clear();
+    c.upper_limits.clear();
+    for (const std::string& joint : c.joints) {
+      const auto it = std::find(config_.joints.begin(), config_.joints.end(), joint);
+      if (it == config_.joints.end()) {
+        throw std::invalid_argument("ControlLoop: joint '" + joint + "' of controller '" + c.name +
+                                    "' is not one of the hardware's joints");
+      }
+      const std::size_t j = static_cast<std::size_t>(it - config_.joints.begin());
+      if (owner_[j] >= 0) {
+        throw std::invalid_argument("ControlLoop: joint '" + joint + "' belongs to controllers '" +
+                                    config_.controllers[static_cast<std::size_t>(owner_[j])].name + "' and '" +
+                                    c.name + "'");
+      }
+      owner_[j] = static_cast<int>(controllers_.size());
+      indices.push_back(j);
+      const JointLimit& l = config_.limits[j];
+      c.lower_limits.push_back(l.has_position_limits ? l.min_position : -std::numeric_limits<double>::infinity());
+      c.upper_limits.push_back(l.has_position_limits ? l.max_position : std::numeric_limits<double>::infinity());
+    }
+    controllers_.push_back(Controller{TrajectoryController(c), indices, nullptr, std::nullopt});
+  }
+}
+
+ControlLoop::~ControlLoop() { stop(); }
+
+HardwareResult ControlLoop::start(double now) {
+  const std::size_t n = config_.joints.size();
+  HardwareResult r = hardware_.start();
+  std::vector<double> positions(n, 0.0), velocities(n, 0.0);
+  if (r.ok()) r = hardware_.read(now, 1.0 / config_.rate, positions, velocities);
+  if (!r.ok()) {
+    hardware_.stop();
+    return r;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (Controller& c : controllers_) c.controller.hold(pick(positions, c.joints));
+  status_ = LoopStatus{LoopState::kRunning, "", now, positions,
+                       hardware_.hasVelocities() ? velocities : std::vector<double>(n, 0.0), positions};
+  previous_positions_ = positions;
+  hold_ = positions;
+  return r;
+}
+
+void ControlLoop::stop() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+  Done done;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status_.state == LoopState::kStopped) return;
+    abortAll(GoalState::kAborted, TrajectoryErrorCode::kInvalidGoal, "the control loop stopped", done);
+    status_.state = LoopState::kStopped;
+  }
+  hardware_.stop();
+  invoke(done);
+}
+
+void ControlLoop::spawn() {
+  if (running_.exchange(true)) return;
+  thread_ = std::thread([this] {
+    using Clock = std::chrono::steady_clock;
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
+    const auto origin = Clock::now() - std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(status().time));
+    auto next = Clock::now();
+    while (running_) {
+      next += period;
+      std::this_thread::sleep_until(next);
+      cycle(std::chrono::duration<double>(Clock::now() - origin).count());
+      // A cycle late by more than a period does not start a burst of catch-up cycles.
+      if (Clock::now() > next + period) next = Clock::now();
+    }
+  });
+}
+
+int ControlLoop::controllerIndex(const std::string& name) const {
+  for (std::size_t i = 0; i < controllers_.size(); ++i) {
+    if (controllers_[i].controller.config().name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void ControlLoop::abortAll(GoalState state, TrajectoryErrorCode code, const std::string& message, Done& done) {
+  for (Controller& c : controllers_) {
+    if (!c.controller.active()) continue;
+    c.controller.cancel(pick(status_.positions, c.joints));
+    done.emplace_back(std::move(c.done),
+                      GoalOutcome{c.controller.config().name, state, TrajectoryResult::failure(code, message)});
+    c.done = nullptr;
+  }
+}
+
+void ControlLoop::enterFault(const std::string& message, Done& done) {
+  if (status_.state == LoopState::kFault) return;
+  abortAll(GoalState::kAborted, TrajectoryErrorCode::kInvalidGoal, "hardware fault: " + message, done);
+  status_.state = LoopState::kFault;
+  status_.fault = message;
+  hold_ = status_.positions;
+}
+
+void ControlLoop::cycle(double now) {
+  const auto cycle_start = std::chrono::steady_clock::now();
+  const std::size_t n = config_.joints.size();
+  double period = 1.0 / config_.rate;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status_.state == LoopState::kStopped) return;
+    if (now > status_.time) period = now - status_.time;
+  }
+  std::vector<double> positions(n, 0.0), velocities(n, 0.0);
+  HardwareResult read = hardware_.read(now, period, positions, velocities);
+  const double read_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - cycle_start).count();
+  if (read.ok() && read_time > config_.read_timeout) {
+    std::ostringstream s;
+    s << "hardware read took " << read_time << " s, over read_timeout " << config_.read_timeout << " s";
+    read = HardwareResult::failure(HardwareStatus::kTimeout, s.str());
+  }
+  Done done;
+  std::vector<double> commands;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_.time = now;
+    if (!read.ok()) {
+      enterFault(read.message, done);
+    } else {
+      if (!hardware_.hasVelocities()) {
+        for (std::size_t i = 0; i < n; ++i) velocities[i] = (positions[i] - previous_positions_[i]) / period;
+      }
+      previous_positions_ = positions;
+      status_.positions = positions;
+      status_.velocities = velocities;
+      if (rehold_ && status_.state != LoopState::kFault) {
+        for (Controller& c : controllers_) c.controller.hold(pick(positions, c.joints));
+        rehold_ = false;
+      }
+    }
+    if (status_.state == LoopState::kFault) {
+      status_.commands = hold_;
+    } else {
+      updateControllers(now, done);
+      checkLimits(done);
+    }
+    commands = status_.commands;
+  }
+  const HardwareResult write = hardware_.write(now, period, commands);
+  if (!write.ok()) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    enterFault(write.message, done);
+  }
+  const double cycle_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - cycle_start).count();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    statistics_.add(period, cycle_time);
+  }
+  invoke(done);
+}
+
+void ControlLoop::updateControllers(double now, Done& done) {
+  for (std::size_t i = 0; i < controllers_.size(); ++i) {
+    Controller& c = controllers_[i];
+    TrajectoryUpdate u =
+        c.controller.update(now, pick(status_.positions, c.joints), pick(status_.velocities, c.joints));
+    for (std::size_t k = 0; k < c.joints.size(); ++k) status_.commands[c.joints[k]] = u.desired.position[k];
+    if (u.finished) {
+      done.emplace_back(std::move(c.done), GoalOutcome{c.controller.config().name, u.state, u.result});
+      c.done = nullptr;
+    }
+    c.last = std::move(u);
+  }
+}
+
+void ControlLoop::checkLimits(Done& done) {
+  for (Controller& c : controllers_) {
+    if (!c.last) continue;
+    for (std::size_t k = 0; k < c.joints.size(); ++k) {
+      const JointLimit& l = config_.limits[c.joints[k]];
+      const double q = c.last->desired.position[k];
+      const double v = c.last->desired.velocity[k];
+      std::ostringstream s;
+      if (l.has_position_limits && (q < l.min_position || q > l.max_position)) {
+        s << "command " << q << " of joint '" << l.joint << "' is outside its limits [" << l.min_position << ", "
+          << l.max_position << "]";
+      } else if (l.has_velocity_limits && std::abs(v) > l.max_velocity * (1.0 + config_.velocity_tolerance)) {
+        s << "command velocity " << v << " of joint '" << l.joint << "' exceeds its limit " << l.max_velocity
+          << " (velocity_tolerance " << config_.velocity_tolerance << ")";
+      }
+      if (s.str().empty()) continue;
+      const std::vector<double> actual = pick(status_.positions, c.joints);
+      const bool active = c.controller.active();
+      c.controller.cancel(actual);
+      if (!active) c.controller.hold(actual);
+      for (std::size_t m = 0; m < c.joints.size(); ++m) status_.commands[c.joints[m]] = actual[m];
+      if (active) {
+        done.emplace_back(std::move(c.done),
+                          GoalOutcome{c.controller.config().name, GoalState::kAborted,
+                                      TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, s.str())});
+        c.done = nullptr;
+      }
+      break;
+    }
+  }
+}
+
+}  // namespace sixdof_control

@@ -1,0 +1,240 @@
+// The control loop on the mock plugin (loaded through pluginlib), in simulated time: goals, limits, faults, e-stop.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <optional>
+#include <thread>
+
+#include "sixdof_control/hardware_loader.h"
+#include "test_helpers.h"
+
+namespace sixdof_control {
+namespace {
+
+using sixdof_core::GoalState;
+using sixdof_core::TrajectoryErrorCode;
+using test::armGoal;
+using test::armLoopConfig;
+
+constexpr double kPeriod = 0.01;
+
+class ControlLoopTest : public ::testing::Test {
+ protected:
+  void SetUp() override { ASSERT_TRUE(startWith("{time_constant: 0.02}")); }
+
+  bool startWith(const std::string& params, ControlLoopConfig config = armLoopConfig()) {
+    loop.reset();
+    hardware = loader.load("mock");
+    const HardwareResult init = hardware->init(config.joints, YAML::Load(params));
+    EXPECT_TRUE(init.ok()) << init.message;
+    loop = std::make_unique<ControlLoop>(config, *hardware);
+    now = 0.0;
+    const HardwareResult start = loop->start(now);
+    EXPECT_TRUE(start.ok()) << start.message;
+    return init.ok() && start.ok();
+  }
+
+  // Cycles until a goal ends or `seconds` pass; the outcome, if one ended.
+  std::optional<GoalOutcome> run(double seconds) {
+    outcome.reset();
+    const double end = now + seconds;
+    while (!outcome && now < end) {
+      now += kPeriod;
+      loop->cycle(now);
+    }
+    return outcome;
+  }
+
+  void advance(double seconds) {
+    for (const double end = now + seconds; now < end;) loop->cycle(now += kPeriod);
+  }
+
+  GoalCallback record() {
+    return [this](const GoalOutcome& o) { outcome = o; };
+  }
+
+  HardwareLoader loader;
+  pluginlib::UniquePtr<HardwareInterface> hardware;
+  std::unique_ptr<ControlLoop> loop;
+  std::optional<GoalOutcome> outcome;
+  double now = 0.0;
+};
+
+const std::vector<double> kZero(6, 0.0);
+const std::vector<double> kTarget = {0.5, -0.3, 0.4, 0.2, 0.3, -0.2};
+
+TEST_F(ControlLoopTest, ExecutesAGoalOnTheMock) {
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {kTarget, 1.0}}), record()).ok());
+  ASSERT_TRUE(run(5.0));
+  EXPECT_EQ(outcome->state, GoalState::kSucceeded) << outcome->result.message;
+  const LoopStatus s = loop->status();
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(s.positions[i], kTarget[i], 0.01);
+  const PeriodSummary stats = loop->statistics();
+  EXPECT_GT(stats.count, 100u);
+  EXPECT_NEAR(stats.period_p50, kPeriod, 1e-9);
+}
+
+TEST_F(ControlLoopTest, UnknownPluginIsNamedWithTheDeclaredOnes) {
+  try {
+    loader.load("warp_drive");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("warp_drive"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("sixdof_control/mock"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ControlLoopTest, RefusesAGoalStartingAwayFromTheCurrentState) {
+  std::vector<double> away = kZero;
+  away[2] = 0.1;
+  const auto r = loop->setGoal("arm_controller", armGoal({{away, 0.0}, {kTarget, 1.0}}), record());
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidGoal);
+  EXPECT_NE(r.message.find("joint3"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("start_tolerance"), std::string::npos) << r.message;
+  // A first point later than 0 is reached from the current state (bridged): accepted.
+  EXPECT_TRUE(loop->setGoal("arm_controller", armGoal({{away, 0.5}}), record()).ok());
+}
+
+TEST_F(ControlLoopTest, RefusesGoalsBeyondTheLimits) {
+  std::vector<double> far = kZero;
+  far[0] = 1.0;  // joint1: 1 rad in 0.1 s is 10 rad/s, its limit is 2
+  auto r = loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {far, 0.1}}), record());
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidGoal);
+  EXPECT_NE(r.message.find("joint1"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("velocity limit"), std::string::npos) << r.message;
+  std::vector<double> beyond = kZero;
+  beyond[1] = 2.5;  // joint2's URDF limit is 1.92
+  r = loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {beyond, 5.0}}), record());
+  EXPECT_EQ(r.status, TrajectoryErrorCode::kInvalidGoal);
+  EXPECT_NE(r.message.find("outside its limits"), std::string::npos) << r.message;
+  EXPECT_EQ(loop->setGoal("elbow_controller", armGoal({{kTarget, 1.0}}), record()).status,
+            TrajectoryErrorCode::kInvalidGoal);
+}
+
+TEST_F(ControlLoopTest, ACommandBeyondTheVelocityLimitAbortsNamingTheJoint) {
+  // 0.19 rad in 0.1 s from rest to rest: 1.9 rad/s on average (under joint1's 2), but the cubic peaks at 2.85.
+  std::vector<double> q = kZero;
+  q[0] = 0.19;
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {q, 0.1}}), record()).ok());
+  ASSERT_TRUE(run(1.0));
+  EXPECT_EQ(outcome->state, GoalState::kAborted);
+  EXPECT_NE(outcome->result.message.find("joint1"), std::string::npos) << outcome->result.message;
+  EXPECT_NE(outcome->result.message.find("exceeds its limit 2"), std::string::npos) << outcome->result.message;
+  // The joints hold where they were.
+  const std::vector<double> held = loop->status().commands;
+  advance(0.2);
+  EXPECT_EQ(loop->status().commands, held);
+}
+
+TEST_F(ControlLoopTest, ALostDeviceAbortsTheGoalWithinASecondAndRefusesGoals) {
+  ASSERT_TRUE(startWith("{time_constant: 0.02, lost_after: 0.3}"));
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {kTarget, 2.0}}), record()).ok());
+  ASSERT_TRUE(run(1.3));
+  EXPECT_LE(now, 0.3 + 1.0);
+  EXPECT_EQ(outcome->state, GoalState::kAborted);
+  EXPECT_NE(outcome->result.message.find("disappeared"), std::string::npos) << outcome->result.message;
+  EXPECT_EQ(loop->status().state, LoopState::kFault);
+  const auto r = loop->setGoal("arm_controller", armGoal({{kTarget, 1.0}}), record());
+  EXPECT_NE(r.message.find("hardware fault"), std::string::npos) << r.message;
+  // Cleared while the device is still gone, the next read faults again.
+  loop->clearFault();
+  advance(0.05);
+  EXPECT_EQ(loop->status().state, LoopState::kFault);
+  // An e-stop engaged during the fault stays engaged when the fault is cleared.
+  loop->setEstop(true);
+  loop->clearFault();
+  EXPECT_EQ(loop->status().state, LoopState::kEstop);
+}
+
+TEST_F(ControlLoopTest, AJointThatStopsAnsweringAbortsNamingIt) {
+  ASSERT_TRUE(startWith("{unresponsive_joint: joint4, unresponsive_after: 0.2, response_timeout: 0.001}"));
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {kTarget, 2.0}}), record()).ok());
+  ASSERT_TRUE(run(1.2));
+  EXPECT_EQ(outcome->state, GoalState::kAborted);
+  EXPECT_NE(outcome->result.message.find("joint4"), std::string::npos) << outcome->result.message;
+  // It holds the positions last read.
+  const LoopStatus s = loop->status();
+  EXPECT_EQ(s.commands, s.positions);
+}
+
+TEST_F(ControlLoopTest, EstopStopsAtOnceAndRefusesGoalsUntilReleased) {
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 0.0}, {kTarget, 2.0}}), record()).ok());
+  advance(0.5);
+  loop->setEstop(true);
+  ASSERT_TRUE(outcome);
+  EXPECT_EQ(outcome->state, GoalState::kAborted);
+  EXPECT_NE(outcome->result.message.find("e-stop"), std::string::npos);
+  advance(0.05);
+  const std::vector<double> held = loop->status().commands;
+  advance(0.5);
+  EXPECT_EQ(loop->status().commands, held);
+  EXPECT_EQ(loop->status().state, LoopState::kEstop);
+  const auto refused = loop->setGoal("arm_controller", armGoal({{kTarget, 1.0}}), record());
+  EXPECT_NE(refused.message.find("e-stop engaged"), std::string::npos) << refused.message;
+  loop->setEstop(false);
+  advance(0.02);
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kTarget, 1.5}}), record()).ok());
+  ASSERT_TRUE(run(5.0));
+  EXPECT_EQ(outcome->state, GoalState::kSucceeded) << outcome->result.message;
+}
+
+TEST_F(ControlLoopTest, APreemptedGoalEndsCanceled) {
+  std::optional<GoalOutcome> first;
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kTarget, 2.0}}),
+                            [&](const GoalOutcome& o) { first = o; }).ok());
+  advance(0.3);
+  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 2.0}}), record()).ok());
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->state, GoalState::kCanceled);
+  EXPECT_NE(first->result.message.find("preempted"), std::string::npos);
+  loop->cancel("arm_controller");
+  ASSERT_TRUE(outcome);
+  EXPECT_EQ(outcome->state, GoalState::kCanceled);
+}
+
+TEST_F(ControlLoopTest, SpawnRunsCyclesOnItsOwnThread) {
+  loop->spawn();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (loop->statistics().count < 20 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_GE(loop->statistics().count, 20u);
+  EXPECT_GT(loop->status().time, 0.0);
+  loop->stop();
+  EXPECT_EQ(loop->status().state, LoopState::kStopped);
+}
+
+TEST(ControlLoopConfig, BadConfigsAreNamed) {
+  HardwareLoader loader;
+  auto hardware = loader.load("mock");
+  ControlLoopConfig c = armLoopConfig();
+  c.controllers[0].joints[5] = "wrist";
+  try {
+    ControlLoop loop(c, *hardware);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'wrist'"), std::string::npos) << e.what();
+  }
+  c = armLoopConfig();
+  c.controllers.push_back(c.controllers[0]);
+  c.controllers[1].name = "second";
+  EXPECT_THROW(ControlLoop(c, *hardware), std::invalid_argument);
+  c = armLoopConfig();
+  c.rate = 0.0;
+  EXPECT_THROW(ControlLoop(c, *hardware), std::invalid_argument);
+}
+
+TEST(MockHardware, RefusesUnknownAndBadParameters) {
+  HardwareLoader loader;
+  auto hardware = loader.load("mock");
+  HardwareResult r = hardware->init({"a"}, YAML::Load("{time_constnt: 0.1}"));
+  EXPECT_EQ(r.status, HardwareStatus::kInvalidConfig);
+  EXPECT_NE(r.message.find("time_constnt"), std::string::npos) << r.message;
+  r = hardware->init({"a"}, YAML::Load("{time_constant: -1}"));
+  EXPECT_NE(r.message.find("time_constant"), std::string::npos) << r.message;
+  r = hardware->init({"a"}, YAML::Load("{unresponsive_joint: b}"));
+  EXPECT_NE(r.message.find("'b'"), std::string::npos) << r.message;
+}
+
+}  // namespace
+}  // namespace sixdof_control

@@ -2,10 +2,14 @@
 // sleep_until loop at the same rate in the same run (the timer jitter the machine gives any loop).
 //
 //   control_loop_bench [--urdf FILE] [--joint-limits FILE] [--rate HZ] [--seconds S] [--time-constant S]
+//                      [--realtime-priority N]
 //
 // Defaults: the installed sixdof_description's URDF and joint_limits.yaml, every moving joint of the URDF in one
 // trajectory controller, 100 Hz, 20 s each, mock time constant 0.05 s. The joints follow a slow back-and-forth
-// trajectory the whole time.
+// trajectory the whole time. With --realtime-priority both loops run SCHED_FIFO at that priority.
+
+#include <pthread.h>
+#include <sched.h>
 
 #include <chrono>
 #include <cmath>
@@ -28,8 +32,8 @@ std::filesystem::path shareDir() {
   return std::filesystem::canonical("/proc/self/exe").parent_path().parent_path().parent_path() / "share";
 }
 
-// A loop that only sleeps until its next period, timed like the control loop's thread.
-PeriodSummary bareLoop(double rate, double seconds) {
+// Periods of a loop that only sleeps until its next period, like the control loop's thread.
+PeriodSummary timerLoop(double rate, double seconds) {
   using Clock = std::chrono::steady_clock;
   const std::size_t count = static_cast<std::size_t>(rate * seconds);
   PeriodStatistics statistics(1.0 / rate, count);
@@ -46,6 +50,21 @@ PeriodSummary bareLoop(double rate, double seconds) {
   return statistics.summary();
 }
 
+// timerLoop on a thread of its own at the control loop's priority.
+PeriodSummary bareLoop(double rate, double seconds, int priority) {
+  PeriodSummary summary;
+  std::thread thread([&] {
+    if (priority > 0) {
+      sched_param parameters{};
+      parameters.sched_priority = priority;
+      if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &parameters) != 0) return;
+    }
+    summary = timerLoop(rate, seconds);
+  });
+  thread.join();
+  return summary;
+}
+
 void print(const char* what, const PeriodSummary& s, bool cycle) {
   std::printf("  %-26s period p50 %.3f ms, p99 %.3f ms; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; "
               "%zu of %zu periods over twice the nominal\n",
@@ -56,7 +75,9 @@ void print(const char* what, const PeriodSummary& s, bool cycle) {
 }
 
 int usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--urdf FILE] [--joint-limits FILE] [--rate HZ] [--seconds S] [--time-constant S]\n",
+  std::fprintf(stderr,
+               "usage: %s [--urdf FILE] [--joint-limits FILE] [--rate HZ] [--seconds S] [--time-constant S] "
+               "[--realtime-priority N]\n",
                argv0);
   return 2;
 }
@@ -67,6 +88,7 @@ int main(int argc, char** argv) {
   std::string urdf = (shareDir() / "sixdof_description" / "urdf" / "sixdof.urdf").string();
   std::string joint_limits = (shareDir() / "sixdof_description" / "config" / "joint_limits.yaml").string();
   double rate = 100.0, seconds = 20.0, time_constant = 0.05;
+  int priority = 0;
   for (int i = 1; i < argc; i += 2) {
     const std::string arg = argv[i];
     if (i + 1 >= argc) return usage(argv[0]);
@@ -76,12 +98,15 @@ int main(int argc, char** argv) {
       else if (arg == "--rate") rate = std::stod(argv[i + 1]);
       else if (arg == "--seconds") seconds = std::stod(argv[i + 1]);
       else if (arg == "--time-constant") time_constant = std::stod(argv[i + 1]);
+      else if (arg == "--realtime-priority") priority = std::stoi(argv[i + 1]);
       else return usage(argv[0]);
     } catch (const std::exception&) {
       return usage(argv[0]);
     }
   }
-  if (!(rate > 0.0) || !(seconds > 0.0) || !(time_constant >= 0.0)) return usage(argv[0]);
+  if (!(rate > 0.0) || !(seconds > 0.0) || !(time_constant >= 0.0) || priority < 0 || priority > 99) {
+    return usage(argv[0]);
+  }
 
   const sixdof_core::RobotModel model(sixdof_core::readTextFile(urdf), "",
                                       sixdof_core::PackageResolver::fromSearchRoots({shareDir().string()}));
@@ -89,6 +114,7 @@ int main(int argc, char** argv) {
   config.joints = model.variableNames();
   config.limits = sixdof_control::loadJointLimits(model, YAML::LoadFile(joint_limits), config.joints);
   config.rate = rate;
+  config.realtime_priority = priority;
   config.statistics_window = static_cast<std::size_t>(rate * seconds) + 10;
   sixdof_core::TrajectoryControllerConfig controller;
   controller.name = "bench_controller";
@@ -125,15 +151,21 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "control_loop_bench: goal refused: %s\n", accepted.message.c_str());
     return 1;
   }
-  loop.spawn();
+  try {
+    loop.spawn();
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "control_loop_bench: %s\n", e.what());
+    return 1;
+  }
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
   const PeriodSummary control = loop.statistics();
   loop.stop();
-  const PeriodSummary bare = bareLoop(rate, seconds);
+  const PeriodSummary bare = bareLoop(rate, seconds, priority);
 
   std::printf("control_loop_bench: mock plugin (time constant %.3f s), %zu joints in one trajectory controller, "
-              "%.0f Hz, %.1f s each\n",
-              time_constant, config.joints.size(), rate, seconds);
+              "%.0f Hz, %.1f s each, %s\n",
+              time_constant, config.joints.size(), rate, seconds,
+              priority > 0 ? ("SCHED_FIFO priority " + std::to_string(priority)).c_str() : "normal scheduling");
   print("control loop:", control, true);
   print("bare sleep_until loop:", bare, false);
   std::printf("  p99 period error, control loop / bare loop: %.2fx\n",

@@ -1,8 +1,12 @@
 #include "sixdof_control/control_loop.h"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -51,6 +55,9 @@ ControlLoop::ControlLoop(ControlLoopConfig config, HardwareInterface& hardware)
     }
   }
   if (!(config_.rate > 0.0) || !std::isfinite(config_.rate)) throw std::invalid_argument("ControlLoop: rate must be > 0");
+  if (config_.realtime_priority < 0 || config_.realtime_priority > 99) {
+    throw std::invalid_argument("ControlLoop: realtime_priority must be 0 (off) or 1..99");
+  }
   for (double v : {config_.start_tolerance, config_.read_timeout, config_.velocity_tolerance}) {
     if (!(v >= 0.0) || !std::isfinite(v)) {
       throw std::invalid_argument("ControlLoop: start_tolerance, read_timeout and velocity_tolerance must be >= 0");
@@ -133,6 +140,18 @@ void ControlLoop::spawn() {
       if (Clock::now() > next + period) next = Clock::now();
     }
   });
+  if (config_.realtime_priority > 0) {
+    sched_param parameters{};
+    parameters.sched_priority = config_.realtime_priority;
+    const int error = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &parameters);
+    if (error != 0) {
+      running_ = false;
+      thread_.join();
+      throw std::runtime_error("ControlLoop: cannot run the loop at SCHED_FIFO priority " +
+                               std::to_string(config_.realtime_priority) + ": " + std::strerror(error) +
+                               " (needs root, CAP_SYS_NICE or an rtprio limit)");
+    }
+  }
 }
 
 int ControlLoop::controllerIndex(const std::string& name) const {

@@ -222,6 +222,9 @@ TEST(ControlLoopConfig, BadConfigsAreNamed) {
   c = armLoopConfig();
   c.rate = 0.0;
   EXPECT_THROW(ControlLoop(c, *hardware), std::invalid_argument);
+  c = armLoopConfig();
+  c.realtime_priority = 100;
+  EXPECT_THROW(ControlLoop(c, *hardware), std::invalid_argument);
 }
 
 TEST(MockHardware, RefusesUnknownAndBadParameters) {

@@ -32,6 +32,9 @@ struct ControlLoopConfig {
   // a trajectory timed at the limits overshoot them slightly between points.
   double velocity_tolerance = 0.05;
   std::size_t statistics_window = 1000;  // periods the statistics cover
+  // 1..99: spawn()'s thread runs SCHED_FIFO at this priority (root or CAP_SYS_NICE), so that other processes'
+  // time slices do not delay cycles; 0: normal scheduling.
+  int realtime_priority = 0;
 };
 
 enum class LoopState {
@@ -92,7 +95,7 @@ class ControlLoop {
   // One cycle at `now` (s on the loop's clock, later than the previous one): read, update, check, write.
   void cycle(double now);
   // Runs cycle() at the rate on a thread of its own (steady clock; the loop's clock then counts from start()'s
-  // `now`), until stop().
+  // `now`), until stop(). Throws std::runtime_error naming the reason when realtime_priority cannot be had.
   void spawn();
 
   // Validates and starts a goal on the controller at the last cycle's time (preempting its active goal, which ends

@@ -22,14 +22,11 @@ using sixdof_core::TrajectoryGoal;
 using sixdof_core::TrajectoryResult;
 using sixdof_core::TrajectorySample;
 using sixdof_core::TrajectoryUpdate;
-using Done = std::vector<std::pair<GoalCallback, GoalOutcome>>;
 
 namespace {
 
-void invoke(Done& done) {
-  for (auto& [callback, outcome] : done) {
-    if (callback) callback(outcome);
-  }
+void notify(std::vector<std::function<void()>>& done) {
+  for (const auto& call : done) call();
 }
 
 std::vector<double> pick(const std::vector<double>& values, const std::vector<std::size_t>& indices) {
@@ -88,6 +85,25 @@ ControlLoop::ControlLoop(ControlLoopConfig config, HardwareInterface& hardware)
     }
     controllers_.push_back(Controller{TrajectoryController(c), indices, nullptr, std::nullopt});
   }
+  commander_ = owner_;
+  for (sixdof_core::GripperControllerConfig& g : config_.grippers) {
+    const auto it = std::find(config_.joints.begin(), config_.joints.end(), g.joint);
+    if (it == config_.joints.end()) {
+      throw std::invalid_argument("ControlLoop: joint '" + g.joint + "' of gripper '" + g.name +
+                                  "' is not one of the hardware's joints");
+    }
+    if (gripperIndex(g.name) >= 0) throw std::invalid_argument("ControlLoop: two grippers are named '" + g.name + "'");
+    const std::size_t j = static_cast<std::size_t>(it - config_.joints.begin());
+    const JointLimit& l = config_.limits[j];
+    if (!l.has_position_limits) {
+      throw std::invalid_argument("ControlLoop: joint '" + g.joint + "' of gripper '" + g.name +
+                                  "' needs position limits");
+    }
+    g.lower = l.min_position;
+    g.upper = l.max_position;
+    if (commander_[j] == -1) commander_[j] = -2 - static_cast<int>(grippers_.size());
+    grippers_.push_back(Gripper{sixdof_core::GripperController(g), j, nullptr, 0.0});
+  }
 }
 
 ControlLoop::~ControlLoop() { stop(); }
@@ -102,7 +118,7 @@ HardwareResult ControlLoop::start(double now) {
     return r;
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  for (Controller& c : controllers_) c.controller.hold(pick(positions, c.joints));
+  holdAll(positions);
   status_ = LoopStatus{LoopState::kRunning, "", now, positions,
                        hardware_.hasVelocities() ? velocities : std::vector<double>(n, 0.0), positions};
   previous_positions_ = positions;
@@ -113,7 +129,7 @@ HardwareResult ControlLoop::start(double now) {
 void ControlLoop::stop() {
   running_ = false;
   if (thread_.joinable()) thread_.join();
-  Done done;
+  Notifications done;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (status_.state == LoopState::kStopped) return;
@@ -121,7 +137,7 @@ void ControlLoop::stop() {
     status_.state = LoopState::kStopped;
   }
   hardware_.stop();
-  invoke(done);
+  notify(done);
 }
 
 void ControlLoop::spawn() {
@@ -154,31 +170,6 @@ void ControlLoop::spawn() {
   }
 }
 
-int ControlLoop::controllerIndex(const std::string& name) const {
-  for (std::size_t i = 0; i < controllers_.size(); ++i) {
-    if (controllers_[i].controller.config().name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
-
-void ControlLoop::abortAll(GoalState state, TrajectoryErrorCode code, const std::string& message, Done& done) {
-  for (Controller& c : controllers_) {
-    if (!c.controller.active()) continue;
-    c.controller.cancel(pick(status_.positions, c.joints));
-    done.emplace_back(std::move(c.done),
-                      GoalOutcome{c.controller.config().name, state, TrajectoryResult::failure(code, message)});
-    c.done = nullptr;
-  }
-}
-
-void ControlLoop::enterFault(const std::string& message, Done& done) {
-  if (status_.state == LoopState::kFault) return;
-  abortAll(GoalState::kAborted, TrajectoryErrorCode::kInvalidGoal, "hardware fault: " + message, done);
-  status_.state = LoopState::kFault;
-  status_.fault = message;
-  hold_ = status_.positions;
-}
-
 void ControlLoop::cycle(double now) {
   const auto cycle_start = std::chrono::steady_clock::now();
   const std::size_t n = config_.joints.size();
@@ -196,7 +187,7 @@ void ControlLoop::cycle(double now) {
     s << "hardware read took " << read_time << " s, over read_timeout " << config_.read_timeout << " s";
     read = HardwareResult::failure(HardwareStatus::kTimeout, s.str());
   }
-  Done done;
+  Notifications done;
   std::vector<double> commands;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -211,14 +202,14 @@ void ControlLoop::cycle(double now) {
       status_.positions = positions;
       status_.velocities = velocities;
       if (rehold_ && status_.state != LoopState::kFault) {
-        for (Controller& c : controllers_) c.controller.hold(pick(positions, c.joints));
+        holdAll(positions);
         rehold_ = false;
       }
     }
     if (status_.state == LoopState::kFault) {
       status_.commands = hold_;
     } else {
-      updateControllers(now, done);
+      updateControllers(now, period, done);
       checkLimits(done);
     }
     commands = status_.commands;
@@ -233,27 +224,43 @@ void ControlLoop::cycle(double now) {
     std::lock_guard<std::mutex> lock(mutex_);
     statistics_.add(period, cycle_time);
   }
-  invoke(done);
+  notify(done);
 }
 
-void ControlLoop::updateControllers(double now, Done& done) {
+void ControlLoop::updateControllers(double now, double period, Notifications& done) {
   for (std::size_t i = 0; i < controllers_.size(); ++i) {
     Controller& c = controllers_[i];
     TrajectoryUpdate u =
         c.controller.update(now, pick(status_.positions, c.joints), pick(status_.velocities, c.joints));
-    for (std::size_t k = 0; k < c.joints.size(); ++k) status_.commands[c.joints[k]] = u.desired.position[k];
-    if (u.finished) {
-      done.emplace_back(std::move(c.done), GoalOutcome{c.controller.config().name, u.state, u.result});
-      c.done = nullptr;
+    for (std::size_t k = 0; k < c.joints.size(); ++k) {
+      if (commander_[c.joints[k]] == static_cast<int>(i)) status_.commands[c.joints[k]] = u.desired.position[k];
     }
+    if (u.finished) endGoal(c, u.state, u.result, done);
     c.last = std::move(u);
+  }
+  for (std::size_t g = 0; g < grippers_.size(); ++g) {
+    Gripper& gripper = grippers_[g];
+    if (commander_[gripper.joint] != -2 - static_cast<int>(g)) continue;
+    const sixdof_core::GripperUpdate u = gripper.controller.update(now, status_.positions[gripper.joint]);
+    const JointLimit& l = config_.limits[gripper.joint];
+    const double step = l.has_velocity_limits ? l.max_velocity * period : std::abs(u.command_position - gripper.command);
+    gripper.command += std::clamp(u.command_position - gripper.command, -step, step);
+    status_.commands[gripper.joint] = gripper.command;
+    if (u.finished) {
+      const std::string message = u.reached_goal                      ? "reached the goal"
+                                  : u.state == GoalState::kSucceeded ? "stalled (allow_stalling: counts as success)"
+                                                                     : "stalled before reaching the goal";
+      endGoal(gripper, u.state, message, done, u.reached_goal, u.stalled);
+    }
   }
 }
 
-void ControlLoop::checkLimits(Done& done) {
-  for (Controller& c : controllers_) {
+void ControlLoop::checkLimits(Notifications& done) {
+  for (std::size_t i = 0; i < controllers_.size(); ++i) {
+    Controller& c = controllers_[i];
     if (!c.last) continue;
     for (std::size_t k = 0; k < c.joints.size(); ++k) {
+      if (commander_[c.joints[k]] != static_cast<int>(i)) continue;
       const JointLimit& l = config_.limits[c.joints[k]];
       const double q = c.last->desired.position[k];
       const double v = c.last->desired.velocity[k];
@@ -267,15 +274,12 @@ void ControlLoop::checkLimits(Done& done) {
       }
       if (s.str().empty()) continue;
       const std::vector<double> actual = pick(status_.positions, c.joints);
-      const bool active = c.controller.active();
-      c.controller.cancel(actual);
-      if (!active) c.controller.hold(actual);
-      for (std::size_t m = 0; m < c.joints.size(); ++m) status_.commands[c.joints[m]] = actual[m];
-      if (active) {
-        done.emplace_back(std::move(c.done),
-                          GoalOutcome{c.controller.config().name, GoalState::kAborted,
-                                      TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, s.str())});
-        c.done = nullptr;
+      if (c.controller.active()) {
+        endGoal(c, GoalState::kAborted, TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, s.str()), done);
+      }
+      c.controller.hold(actual);
+      for (std::size_t m = 0; m < c.joints.size(); ++m) {
+        if (commander_[c.joints[m]] == static_cast<int>(i)) status_.commands[c.joints[m]] = actual[m];
       }
       break;
     }

@@ -14,9 +14,18 @@ using sixdof_core::TrajectoryPoint;
 using sixdof_core::TrajectoryResult;
 using sixdof_core::TrajectorySample;
 using sixdof_core::TrajectoryUpdate;
-using Done = std::vector<std::pair<GoalCallback, GoalOutcome>>;
 
 namespace {
+
+void notify(std::vector<std::function<void()>>& done) {
+  for (const auto& call : done) call();
+}
+
+std::vector<double> pick(const std::vector<double>& values, const std::vector<std::size_t>& indices) {
+  std::vector<double> out;
+  for (std::size_t i : indices) out.push_back(values[i]);
+  return out;
+}
 
 TrajectoryResult refuse(const std::string& why) { return TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, why); }
 
@@ -63,60 +72,184 @@ std::string ControlLoop::limitProblem(const TrajectoryGoal& goal) const {
   return "";
 }
 
+int ControlLoop::controllerIndex(const std::string& name) const {
+  for (std::size_t i = 0; i < controllers_.size(); ++i) {
+    if (controllers_[i].controller.config().name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+int ControlLoop::gripperIndex(const std::string& name) const {
+  for (std::size_t i = 0; i < grippers_.size(); ++i) {
+    if (grippers_[i].controller.config().name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// Why no goal is taken now; empty when goals are.
+std::string ControlLoop::refusal() const {
+  if (status_.state == LoopState::kStopped) return "the control loop is not running";
+  if (estop_) return "e-stop engaged: goals are refused until it is released";
+  if (status_.state == LoopState::kFault) {
+    return "hardware fault: " + status_.fault + " (goals are refused until the fault is cleared)";
+  }
+  return "";
+}
+
+void ControlLoop::endGoal(Controller& c, GoalState state, TrajectoryResult result, Notifications& done) {
+  done.emplace_back([callback = std::move(c.done), o = GoalOutcome{c.controller.config().name, state, result}] {
+    if (callback) callback(o);
+  });
+  c.done = nullptr;
+}
+
+void ControlLoop::endGoal(Gripper& g, GoalState state, const std::string& message, Notifications& done,
+                          bool reached_goal, bool stalled) {
+  done.emplace_back([callback = std::move(g.done),
+                     o = GripperOutcome{g.controller.config().name, state, message, reached_goal, stalled}] {
+    if (callback) callback(o);
+  });
+  g.done = nullptr;
+}
+
+void ControlLoop::claim(std::size_t joint, int controller, int gripper, const std::string& by, Notifications& done) {
+  const int previous = commander_[joint];
+  const int next = controller >= 0 ? controller : -2 - gripper;
+  if (previous == next) return;
+  const std::string why = "preempted by " + by;
+  if (previous >= 0) {
+    Controller& c = controllers_[static_cast<std::size_t>(previous)];
+    if (c.controller.active()) {
+      c.controller.cancel(pick(status_.positions, c.joints));
+      endGoal(c, GoalState::kCanceled, TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, why), done);
+    }
+  } else if (previous <= -2) {
+    Gripper& g = grippers_[static_cast<std::size_t>(-2 - previous)];
+    if (g.controller.active()) {
+      g.controller.cancel(status_.positions[g.joint]);
+      endGoal(g, GoalState::kCanceled, why, done);
+    }
+  }
+  if (gripper >= 0) grippers_[static_cast<std::size_t>(gripper)].command = status_.commands[joint];
+  commander_[joint] = next;
+}
+
+void ControlLoop::abortAll(GoalState state, TrajectoryErrorCode code, const std::string& message, Notifications& done) {
+  for (Controller& c : controllers_) {
+    if (!c.controller.active()) continue;
+    c.controller.cancel(pick(status_.positions, c.joints));
+    endGoal(c, state, TrajectoryResult::failure(code, message), done);
+  }
+  for (Gripper& g : grippers_) {
+    if (!g.controller.active()) continue;
+    g.controller.cancel(status_.positions[g.joint]);
+    g.command = status_.positions[g.joint];
+    endGoal(g, state, message, done);
+  }
+}
+
+void ControlLoop::holdAll(const std::vector<double>& positions) {
+  for (Controller& c : controllers_) c.controller.hold(pick(positions, c.joints));
+  for (Gripper& g : grippers_) {
+    g.controller.hold(positions[g.joint]);
+    g.command = positions[g.joint];
+  }
+}
+
+void ControlLoop::enterFault(const std::string& message, Notifications& done) {
+  if (status_.state == LoopState::kFault) return;
+  abortAll(GoalState::kAborted, TrajectoryErrorCode::kInvalidGoal, "hardware fault: " + message, done);
+  status_.state = LoopState::kFault;
+  status_.fault = message;
+  hold_ = status_.positions;
+}
+
 TrajectoryResult ControlLoop::setGoal(const std::string& controller, const TrajectoryGoal& goal, GoalCallback done) {
-  Done ended;
+  Notifications ended;
   TrajectoryResult result;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const int index = controllerIndex(controller);
     if (index < 0) return refuse("unknown controller '" + controller + "'");
+    if (const std::string why = refusal(); !why.empty()) return refuse(why);
     Controller& c = controllers_[static_cast<std::size_t>(index)];
-    if (status_.state == LoopState::kStopped) return refuse("the control loop is not running");
-    if (estop_) return refuse("e-stop engaged: goals are refused until it is released");
-    if (status_.state == LoopState::kFault) {
-      return refuse("hardware fault: " + status_.fault + " (goals are refused until the fault is cleared)");
-    }
     result = c.controller.validate(goal, status_.time);
     if (!result.ok()) return result;
     const std::string problem = limitProblem(goal);
     if (!problem.empty()) return refuse(problem);
+    // Joints another controller commanded start from where they are.
+    const bool commands_all = std::all_of(c.joints.begin(), c.joints.end(), [&](std::size_t j) {
+      return commander_[j] == index;
+    });
+    if (!commands_all) c.controller.hold(pick(status_.positions, c.joints));
     const bool preempting = c.controller.active();
     result = c.controller.setGoal(goal, status_.time);
     if (!result.ok()) return result;
     if (preempting) {
-      ended.emplace_back(std::move(c.done),
-                         GoalOutcome{controller, GoalState::kCanceled,
-                                     TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "preempted by a new goal")});
+      endGoal(c, GoalState::kCanceled,
+              TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "preempted by a new goal"), ended);
     }
+    for (std::size_t j : c.joints) claim(j, index, -1, "controller '" + controller + "'", ended);
     c.done = std::move(done);
   }
-  for (auto& [callback, outcome] : ended) {
-    if (callback) callback(outcome);
+  notify(ended);
+  return result;
+}
+
+sixdof_core::GripperResult ControlLoop::setGripperGoal(const std::string& gripper, const sixdof_core::GripperGoal& goal,
+                                                       GripperCallback done) {
+  using sixdof_core::GripperResult;
+  using sixdof_core::GripperStatus;
+  Notifications ended;
+  GripperResult result;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const int index = gripperIndex(gripper);
+    if (index < 0) return GripperResult::failure(GripperStatus::kRefused, "unknown gripper '" + gripper + "'");
+    if (const std::string why = refusal(); !why.empty()) return GripperResult::failure(GripperStatus::kRefused, why);
+    Gripper& g = grippers_[static_cast<std::size_t>(index)];
+    result = g.controller.validate(goal);
+    if (!result.ok()) return result;
+    if (g.controller.active()) endGoal(g, GoalState::kCanceled, "preempted by a new goal", ended);
+    claim(g.joint, -1, index, "gripper '" + gripper + "'", ended);
+    result = g.controller.setGoal(goal, status_.time);
+    g.done = std::move(done);
   }
+  notify(ended);
   return result;
 }
 
 void ControlLoop::cancel(const std::string& controller) {
-  GoalCallback callback;
-  GoalOutcome outcome{controller, GoalState::kCanceled,
-                      TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "canceled")};
+  Notifications done;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const int index = controllerIndex(controller);
     if (index < 0) return;
     Controller& c = controllers_[static_cast<std::size_t>(index)];
     if (!c.controller.active()) return;
-    std::vector<double> actual;
-    for (std::size_t j : c.joints) actual.push_back(status_.positions[j]);
-    c.controller.cancel(actual);
-    callback = std::move(c.done);
-    c.done = nullptr;
+    c.controller.cancel(pick(status_.positions, c.joints));
+    endGoal(c, GoalState::kCanceled, TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "canceled"), done);
   }
-  if (callback) callback(outcome);
+  notify(done);
+}
+
+void ControlLoop::cancelGripper(const std::string& gripper) {
+  Notifications done;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const int index = gripperIndex(gripper);
+    if (index < 0) return;
+    Gripper& g = grippers_[static_cast<std::size_t>(index)];
+    if (!g.controller.active()) return;
+    g.controller.cancel(status_.positions[g.joint]);
+    g.command = status_.positions[g.joint];
+    endGoal(g, GoalState::kCanceled, "canceled", done);
+  }
+  notify(done);
 }
 
 void ControlLoop::setEstop(bool engaged) {
-  Done done;
+  Notifications done;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (status_.state == LoopState::kStopped || engaged == estop_) return;
@@ -129,9 +262,7 @@ void ControlLoop::setEstop(bool engaged) {
       rehold_ = true;
     }
   }
-  for (auto& [callback, outcome] : done) {
-    if (callback) callback(outcome);
-  }
+  notify(done);
 }
 
 void ControlLoop::clearFault() {

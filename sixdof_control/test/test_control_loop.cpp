@@ -1,7 +1,9 @@
 // The control loop on the mock plugin (loaded through pluginlib), in simulated time: goals, limits, faults, e-stop.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <thread>
 
@@ -46,7 +48,7 @@ class ControlLoopTest : public ::testing::Test {
   }
 
   void advance(double seconds) {
-    for (const double end = now + seconds; now < end;) loop->cycle(now += kPeriod);
+    for (const double end = now + seconds - 1e-9; now < end;) loop->cycle(now += kPeriod);
   }
 
   GoalCallback record() {
@@ -202,6 +204,48 @@ TEST_F(ControlLoopTest, SpawnRunsCyclesOnItsOwnThread) {
   EXPECT_GT(loop->status().time, 0.0);
   loop->stop();
   EXPECT_EQ(loop->status().state, LoopState::kStopped);
+}
+
+TEST_F(ControlLoopTest, GripperGoalsMoveAtTheVelocityLimitAndTheLatestGoalCommands) {
+  ASSERT_TRUE(startWith("{time_constant: 0.02, initial_positions: {finger1_joint: 0.04}}", test::armAndGripperConfig()));
+  std::optional<GripperOutcome> gripper;
+  const auto recordGripper = [&](const GripperOutcome& o) { gripper = o; };
+  ASSERT_TRUE(loop->setGripperGoal("gripper_controller", {0.01, 0.0}, recordGripper).ok());
+  double previous = loop->status().commands[6], fastest = 0.0;
+  for (int i = 0; i < 200 && !gripper; ++i) {
+    advance(kPeriod);
+    fastest = std::max(fastest, std::abs(loop->status().commands[6] - previous) / kPeriod);
+    previous = loop->status().commands[6];
+  }
+  ASSERT_TRUE(gripper);
+  EXPECT_EQ(gripper->state, GoalState::kSucceeded) << gripper->message;
+  EXPECT_TRUE(gripper->reached_goal);
+  EXPECT_NEAR(fastest, 0.1, 1e-9);  // finger1_joint's velocity limit (joint_limits.yaml)
+
+  // The finger's trajectory controller takes the joint back, preempting a new gripper goal, and the other way round.
+  gripper.reset();
+  ASSERT_TRUE(loop->setGripperGoal("gripper_controller", {0.04, 0.0}, recordGripper).ok());
+  advance(0.05);
+  sixdof_core::TrajectoryGoal fingers;
+  fingers.joint_names = {"finger1_joint"};
+  fingers.points = {{{0.03}, {0.0}, {}, 1.0}};
+  ASSERT_TRUE(loop->setGoal("gripper_controller", fingers, record()).ok());
+  ASSERT_TRUE(gripper);
+  EXPECT_EQ(gripper->state, GoalState::kCanceled);
+  EXPECT_NE(gripper->message.find("preempted by controller 'gripper_controller'"), std::string::npos);
+  advance(0.05);
+  outcome.reset();
+  ASSERT_TRUE(loop->setGripperGoal("gripper_controller", {0.02, 0.0}, recordGripper).ok());
+  ASSERT_TRUE(outcome);
+  EXPECT_EQ(outcome->state, GoalState::kCanceled);
+  EXPECT_NE(outcome->result.message.find("preempted by gripper"), std::string::npos);
+
+  loop->setEstop(true);
+  const auto refused = loop->setGripperGoal("gripper_controller", {0.02, 0.0}, recordGripper);
+  EXPECT_EQ(refused.status, sixdof_core::GripperStatus::kRefused);
+  EXPECT_NE(refused.message.find("e-stop"), std::string::npos) << refused.message;
+  EXPECT_EQ(loop->setGripperGoal("suction_cup", {0.02, 0.0}, recordGripper).status,
+            sixdof_core::GripperStatus::kRefused);
 }
 
 TEST(ControlLoopConfig, BadConfigsAreNamed) {

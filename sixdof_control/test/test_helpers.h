@@ -39,6 +39,29 @@ inline ControlLoopConfig armLoopConfig() {
   return c;
 }
 
+// The arm's controller plus the first finger's: a trajectory controller and a gripper_cmd controller on one joint.
+inline ControlLoopConfig armAndGripperConfig() {
+  ControlLoopConfig c = armLoopConfig();
+  c.joints.push_back("finger1_joint");
+  c.limits = loadJointLimits(*sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"),
+                             c.joints);
+  sixdof_core::TrajectoryControllerConfig fingers;
+  fingers.name = "gripper_controller";
+  fingers.joints = {"finger1_joint"};
+  fingers.path_tolerance = {0.0};
+  fingers.goal_tolerance = {0.002};
+  fingers.goal_time = 0.6;
+  fingers.stopped_velocity_tolerance = 0.05;
+  c.controllers.push_back(fingers);
+  sixdof_core::GripperControllerConfig gripper;
+  gripper.name = "gripper_controller";
+  gripper.joint = "finger1_joint";
+  gripper.effort_limit = sixdofModel()->joint("finger1_joint").limits.effort;
+  gripper.goal_tolerance = 0.002;
+  c.grippers = {gripper};
+  return c;
+}
+
 // A goal through the given points (positions, time) of every arm joint, at rest at each (cubic segments).
 inline sixdof_core::TrajectoryGoal armGoal(const std::vector<std::pair<std::vector<double>, double>>& points) {
   sixdof_core::TrajectoryGoal g;

@@ -12,6 +12,7 @@
 #include "sixdof_control/hardware_interface.h"
 #include "sixdof_control/joint_limits.h"
 #include "sixdof_control/period_statistics.h"
+#include "sixdof_core/control/gripper_controller.h"
 #include "sixdof_core/control/trajectory_controller.h"
 
 namespace sixdof_control {
@@ -22,6 +23,11 @@ struct ControlLoopConfig {
   // The controllers (controllers.yaml). Each joint belongs to one controller at most; their position limits are
   // taken from `limits` (what the config says there is replaced).
   std::vector<sixdof_core::TrajectoryControllerConfig> controllers;
+  // gripper_cmd controllers (controllers.yaml's gripper_cmd blocks), one joint each, which a trajectory controller
+  // may command too: the controller whose goal came last commands the joint, the other's goal ends kCanceled. Their
+  // position limits are taken from `limits`; a gripper moves its joint's command towards the target at the joint's
+  // velocity limit.
+  std::vector<sixdof_core::GripperControllerConfig> grippers;
   double rate = 100.0;  // Hz of read -> update -> write
   // A goal whose first point is at time 0 (commanded at once) must start this close to every joint's position
   // (rad or m; MoveIt's allowed_start_tolerance).
@@ -54,6 +60,17 @@ struct GoalOutcome {
 // Called once per accepted goal, on the thread that ended it (the loop's, or the caller of cancel, setGoal or
 // setEstop), without the loop's lock held.
 using GoalCallback = std::function<void(const GoalOutcome&)>;
+
+// How a gripper goal ended (GripperCommand's result): kSucceeded (reached, or stalled with allow_stalling), kAborted
+// or kCanceled, and why.
+struct GripperOutcome {
+  std::string controller;
+  sixdof_core::GoalState state = sixdof_core::GoalState::kIdle;
+  std::string message;
+  bool reached_goal = false;
+  bool stalled = false;
+};
+using GripperCallback = std::function<void(const GripperOutcome&)>;
 
 struct LoopStatus {
   LoopState state = LoopState::kStopped;
@@ -105,6 +122,11 @@ class ControlLoop {
                                         GoalCallback done);
   // Cancels the controller's active goal (it holds the current positions).
   void cancel(const std::string& controller);
+  // The same for a gripper controller: refused with kRefused naming why during e-stop or a fault or for an unknown
+  // gripper, else the controller's own validation.
+  sixdof_core::GripperResult setGripperGoal(const std::string& gripper, const sixdof_core::GripperGoal& goal,
+                                            GripperCallback done);
+  void cancelGripper(const std::string& gripper);
 
   void setEstop(bool engaged);
   // Leaves kFault: the next good read holds wherever the joints are and goals are accepted again.
@@ -120,18 +142,33 @@ class ControlLoop {
 
  private:
   struct Controller;
+  struct Gripper;
+  // Goal callbacks to call once the lock is released.
+  using Notifications = std::vector<std::function<void()>>;
   int controllerIndex(const std::string& name) const;
+  int gripperIndex(const std::string& name) const;
+  std::string refusal() const;
   std::string limitProblem(const sixdof_core::TrajectoryGoal& goal) const;
+  // The joint is commanded by trajectory controller `controller` or gripper `gripper` (the other -1) from now on;
+  // the goal of the one that commanded it before ends kCanceled.
+  void claim(std::size_t joint, int controller, int gripper, const std::string& by, Notifications& done);
+  void endGoal(Controller& c, sixdof_core::GoalState state, sixdof_core::TrajectoryResult result, Notifications& done);
+  void endGoal(Gripper& g, sixdof_core::GoalState state, const std::string& message, Notifications& done,
+               bool reached_goal = false, bool stalled = false);
   void abortAll(sixdof_core::GoalState state, sixdof_core::TrajectoryErrorCode code, const std::string& message,
-                std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
-  void enterFault(const std::string& message, std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
-  void updateControllers(double now, std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
-  void checkLimits(std::vector<std::pair<GoalCallback, GoalOutcome>>& done);
+                Notifications& done);
+  void holdAll(const std::vector<double>& positions);
+  void enterFault(const std::string& message, Notifications& done);
+  void updateControllers(double now, double period, Notifications& done);
+  void checkLimits(Notifications& done);
 
   ControlLoopConfig config_;
   HardwareInterface& hardware_;
   std::vector<Controller> controllers_;
-  std::vector<int> owner_;  // per joint: its controller's index, -1 for none
+  std::vector<Gripper> grippers_;
+  std::vector<int> owner_;  // per joint: its trajectory controller's index, -1 for none
+  // Per joint: who commands it now: a trajectory controller's index, or -2 - a gripper's index; -1 for none.
+  std::vector<int> commander_;
 
   mutable std::mutex mutex_;
   LoopStatus status_;

@@ -36,6 +36,7 @@ enum class GripperStatus {
   kOk = 0,
   kInvalidArgument,  // not finite, negative effort
   kOutOfLimits,      // position outside the joint limits, effort above the effort limit
+  kRefused,          // whoever hosts the controller takes no goals now (sixdof_control: e-stop, fault, stopped)
 };
 
 using GripperResult = Result<GripperStatus>;

@@ -66,12 +66,14 @@ PeriodSummary bareLoop(double rate, double seconds, int priority) {
 }
 
 void print(const char* what, const PeriodSummary& s, bool cycle) {
-  std::printf("  %-26s period p50 %.3f ms, p99 %.3f ms; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; "
-              "%zu of %zu periods over twice the nominal\n",
-              what, s.period_p50 * 1e3, s.period_p99 * 1e3, s.error_p50 * 1e3, s.error_p99 * 1e3, s.error_max * 1e3,
-              s.overruns, s.count);
-  if (cycle) std::printf("  %-26s cycle (read, update, write) p50 %.3f ms, p99 %.3f ms\n", "", s.cycle_p50 * 1e3,
-                         s.cycle_p99 * 1e3);
+  std::printf(
+      "  %-26s period p50 %.3f ms, p99 %.3f ms; period error p50 %.3f ms, p99 %.3f ms, max %.3f ms; "
+      "%zu of %zu periods over twice the nominal\n",
+      what, s.period_p50 * 1e3, s.period_p99 * 1e3, s.error_p50 * 1e3, s.error_p99 * 1e3, s.error_max * 1e3, s.overruns,
+      s.count);
+  if (cycle)
+    std::printf("  %-26s cycle (read, update, write) p50 %.3f ms, p99 %.3f ms\n", "", s.cycle_p50 * 1e3,
+                s.cycle_p99 * 1e3);
 }
 
 int usage(const char* argv0) {
@@ -93,13 +95,20 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (i + 1 >= argc) return usage(argv[0]);
     try {
-      if (arg == "--urdf") urdf = argv[i + 1];
-      else if (arg == "--joint-limits") joint_limits = argv[i + 1];
-      else if (arg == "--rate") rate = std::stod(argv[i + 1]);
-      else if (arg == "--seconds") seconds = std::stod(argv[i + 1]);
-      else if (arg == "--time-constant") time_constant = std::stod(argv[i + 1]);
-      else if (arg == "--realtime-priority") priority = std::stoi(argv[i + 1]);
-      else return usage(argv[0]);
+      if (arg == "--urdf")
+        urdf = argv[i + 1];
+      else if (arg == "--joint-limits")
+        joint_limits = argv[i + 1];
+      else if (arg == "--rate")
+        rate = std::stod(argv[i + 1]);
+      else if (arg == "--seconds")
+        seconds = std::stod(argv[i + 1]);
+      else if (arg == "--time-constant")
+        time_constant = std::stod(argv[i + 1]);
+      else if (arg == "--realtime-priority")
+        priority = std::stoi(argv[i + 1]);
+      else
+        return usage(argv[0]);
     } catch (const std::exception&) {
       return usage(argv[0]);
     }
@@ -162,10 +171,11 @@ int main(int argc, char** argv) {
   loop.stop();
   const PeriodSummary bare = bareLoop(rate, seconds, priority);
 
-  std::printf("control_loop_bench: mock plugin (time constant %.3f s), %zu joints in one trajectory controller, "
-              "%.0f Hz, %.1f s each, %s\n",
-              time_constant, config.joints.size(), rate, seconds,
-              priority > 0 ? ("SCHED_FIFO priority " + std::to_string(priority)).c_str() : "normal scheduling");
+  std::printf(
+      "control_loop_bench: mock plugin (time constant %.3f s), %zu joints in one trajectory controller, "
+      "%.0f Hz, %.1f s each, %s\n",
+      time_constant, config.joints.size(), rate, seconds,
+      priority > 0 ? ("SCHED_FIFO priority " + std::to_string(priority)).c_str() : "normal scheduling");
   print("control loop:", control, true);
   print("bare sleep_until loop:", bare, false);
   std::printf("  p99 period error, control loop / bare loop: %.2fx\n",

@@ -15,28 +15,13 @@
 
 namespace sixdof_control {
 
+using loop::notify;
+using loop::pick;
 using sixdof_core::GoalState;
 using sixdof_core::TrajectoryController;
 using sixdof_core::TrajectoryErrorCode;
-using sixdof_core::TrajectoryGoal;
 using sixdof_core::TrajectoryResult;
-using sixdof_core::TrajectorySample;
 using sixdof_core::TrajectoryUpdate;
-
-namespace {
-
-void notify(std::vector<std::function<void()>>& done) {
-  for (const auto& call : done) call();
-}
-
-std::vector<double> pick(const std::vector<double>& values, const std::vector<std::size_t>& indices) {
-  std::vector<double> out;
-  out.reserve(indices.size());
-  for (std::size_t i : indices) out.push_back(values[i]);
-  return out;
-}
-
-}  // namespace
 
 ControlLoop::ControlLoop(ControlLoopConfig config, HardwareInterface& hardware)
     : config_(std::move(config)),
@@ -51,7 +36,8 @@ ControlLoop::ControlLoop(ControlLoopConfig config, HardwareInterface& hardware)
                                   config_.limits[i].joint + "', expected '" + config_.joints[i] + "'");
     }
   }
-  if (!(config_.rate > 0.0) || !std::isfinite(config_.rate)) throw std::invalid_argument("ControlLoop: rate must be > 0");
+  if (!(config_.rate > 0.0) || !std::isfinite(config_.rate))
+    throw std::invalid_argument("ControlLoop: rate must be > 0");
   if (config_.realtime_priority < 0 || config_.realtime_priority > 99) {
     throw std::invalid_argument("ControlLoop: realtime_priority must be 0 (off) or 1..99");
   }
@@ -74,8 +60,8 @@ ControlLoop::ControlLoop(ControlLoopConfig config, HardwareInterface& hardware)
       const std::size_t j = static_cast<std::size_t>(it - config_.joints.begin());
       if (owner_[j] >= 0) {
         throw std::invalid_argument("ControlLoop: joint '" + joint + "' belongs to controllers '" +
-                                    config_.controllers[static_cast<std::size_t>(owner_[j])].name + "' and '" +
-                                    c.name + "'");
+                                    config_.controllers[static_cast<std::size_t>(owner_[j])].name + "' and '" + c.name +
+                                    "'");
       }
       owner_[j] = static_cast<int>(controllers_.size());
       indices.push_back(j);
@@ -119,8 +105,12 @@ HardwareResult ControlLoop::start(double now) {
   }
   std::lock_guard<std::mutex> lock(mutex_);
   holdAll(positions);
-  status_ = LoopStatus{LoopState::kRunning, "", now, positions,
-                       hardware_.hasVelocities() ? velocities : std::vector<double>(n, 0.0), positions};
+  status_ = LoopStatus{LoopState::kRunning,
+                       "",
+                       now,
+                       positions,
+                       hardware_.hasVelocities() ? velocities : std::vector<double>(n, 0.0),
+                       positions};
   previous_positions_ = positions;
   hold_ = positions;
   return r;
@@ -145,8 +135,8 @@ void ControlLoop::spawn() {
   thread_ = std::thread([this] {
     using Clock = std::chrono::steady_clock;
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
-    const auto origin = Clock::now() - std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(status().time));
+    const auto origin =
+        Clock::now() - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(status().time));
     auto next = Clock::now();
     while (running_) {
       next += period;
@@ -243,11 +233,12 @@ void ControlLoop::updateControllers(double now, double period, Notifications& do
     if (commander_[gripper.joint] != -2 - static_cast<int>(g)) continue;
     const sixdof_core::GripperUpdate u = gripper.controller.update(now, status_.positions[gripper.joint]);
     const JointLimit& l = config_.limits[gripper.joint];
-    const double step = l.has_velocity_limits ? l.max_velocity * period : std::abs(u.command_position - gripper.command);
+    const double step =
+        l.has_velocity_limits ? l.max_velocity * period : std::abs(u.command_position - gripper.command);
     gripper.command += std::clamp(u.command_position - gripper.command, -step, step);
     status_.commands[gripper.joint] = gripper.command;
     if (u.finished) {
-      const std::string message = u.reached_goal                      ? "reached the goal"
+      const std::string message = u.reached_goal                     ? "reached the goal"
                                   : u.state == GoalState::kSucceeded ? "stalled (allow_stalling: counts as success)"
                                                                      : "stalled before reaching the goal";
       endGoal(gripper, u.state, message, done, u.reached_goal, u.stalled);

@@ -7,6 +7,8 @@
 
 namespace sixdof_control {
 
+using loop::notify;
+using loop::pick;
 using sixdof_core::GoalState;
 using sixdof_core::TrajectoryErrorCode;
 using sixdof_core::TrajectoryGoal;
@@ -17,17 +19,9 @@ using sixdof_core::TrajectoryUpdate;
 
 namespace {
 
-void notify(std::vector<std::function<void()>>& done) {
-  for (const auto& call : done) call();
+TrajectoryResult refuse(const std::string& why) {
+  return TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, why);
 }
-
-std::vector<double> pick(const std::vector<double>& values, const std::vector<std::size_t>& indices) {
-  std::vector<double> out;
-  for (std::size_t i : indices) out.push_back(values[i]);
-  return out;
-}
-
-TrajectoryResult refuse(const std::string& why) { return TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, why); }
 
 }  // namespace
 
@@ -57,11 +51,12 @@ std::string ControlLoop::limitProblem(const TrajectoryGoal& goal) const {
       const double dt = pt.time_from_start - previous_t;
       const double average = dt > 0.0 ? (pt.positions[i] - previous_q) / dt : 0.0;
       if (std::abs(v) > allowed) {
-        s << "point " << p << " gives joint '" << l.joint << "' velocity " << v << ", over its limit " << l.max_velocity;
+        s << "point " << p << " gives joint '" << l.joint << "' velocity " << v << ", over its limit "
+          << l.max_velocity;
       } else if (std::abs(average) > allowed && (p > 0 || goal.start_time == 0.0)) {
         s << "joint '" << l.joint << "' would move at " << average << " on average "
-          << (p == 0 ? std::string("to point 0") : "between points " + std::to_string(p - 1) + " and " +
-                                                         std::to_string(p))
+          << (p == 0 ? std::string("to point 0")
+                     : "between points " + std::to_string(p - 1) + " and " + std::to_string(p))
           << ", over its velocity limit " << l.max_velocity;
       }
       if (!s.str().empty()) return s.str();
@@ -178,9 +173,8 @@ TrajectoryResult ControlLoop::setGoal(const std::string& controller, const Traje
     const std::string problem = limitProblem(goal);
     if (!problem.empty()) return refuse(problem);
     // Joints another controller commanded start from where they are.
-    const bool commands_all = std::all_of(c.joints.begin(), c.joints.end(), [&](std::size_t j) {
-      return commander_[j] == index;
-    });
+    const bool commands_all =
+        std::all_of(c.joints.begin(), c.joints.end(), [&](std::size_t j) { return commander_[j] == index; });
     if (!commands_all) c.controller.hold(pick(status_.positions, c.joints));
     const bool preempting = c.controller.active();
     result = c.controller.setGoal(goal, status_.time);

@@ -15,8 +15,8 @@ pluginlib::UniquePtr<HardwareInterface> HardwareLoader::load(const std::string& 
   } catch (const pluginlib::PluginlibException& e) {
     std::string known;
     for (const std::string& c : declared()) known += (known.empty() ? "" : ", ") + c;
-    throw std::invalid_argument("hardware plugin '" + name + "' cannot be loaded (" + e.what() + "); declared: " +
-                                (known.empty() ? "none" : known));
+    throw std::invalid_argument("hardware plugin '" + name + "' cannot be loaded (" + e.what() +
+                                "); declared: " + (known.empty() ? "none" : known));
   }
 }
 

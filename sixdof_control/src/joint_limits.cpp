@@ -28,9 +28,9 @@ bool flag(const YAML::Node& node, const std::string& where) {
 
 std::vector<JointLimit> loadJointLimits(const sixdof_core::RobotModel& model, const YAML::Node& joint_limits,
                                         const std::vector<std::string>& joints) {
-  static const std::set<std::string> kKeys = {"has_position_limits", "min_position",           "max_position",
-                                              "has_velocity_limits", "max_velocity",           "has_acceleration_limits",
-                                              "max_acceleration",    "has_effort_limits",      "max_effort"};
+  static const std::set<std::string> kKeys = {"has_position_limits", "min_position",      "max_position",
+                                              "has_velocity_limits", "max_velocity",      "has_acceleration_limits",
+                                              "max_acceleration",    "has_effort_limits", "max_effort"};
   if (joint_limits && !joint_limits.IsNull() && !joint_limits.IsMap()) {
     throw std::invalid_argument("joint_limits: the file must be a mapping");
   }

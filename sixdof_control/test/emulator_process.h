@@ -24,8 +24,8 @@ class EmulatorProcess {
       dup2(out[1], 1);
       close(in[1]);
       close(out[0]);
-      const std::string path = std::string(SIXDOF_EMULATOR_PYTHONPATH) + ":" +
-                               (getenv("PYTHONPATH") ? getenv("PYTHONPATH") : "");
+      const std::string path =
+          std::string(SIXDOF_EMULATOR_PYTHONPATH) + ":" + (getenv("PYTHONPATH") ? getenv("PYTHONPATH") : "");
       setenv("PYTHONPATH", path.c_str(), 1);
       std::vector<char*> argv{const_cast<char*>(SIXDOF_PYTHON), const_cast<char*>(SIXDOF_EMULATOR)};
       for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));

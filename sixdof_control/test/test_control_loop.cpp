@@ -182,8 +182,8 @@ TEST_F(ControlLoopTest, EstopStopsAtOnceAndRefusesGoalsUntilReleased) {
 
 TEST_F(ControlLoopTest, APreemptedGoalEndsCanceled) {
   std::optional<GoalOutcome> first;
-  ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kTarget, 2.0}}),
-                            [&](const GoalOutcome& o) { first = o; }).ok());
+  ASSERT_TRUE(
+      loop->setGoal("arm_controller", armGoal({{kTarget, 2.0}}), [&](const GoalOutcome& o) { first = o; }).ok());
   advance(0.3);
   ASSERT_TRUE(loop->setGoal("arm_controller", armGoal({{kZero, 2.0}}), record()).ok());
   ASSERT_TRUE(first);
@@ -207,7 +207,8 @@ TEST_F(ControlLoopTest, SpawnRunsCyclesOnItsOwnThread) {
 }
 
 TEST_F(ControlLoopTest, GripperGoalsMoveAtTheVelocityLimitAndTheLatestGoalCommands) {
-  ASSERT_TRUE(startWith("{time_constant: 0.02, initial_positions: {finger1_joint: 0.04}}", test::armAndGripperConfig()));
+  ASSERT_TRUE(
+      startWith("{time_constant: 0.02, initial_positions: {finger1_joint: 0.04}}", test::armAndGripperConfig()));
   std::optional<GripperOutcome> gripper;
   const auto recordGripper = [&](const GripperOutcome& o) { gripper = o; };
   ASSERT_TRUE(loop->setGripperGoal("gripper_controller", {0.01, 0.0}, recordGripper).ok());

@@ -21,9 +21,10 @@ using test::EmulatorProcess;
 const std::vector<std::string> kJoints = {"joint1", "joint2", "joint3"};
 
 std::string params(const std::string& port, int third_id = 3) {
-  return "{port: " + port + ", baud: 1000000, timeout: 0.05, joints: {joint1: {id: 1}, "
-         "joint2: {id: 2, direction: -1, zero_offset: 0.5}, joint3: {id: " + std::to_string(third_id) +
-         ", gear_ratio: 2}}}";
+  return "{port: " + port +
+         ", baud: 1000000, timeout: 0.05, joints: {joint1: {id: 1}, "
+         "joint2: {id: 2, direction: -1, zero_offset: 0.5}, joint3: {id: " +
+         std::to_string(third_id) + ", gear_ratio: 2}}}";
 }
 
 class DynamixelTest : public ::testing::Test {
@@ -156,9 +157,10 @@ TEST(DynamixelControlLoop, RunsGoalsAndAbortsWhenAServoDisappears) {
   ASSERT_TRUE(wait(5.0));
   EXPECT_EQ(outcome->state, sixdof_core::GoalState::kSucceeded) << outcome->result.message;
   const PeriodSummary stats = loop.statistics();
-  std::printf("dynamixel on the emulator, 3 servos at 100 Hz: cycle (sync read + sync write) p50 %.2f ms, p99 %.2f "
-              "ms; period error p50 %.3f ms, p99 %.3f ms over %zu periods\n",
-              stats.cycle_p50 * 1e3, stats.cycle_p99 * 1e3, stats.error_p50 * 1e3, stats.error_p99 * 1e3, stats.count);
+  std::printf(
+      "dynamixel on the emulator, 3 servos at 100 Hz: cycle (sync read + sync write) p50 %.2f ms, p99 %.2f "
+      "ms; period error p50 %.3f ms, p99 %.3f ms over %zu periods\n",
+      stats.cycle_p50 * 1e3, stats.cycle_p99 * 1e3, stats.error_p50 * 1e3, stats.error_p99 * 1e3, stats.count);
 
   outcome.reset();
   goal.points = {{{-0.3, 0.6, 0.2}, {0.0, 0.0, 0.0}, {}, 2.0}};

@@ -26,8 +26,8 @@ inline std::vector<std::string> armJoints() { return {"joint1", "joint2", "joint
 inline ControlLoopConfig armLoopConfig() {
   ControlLoopConfig c;
   c.joints = armJoints();
-  c.limits = loadJointLimits(*sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"),
-                             c.joints);
+  c.limits =
+      loadJointLimits(*sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"), c.joints);
   sixdof_core::TrajectoryControllerConfig arm;
   arm.name = "arm_controller";
   arm.joints = c.joints;
@@ -43,8 +43,8 @@ inline ControlLoopConfig armLoopConfig() {
 inline ControlLoopConfig armAndGripperConfig() {
   ControlLoopConfig c = armLoopConfig();
   c.joints.push_back("finger1_joint");
-  c.limits = loadJointLimits(*sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"),
-                             c.joints);
+  c.limits =
+      loadJointLimits(*sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"), c.joints);
   sixdof_core::TrajectoryControllerConfig fingers;
   fingers.name = "gripper_controller";
   fingers.joints = {"finger1_joint"};

@@ -9,8 +9,8 @@ namespace {
 using test::sixdofModel;
 
 TEST(JointLimits, UrdfLimitsOverriddenByJointLimitsYaml) {
-  const auto limits = loadJointLimits(*sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"),
-                                      {"joint2", "finger1_joint"});
+  const auto limits = loadJointLimits(
+      *sixdofModel(), YAML::LoadFile(SIXDOF_DESCRIPTION_DIR "/config/joint_limits.yaml"), {"joint2", "finger1_joint"});
   ASSERT_EQ(limits.size(), 2u);
   EXPECT_EQ(limits[0].joint, "joint2");
   EXPECT_TRUE(limits[0].has_position_limits);

@@ -46,8 +46,8 @@ struct ControlLoopConfig {
 enum class LoopState {
   kStopped,  // before start() and after stop()
   kRunning,
-  kEstop,    // e-stop engaged: holding, goals refused
-  kFault,    // a hardware fault: holding where possible, goals refused until clearFault()
+  kEstop,  // e-stop engaged: holding, goals refused
+  kFault,  // a hardware fault: holding where possible, goals refused until clearFault()
 };
 
 // How a goal ended. result: kSuccessful when it succeeded, else the error code and a message naming the cause

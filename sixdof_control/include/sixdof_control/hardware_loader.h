@@ -1,7 +1,6 @@
 #pragma once
 
 #include <pluginlib/class_loader.hpp>
-
 #include <string>
 #include <vector>
 

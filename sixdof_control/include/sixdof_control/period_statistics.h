@@ -7,16 +7,16 @@ namespace sixdof_control {
 
 // Percentiles of the control loop's periods over a window of recent cycles (diagnostics, the jitter benchmark).
 struct PeriodSummary {
-  std::size_t count = 0;        // periods in the window
-  double nominal = 0.0;         // s, 1 / rate
-  double period_p50 = 0.0;      // s
-  double period_p99 = 0.0;      // s
-  double error_p50 = 0.0;       // s, |period - nominal|
-  double error_p99 = 0.0;       // s
-  double error_max = 0.0;       // s
-  double cycle_p50 = 0.0;       // s, read + update + write
-  double cycle_p99 = 0.0;       // s
-  std::size_t overruns = 0;     // periods longer than twice the nominal one
+  std::size_t count = 0;     // periods in the window
+  double nominal = 0.0;      // s, 1 / rate
+  double period_p50 = 0.0;   // s
+  double period_p99 = 0.0;   // s
+  double error_p50 = 0.0;    // s, |period - nominal|
+  double error_p99 = 0.0;    // s
+  double error_max = 0.0;    // s
+  double cycle_p50 = 0.0;    // s, read + update + write
+  double cycle_p99 = 0.0;    // s
+  std::size_t overruns = 0;  // periods longer than twice the nominal one
 };
 
 // A ring buffer of the last `window` periods and cycle durations.

@@ -83,8 +83,9 @@ HardwareResult Bus::read(std::uint8_t id, std::uint16_t address, std::uint16_t s
   StatusPacket status;
   if (r.ok()) r = receive(id, status, failed_id);
   if (r.ok() && status.parameters.size() != size) {
-    return failure(HardwareStatus::kCommunicationError, id, "read returned " + std::to_string(status.parameters.size()) +
-                                                                " bytes for " + std::to_string(size), failed_id);
+    return failure(HardwareStatus::kCommunicationError, id,
+                   "read returned " + std::to_string(status.parameters.size()) + " bytes for " + std::to_string(size),
+                   failed_id);
   }
   data = std::move(status.parameters);
   return r;
@@ -115,9 +116,10 @@ HardwareResult Bus::syncRead(std::uint16_t address, std::uint16_t size, const st
     StatusPacket status;
     r = receive(ids[i], status, failed_id);
     if (r.ok() && status.parameters.size() != size) {
-      r = failure(HardwareStatus::kCommunicationError, ids[i], "sync read returned " +
-                                                                   std::to_string(status.parameters.size()) +
-                                                                   " bytes for " + std::to_string(size), failed_id);
+      r = failure(
+          HardwareStatus::kCommunicationError, ids[i],
+          "sync read returned " + std::to_string(status.parameters.size()) + " bytes for " + std::to_string(size),
+          failed_id);
     }
     data[i] = std::move(status.parameters);
     errors[i] = status.error;

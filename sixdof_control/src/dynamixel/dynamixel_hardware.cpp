@@ -1,9 +1,8 @@
 #include "dynamixel_hardware.h"
 
-#include <pluginlib/class_list_macros.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <pluginlib/class_list_macros.hpp>
 #include <set>
 #include <sstream>
 
@@ -53,9 +52,11 @@ HardwareResult DynamixelHardware::init(const std::vector<std::string>& joints, c
   static const std::set<std::string> kJointKeys = {"id", "zero_offset", "direction", "gear_ratio"};
   if (!params || !params.IsMap()) return invalid("parameters port, baud, timeout and joints are needed");
   for (const auto& kv : params) {
-    if (kKeys.count(kv.first.as<std::string>()) == 0) return invalid("unknown parameter '" + kv.first.as<std::string>() + "'");
+    if (kKeys.count(kv.first.as<std::string>()) == 0)
+      return invalid("unknown parameter '" + kv.first.as<std::string>() + "'");
   }
-  if (!params["port"] || !get(params["port"], port_) || port_.empty()) return invalid("port (a device path) is required");
+  if (!params["port"] || !get(params["port"], port_) || port_.empty())
+    return invalid("port (a device path) is required");
   int baud = 57600;
   if (params["baud"] && !get(params["baud"], baud)) return invalid("baud must be an integer");
   double timeout = 0.02;
@@ -63,7 +64,8 @@ HardwareResult DynamixelHardware::init(const std::vector<std::string>& joints, c
     return invalid("timeout must be a number > 0 (s)");
   }
   const YAML::Node table = params["joints"];
-  if (!table || !table.IsMap()) return invalid("joints must map every joint to {id, zero_offset, direction, gear_ratio}");
+  if (!table || !table.IsMap())
+    return invalid("joints must map every joint to {id, zero_offset, direction, gear_ratio}");
   for (const auto& kv : table) {
     const std::string name = kv.first.as<std::string>();
     if (std::find(joints.begin(), joints.end(), name) == joints.end()) {
@@ -77,7 +79,8 @@ HardwareResult DynamixelHardware::init(const std::vector<std::string>& joints, c
     const std::string at = "joints/" + joint + "/";
     if (!j || !j.IsMap()) return invalid("joint '" + joint + "' has no entry under joints (id is required)");
     for (const auto& kv : j) {
-      if (kJointKeys.count(kv.first.as<std::string>()) == 0) return invalid("unknown key '" + at + kv.first.as<std::string>() + "'");
+      if (kJointKeys.count(kv.first.as<std::string>()) == 0)
+        return invalid("unknown key '" + at + kv.first.as<std::string>() + "'");
     }
     Servo s;
     s.joint = joint;
@@ -91,8 +94,8 @@ HardwareResult DynamixelHardware::init(const std::vector<std::string>& joints, c
     if (j["direction"] && (!get(j["direction"], s.direction) || (s.direction != 1.0 && s.direction != -1.0))) {
       return invalid(at + "direction must be 1 or -1");
     }
-    if (j["gear_ratio"] && (!get(j["gear_ratio"], s.gear_ratio) || !(s.gear_ratio > 0.0) ||
-                            !std::isfinite(s.gear_ratio))) {
+    if (j["gear_ratio"] &&
+        (!get(j["gear_ratio"], s.gear_ratio) || !(s.gear_ratio > 0.0) || !std::isfinite(s.gear_ratio))) {
       return invalid(at + "gear_ratio must be a number > 0");
     }
     servos_.push_back(s);

@@ -16,15 +16,21 @@ bool headerAt(const Bytes& b, std::size_t i) {
 }  // namespace
 
 std::string instructionErrorName(std::uint8_t error) {
-  static const char* const kNames[] = {"none",          "result fail",       "instruction error", "CRC error",
-                                       "data range error", "data length error", "data limit error",  "access error"};
+  static const char* const kNames[] = {"none",
+                                       "result fail",
+                                       "instruction error",
+                                       "CRC error",
+                                       "data range error",
+                                       "data length error",
+                                       "data limit error",
+                                       "access error"};
   const std::uint8_t code = error & 0x7F;
   return code < 8 ? kNames[code] : "error " + std::to_string(code);
 }
 
 std::string hardwareErrorNames(std::uint8_t status) {
-  static const char* const kBits[] = {"input voltage", "bit 1", "overheating", "motor encoder",
-                                      "electrical shock", "overload", "bit 6", "bit 7"};
+  static const char* const kBits[] = {"input voltage",    "bit 1",    "overheating", "motor encoder",
+                                      "electrical shock", "overload", "bit 6",       "bit 7"};
   std::string out;
   for (int bit = 0; bit < 8; ++bit) {
     if (status & (1u << bit)) out += (out.empty() ? "" : ", ") + std::string(kBits[bit]);

@@ -37,14 +37,14 @@ std::string hardwareErrorNames(std::uint8_t status);
 
 // X series control table (e.g. XM430-W350, XL430-W250): the addresses and sizes used here.
 namespace address {
-constexpr std::uint16_t kTorqueEnable = 64;          // 1 byte
-constexpr std::uint16_t kHardwareErrorStatus = 70;   // 1 byte
-constexpr std::uint16_t kGoalPosition = 116;         // 4 bytes, signed, pulses
-constexpr std::uint16_t kPresentVelocity = 128;      // 4 bytes, signed, 0.229 rpm
-constexpr std::uint16_t kPresentPosition = 132;      // 4 bytes, signed, pulses
+constexpr std::uint16_t kTorqueEnable = 64;         // 1 byte
+constexpr std::uint16_t kHardwareErrorStatus = 70;  // 1 byte
+constexpr std::uint16_t kGoalPosition = 116;        // 4 bytes, signed, pulses
+constexpr std::uint16_t kPresentVelocity = 128;     // 4 bytes, signed, 0.229 rpm
+constexpr std::uint16_t kPresentPosition = 132;     // 4 bytes, signed, pulses
 }  // namespace address
-constexpr double kPulsesPerRevolution = 4096.0;      // 0.088 degrees per pulse
-constexpr double kCentrePulse = 2048.0;               // the middle of one turn (180 degrees)
+constexpr double kPulsesPerRevolution = 4096.0;  // 0.088 degrees per pulse
+constexpr double kCentrePulse = 2048.0;          // the middle of one turn (180 degrees)
 constexpr double kVelocityUnitRpm = 0.229;
 
 // CRC-16 of Protocol 2.0 (polynomial 0x8005, initial value 0, no reflection) over the bytes.

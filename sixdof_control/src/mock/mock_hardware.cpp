@@ -1,10 +1,9 @@
 #include "mock_hardware.h"
 
-#include <pluginlib/class_list_macros.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <pluginlib/class_list_macros.hpp>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -36,8 +35,8 @@ HardwareResult number(const YAML::Node& params, const std::string& key, double m
 }  // namespace
 
 HardwareResult MockHardware::init(const std::vector<std::string>& joints, const YAML::Node& params) {
-  static const std::set<std::string> kKeys = {"time_constant",      "position_noise",     "seed",
-                                              "initial_positions",  "response_timeout",   "unresponsive_joint",
+  static const std::set<std::string> kKeys = {"time_constant",      "position_noise",   "seed",
+                                              "initial_positions",  "response_timeout", "unresponsive_joint",
                                               "unresponsive_after", "lost_after"};
   joints_ = joints;
   const std::size_t n = joints.size();
@@ -46,14 +45,15 @@ HardwareResult MockHardware::init(const std::vector<std::string>& joints, const 
   if (params && !params.IsNull()) {
     if (!params.IsMap()) return invalid("the parameters must be a mapping");
     for (const auto& kv : params) {
-      if (kKeys.count(kv.first.as<std::string>()) == 0) return invalid("unknown parameter '" + kv.first.as<std::string>() + "'");
+      if (kKeys.count(kv.first.as<std::string>()) == 0)
+        return invalid("unknown parameter '" + kv.first.as<std::string>() + "'");
     }
     HardwareResult r;
-    for (auto [key, minimum, value] : {std::make_tuple("time_constant", 0.0, &time_constant_),
-                                       std::make_tuple("position_noise", 0.0, &noise_),
-                                       std::make_tuple("response_timeout", 1e-6, &response_timeout_),
-                                       std::make_tuple("unresponsive_after", 0.0, &unresponsive_after_),
-                                       std::make_tuple("lost_after", 0.0, &lost_after_)}) {
+    for (auto [key, minimum, value] :
+         {std::make_tuple("time_constant", 0.0, &time_constant_), std::make_tuple("position_noise", 0.0, &noise_),
+          std::make_tuple("response_timeout", 1e-6, &response_timeout_),
+          std::make_tuple("unresponsive_after", 0.0, &unresponsive_after_),
+          std::make_tuple("lost_after", 0.0, &lost_after_)}) {
       if (!(r = number(params, key, minimum, *value)).ok()) return r;
     }
     double seed = 0.0;

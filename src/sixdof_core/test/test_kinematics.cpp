@@ -115,6 +115,58 @@ TEST(Jacobian, MatchesFiniteDifferences) {
   }
 }
 
+// RobotState::jacobian of a point on a link against finite differences of the state's link transforms.
+void expectStateJacobianMatchesFiniteDifferences(const RobotModelConstPtr& model, const std::string& group,
+                                                 const std::string& link, const Eigen::Vector3d& point) {
+  RobotState state(model);
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 20; ++i) {
+    Eigen::VectorXd q = state.groupPositions(group);
+    for (Eigen::Index j = 0; j < q.size(); ++j) q[j] = std::uniform_real_distribution<double>(-0.5, 0.5)(rng);
+    state.setGroupPositions(group, q);
+    const Matrix6Xd jacobian = state.jacobian(group, link, point);
+    ASSERT_EQ(jacobian.cols(), q.size());
+    const Eigen::Isometry3d pose = state.linkTransform(link);
+    const double step = 1e-7;
+    for (Eigen::Index j = 0; j < q.size(); ++j) {
+      RobotState moved = state;
+      Eigen::VectorXd q_moved = q;
+      q_moved[j] += step;
+      moved.setGroupPositions(group, q_moved);
+      const Eigen::Isometry3d pose_moved = moved.linkTransform(link);
+      const Eigen::Vector3d linear = (pose_moved * point - pose * point) / step;
+      const Eigen::AngleAxisd turn(pose_moved.linear() * pose.linear().transpose());
+      const Eigen::Vector3d angular = turn.angle() * turn.axis() / step;
+      EXPECT_LT((jacobian.block<3, 1>(0, j) - linear).norm(), 1e-5) << group << " " << link << " column " << j;
+      EXPECT_LT((jacobian.block<3, 1>(3, j) - angular).norm(), 1e-5) << group << " " << link << " column " << j;
+    }
+  }
+}
+
+TEST(Jacobian, RobotStateOfAnyLinkAndPoint) {
+  const auto model = armModel();
+  expectStateJacobianMatchesFiniteDifferences(model, "arm", "link6", Eigen::Vector3d::Zero());
+  expectStateJacobianMatchesFiniteDifferences(model, "arm", "tcp", Eigen::Vector3d(0.01, -0.02, 0.03));
+  expectStateJacobianMatchesFiniteDifferences(model, "arm", "finger2", Eigen::Vector3d(0.0, 0.01, 0.02));
+  // Joints after the link do not move it.
+  expectStateJacobianMatchesFiniteDifferences(model, "arm", "link3", Eigen::Vector3d(0.1, 0.0, 0.0));
+  // Continuous and prismatic joints, and a mimic joint that moves its source's column.
+  const auto kinds = RobotModel::fromFiles(kDataDir + "/joint_kinds.urdf", kDataDir + "/joint_kinds.srdf");
+  expectStateJacobianMatchesFiniteDifferences(kinds, "arm", "sensor_frame", Eigen::Vector3d(0.02, 0.0, 0.0));
+  expectStateJacobianMatchesFiniteDifferences(kinds, "gripper", "right_finger", Eigen::Vector3d::Zero());
+
+  // The arm's tip: the chain's Jacobian (the root link is the chain's base).
+  RobotState state(model);
+  Eigen::VectorXd q(6);
+  q << 0.3, -0.4, 0.9, 1.2, -0.6, 2.0;
+  state.setGroupPositions("arm", q);
+  const KinematicChain chain = KinematicChain::forGroup(*model, "arm");
+  EXPECT_LT((state.jacobian("arm", "link6") - chain.jacobian(q)).norm(), 1e-12);
+  EXPECT_TRUE(state.jacobian("arm", "link3").rightCols(3).isZero());
+  EXPECT_THROW(state.jacobian("nope", "link6"), std::invalid_argument);
+  EXPECT_THROW(state.jacobian("arm", "nope"), std::out_of_range);
+}
+
 TEST(KinematicChain, GroupsAndLimits) {
   const auto model = urModel();
   const KinematicChain wrist = KinematicChain::forGroup(*model, "wrist");

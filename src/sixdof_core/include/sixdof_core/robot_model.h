@@ -249,6 +249,15 @@ class RobotState {
   // True when every bounded active joint is within its limits (+- tolerance).
   bool satisfiesBounds(double tolerance = 0.0) const;
 
+  // Geometric Jacobian (MoveIt's RobotState::getJacobian) of the point reference_point, fixed in `link`'s frame,
+  // with respect to the group's active joints (columns in JointGroup::active_joints order), in the root link
+  // frame: rows 0-2 linear velocity, rows 3-5 angular velocity. A group joint that does not move the link gives
+  // a zero column; a mimic joint adds its multiplier times its own column to its source joint's column.
+  // Throws std::invalid_argument on an unknown group, std::out_of_range on an unknown link.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> jacobian(
+      const std::string& group, const std::string& link,
+      const Eigen::Vector3d& reference_point = Eigen::Vector3d::Zero()) const;
+
  private:
   void update();
 

@@ -107,6 +107,41 @@ bool RobotState::satisfiesBounds(double tolerance) const {
   return true;
 }
 
+Eigen::Matrix<double, 6, Eigen::Dynamic> RobotState::jacobian(const std::string& group, const std::string& link,
+                                                              const Eigen::Vector3d& reference_point) const {
+  const JointGroup* g = model_->findGroup(group);
+  if (!g) throw std::invalid_argument("unknown group '" + group + "'");
+  const Eigen::Vector3d point = linkTransform(link) * reference_point;
+  // Column of each model variable in the group (-1: not in the group).
+  std::vector<int> column(model_->variableCount(), -1);
+  for (size_t i = 0; i < g->active_joints.size(); ++i) column[model_->joint(g->active_joints[i]).variable_index] = i;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> result =
+      Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, static_cast<Eigen::Index>(g->active_joints.size()));
+  const auto& joints = model_->joints();
+  for (int l = model_->linkIndex(link); l > 0; l = model_->links()[l].parent_link) {
+    const JointModel& joint = joints[model_->links()[l].parent_joint];
+    if (joint.type == JointType::kFixed) continue;
+    int variable = joint.variable_index;
+    double scale = 1.0;
+    if (joint.mimic) {
+      variable = joints[joint.mimic->joint_index].variable_index;
+      scale = joint.mimic->multiplier;
+    }
+    if (variable < 0 || column[variable] < 0) continue;
+    // The joint frame is the child link's frame; the axis is given in it.
+    const Eigen::Isometry3d& frame = link_transforms_[l];
+    const Eigen::Vector3d axis = frame.linear() * joint.axis;
+    auto col = result.col(column[variable]);
+    if (joint.type == JointType::kPrismatic) {
+      col.head<3>() += scale * axis;
+    } else {
+      col.head<3>() += scale * axis.cross(point - frame.translation());
+      col.tail<3>() += scale * axis;
+    }
+  }
+  return result;
+}
+
 void RobotState::update() {
   const auto& joints = model_->joints();
   for (size_t j = 0; j < joints.size(); ++j) {

@@ -1,5 +1,6 @@
 // RobotModel (URDF + SRDF) and its plain parts: joints, links, shapes, groups, named states.
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 
 #include "common.h"
@@ -8,17 +9,22 @@ namespace sixdof_core::python {
 
 namespace {
 
-// Package directories first, then the search roots (ROS_PACKAGE_PATH when none are given).
+// Package directories first, then the search roots (ROS_PACKAGE_PATH when none are given). Relative directories
+// are taken from the current directory, as Python's open() takes paths.
 PackageResolver makeResolver(const std::map<std::string, std::string>& package_dirs,
                              const std::optional<std::vector<std::string>>& search_roots) {
   PackageResolver resolver;
   if (search_roots) {
-    resolver = PackageResolver::fromSearchRoots(*search_roots);
+    std::vector<std::string> roots;
+    for (const auto& root : *search_roots) roots.push_back(std::filesystem::absolute(root).string());
+    resolver = PackageResolver::fromSearchRoots(roots);
   } else {
     const char* path = std::getenv("ROS_PACKAGE_PATH");
     resolver = PackageResolver::fromRosPackagePath(path ? path : "");
   }
-  for (const auto& [package, directory] : package_dirs) resolver.addPackage(package, directory);
+  for (const auto& [package, directory] : package_dirs) {
+    resolver.addPackage(package, std::filesystem::absolute(directory).string());
+  }
   return resolver;
 }
 

@@ -26,6 +26,13 @@ def test_model_from_strings_equals_model_from_files(arm):
     assert any(p.reason == "Adjacent" for p in model.disabled_collision_pairs)
 
 
+def test_relative_package_directories(arm, monkeypatch):
+    monkeypatch.chdir(DESCRIPTION.parent)
+    model = sixdof_core.RobotModel.from_files("sixdof_description/urdf/sixdof.urdf",
+                                              package_dirs={"sixdof_description": "sixdof_description"})
+    assert model.link_names == arm.link_names
+
+
 def test_joints_links_and_shapes(arm, joint_kinds):
     joint6 = arm.joint("joint6")
     assert joint6.type == sixdof_core.JointType.REVOLUTE and joint6.is_multi_turn and joint6.is_active

@@ -1,6 +1,6 @@
-"""Shared fixtures: the package's source tree, its parsed URDF/SRDF and KDL chains built from the URDF."""
+"""Shared fixtures: the package's source tree, its URDF/SRDF parsed by urdfdom-py and ElementTree, and the same
+files read by sixdof_core (the C++ core's model, for forward and inverse kinematics)."""
 
-import math
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -14,7 +14,7 @@ sys.path.insert(0, str(PKG / "src"))
 
 from urdf_parser_py import urdf  # noqa: E402
 
-from sixdof_description.kinematics import JointSpec, chain  # noqa: E402
+import sixdof_core  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -38,26 +38,8 @@ def srdf() -> ET.Element:
     return ET.parse(PKG / "config" / "sixdof.srdf").getroot()
 
 
-def urdf_joint_spec(joint) -> JointSpec:
-    origin = joint.origin
-    xyz = tuple(origin.xyz) if origin is not None and origin.xyz is not None else (0.0, 0.0, 0.0)
-    rpy = tuple(origin.rpy) if origin is not None and origin.rpy is not None else (0.0, 0.0, 0.0)
-    axis = tuple(joint.axis) if joint.axis is not None else (1.0, 0.0, 0.0)
-    kind = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic"}.get(joint.type, "fixed")
-    lower = joint.limit.lower if joint.limit is not None else -math.inf
-    upper = joint.limit.upper if joint.limit is not None else math.inf
-    return JointSpec(joint.name, xyz, rpy, axis, kind, lower, upper)
-
-
-def urdf_chain(robot: urdf.Robot, root: str, tip: str):
-    """KDL chain root -> tip built from the parsed URDF (independently of the generator's own data)."""
-    by_child = {j.child: j for j in robot.joints}
-    joints = []
-    link = tip
-    while link != root:
-        if link not in by_child:
-            raise KeyError(f"{tip} is not below {root}")
-        joints.append(by_child[link])
-        link = by_child[link].parent
-    specs = [urdf_joint_spec(j) for j in reversed(joints)]
-    return chain(specs), [s for s in specs if s.joint_type != "fixed"]
+@pytest.fixture(scope="session")
+def core_model() -> sixdof_core.RobotModel:
+    """The committed URDF and SRDF as the core reads them (independently of the generator's own data)."""
+    return sixdof_core.RobotModel.from_files(str(PKG / "urdf" / "sixdof.urdf"), str(PKG / "config" / "sixdof.srdf"),
+                                             package_dirs={"sixdof_description": str(PKG)})

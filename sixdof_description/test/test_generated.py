@@ -1,5 +1,6 @@
 """The committed generated files are exactly what the generator produces; bad design input is named."""
 
+import os
 import shutil
 import subprocess
 import sys
@@ -37,11 +38,12 @@ def test_cli_check_reports_a_stale_file(pkg, tmp_path):
         shutil.copytree(pkg / sub, tmp_path / sub)
     stale = tmp_path / "meshes" / "collision" / "link3.stl"
     stale.write_bytes(stale.read_bytes()[:-50])
-    env_path = str(pkg / "src")
+    # The source tree's generator first; sixdof_core from the workspace.
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(pkg / "src"), os.environ.get("PYTHONPATH", "")]))
     run = subprocess.run(
         [sys.executable, str(pkg / "scripts" / "generate_description.py"), "--package-dir", str(pkg),
          "--output-dir", str(tmp_path), "--check"],
-        capture_output=True, text=True, check=False, env={"PYTHONPATH": env_path, "PATH": "/usr/bin:/bin"})
+        capture_output=True, text=True, check=False, env=env)
     assert run.returncode == 1, run.stdout + run.stderr
     assert "link3.stl" in run.stderr and "urdf" not in run.stderr
 
@@ -60,7 +62,6 @@ def test_unreachable_named_state_is_an_error(pkg, tmp_path):
     with open(pkg / "config" / "design.yaml", encoding="utf-8") as f:
         design = yaml.safe_load(f)
     design["named_states"]["pick pose"]["xyz"] = [1.5, 0.0, 0.3]
-    design["ik"]["restarts"] = 5
     bad = tmp_path / "design.yaml"
     bad.write_text(yaml.safe_dump(design), encoding="utf-8")
     with pytest.raises(cad.DesignError, match="pick pose.*unreachable"):

@@ -6,11 +6,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
-from conftest import urdf_chain
 
+import sixdof_core
 from sixdof_description import cad
 from sixdof_description.generator import build_robot, load_design, render_srdf
-from sixdof_description.kinematics import fk, frame, pose_error
 
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ARM_STATES = ["home pose", "pick pose", "after pick pose", "place pose", "after place pose"]
@@ -69,30 +68,34 @@ def test_named_states_are_within_limits(srdf, robot):
                                         "close": {"finger1_joint": 0.0, "finger2_joint": 0.0}}
 
 
+def _state(core_model, q_arm, finger=0.0) -> sixdof_core.RobotState:
+    state = sixdof_core.RobotState(core_model)
+    state.set_group_positions("arm", q_arm)
+    state.set_joint_position("finger1_joint", finger)
+    return state
+
+
 @pytest.mark.parametrize("state", ARM_STATES)
-def test_named_state_reaches_its_design_pose(srdf, robot, design, state):
+def test_named_state_reaches_its_design_pose(srdf, core_model, design, state):
     spec = design["named_states"][state]
-    kchain, _ = urdf_chain(robot, "base_link", spec["frame"])
     q = [_states(srdf, "arm")[state][j] for j in ARM]
-    target = frame(spec["xyz"], [math.radians(a) for a in spec["rpy_deg"]])
-    perr, rerr = pose_error(fk(kchain, q), target)
+    target = sixdof_core.pose_from_xyz_rpy(*spec["xyz"], *[math.radians(a) for a in spec["rpy_deg"]])
+    perr, rerr = sixdof_core.pose_error(_state(core_model, q).link_pose(spec["frame"]), target)
     assert perr < 1e-5 and rerr < 1e-5
 
 
-def test_pick_and_place_poses_point_down_over_their_places(srdf, robot):
-    kchain, _ = urdf_chain(robot, "base_link", "tcp")
+def test_pick_and_place_poses_point_down_over_their_places(srdf, core_model):
     states = _states(srdf, "arm")
-    tcp = {name: fk(kchain, [states[name][j] for j in ARM]) for name in ARM_STATES}
+    tcp = {name: _state(core_model, [states[name][j] for j in ARM]).link_pose("tcp") for name in ARM_STATES}
     for name in ARM_STATES[1:]:
-        z = tcp[name].M.UnitZ()
-        assert z[2] == pytest.approx(-1.0, abs=1e-6), f"{name}: tool not pointing down"
+        assert tcp[name][2, 2] == pytest.approx(-1.0, abs=1e-6), f"{name}: tool not pointing down"
     cube_top = 0.04
-    assert tcp["pick pose"].p[2] - 0.02 == pytest.approx(0.06, abs=1e-6)
-    assert tcp["pick pose"].p[2] > cube_top
-    assert (tcp["pick pose"].p[0], tcp["pick pose"].p[1]) == pytest.approx((0.40, -0.15), abs=1e-6)
-    assert (tcp["place pose"].p[0], tcp["place pose"].p[1]) == pytest.approx((0.40, 0.20), abs=1e-6)
-    assert tcp["after pick pose"].p[2] - tcp["pick pose"].p[2] == pytest.approx(0.15, abs=1e-6)
-    assert tcp["after place pose"].p[2] > tcp["place pose"].p[2]
+    assert tcp["pick pose"][2, 3] - 0.02 == pytest.approx(0.06, abs=1e-6)
+    assert tcp["pick pose"][2, 3] > cube_top
+    assert tuple(tcp["pick pose"][:2, 3]) == pytest.approx((0.40, -0.15), abs=1e-6)
+    assert tuple(tcp["place pose"][:2, 3]) == pytest.approx((0.40, 0.20), abs=1e-6)
+    assert tcp["after pick pose"][2, 3] - tcp["pick pose"][2, 3] == pytest.approx(0.15, abs=1e-6)
+    assert tcp["after place pose"][2, 3] > tcp["place pose"][2, 3]
 
 
 def test_regeneration_keeps_hand_written_entries(pkg):
@@ -113,31 +116,21 @@ def test_regeneration_keeps_hand_written_entries(pkg):
     np.testing.assert_equal(render_srdf(robot, base), base)
 
 
-def _link_frames(robot, q_arm, finger):
-    """Every link's pose in base_link at arm joints q_arm and finger opening `finger`."""
-    values = dict(zip(ARM, q_arm, strict=True))
-    values.update({"finger1_joint": finger, "finger2_joint": finger})
-    frames = {}
-    for link in robot.link_map:
-        if link == "base_link":
-            continue
-        kchain, specs = urdf_chain(robot, "base_link", link)
-        frames[link] = fk(kchain, [values[s.name] for s in specs])
-    return frames
+def _link_poses(core_model, q_arm, finger):
+    """Every link's 4x4 pose in base_link at arm joints q_arm and finger opening `finger`."""
+    return _state(core_model, q_arm, finger).link_poses()
 
 
 @pytest.mark.parametrize("state", ARM_STATES)
-def test_named_states_keep_the_robot_above_the_table(pkg, srdf, robot, state):
+def test_named_states_keep_the_robot_above_the_table(pkg, srdf, robot, core_model, state):
     """Collision hulls of all moving links stay above z = 0; at 'pick pose' the open fingers clear the cube."""
     q = [_states(srdf, "arm")[state][j] for j in ARM]
-    frames = _link_frames(robot, q, 0.04)
     lowest = {}
-    for link, f in frames.items():
-        if robot.link_map[link].collision is None:
+    for link, pose in _link_poses(core_model, q, 0.04).items():
+        if link == "base_link" or robot.link_map[link].collision is None:
             continue
         hull = trimesh.load(pkg / "meshes" / "collision" / f"{link}.stl")
-        rot = np.array([[f.M[r, c] for c in range(3)] for r in range(3)])
-        points = hull.vertices @ rot.T + np.array([f.p[0], f.p[1], f.p[2]])
+        points = hull.vertices @ pose[:3, :3].T + pose[:3, 3]
         lowest[link] = points[:, 2].min()
     assert min(lowest.values()) > 0.0, lowest
     if state == "pick pose":
@@ -145,27 +138,24 @@ def test_named_states_keep_the_robot_above_the_table(pkg, srdf, robot, state):
         assert min(lowest["finger1"], lowest["finger2"]) > cube_top
 
 
-def _placed_hulls(pkg, robot, q_arm, finger):
-    hulls = {"base_link": trimesh.load(pkg / "meshes" / "collision" / "base_link.stl")}
-    for link, f in _link_frames(robot, q_arm, finger).items():
+def _placed_hulls(pkg, robot, core_model, q_arm, finger):
+    hulls = {}
+    for link, pose in _link_poses(core_model, q_arm, finger).items():
         if robot.link_map[link].collision is None:
             continue
-        transform = np.eye(4)
-        transform[:3, :3] = [[f.M[r, c] for c in range(3)] for r in range(3)]
-        transform[:3, 3] = [f.p[0], f.p[1], f.p[2]]
         hulls[link] = trimesh.load(pkg / "meshes" / "collision" / f"{link}.stl")
-        hulls[link].apply_transform(transform)
+        hulls[link].apply_transform(pose)
     return hulls
 
 
 @pytest.mark.parametrize("state", ARM_STATES)
 @pytest.mark.parametrize("gripper", ["open", "close"])
-def test_named_states_are_free_of_self_collision(pkg, srdf, robot, state, gripper):
+def test_named_states_are_free_of_self_collision(pkg, srdf, robot, core_model, state, gripper):
     """Collision hulls of links not allowed to touch do not overlap (manifold intersection volume)."""
     allowed = {frozenset((d.get("link1"), d.get("link2"))) for d in srdf.findall("disable_collisions")}
     q = [_states(srdf, "arm")[state][j] for j in ARM]
     finger = _states(srdf, "gripper")[gripper]["finger1_joint"]
-    hulls = _placed_hulls(pkg, robot, q, finger)
+    hulls = _placed_hulls(pkg, robot, core_model, q, finger)
     names = sorted(hulls)
     overlaps = []
     for i, a in enumerate(names):

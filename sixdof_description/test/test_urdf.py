@@ -6,12 +6,10 @@ import subprocess
 import xml.etree.ElementTree as ET
 
 import numpy as np
-import PyKDL as kdl  # noqa: N813
 import pytest
 import trimesh
-from conftest import urdf_chain
 
-from sixdof_description.kinematics import fk, frame, pose_error, solve_ik
+import sixdof_core
 from sixdof_description.urdf_writer import GRASP_FIX_BLOCK
 
 PI = math.pi
@@ -56,13 +54,11 @@ def test_arm_joints_follow_the_design_contract(robot):
         assert j.dynamics.damping > 0 and j.dynamics.friction >= 0
 
 
-def test_zero_pose_matches_the_contract(robot):
-    kchain, _ = urdf_chain(robot, "base_link", "link6")
-    f = fk(kchain, [0.0] * 6)
-    np.testing.assert_allclose([f.p[i] for i in range(3)], [0.38, 0.0, 0.60], atol=1e-12)
-    z_axis, x_axis = f.M.UnitZ(), f.M.UnitX()
-    np.testing.assert_allclose([z_axis[i] for i in range(3)], [1, 0, 0], atol=1e-12)
-    np.testing.assert_allclose([x_axis[i] for i in range(3)], [0, 0, -1], atol=1e-12)
+def test_zero_pose_matches_the_contract(core_model):
+    link6 = sixdof_core.RobotState(core_model).link_pose("link6")  # every joint at zero
+    np.testing.assert_allclose(link6[:3, 3], [0.38, 0.0, 0.60], atol=1e-12)
+    np.testing.assert_allclose(link6[:3, 2], [1, 0, 0], atol=1e-12)  # z axis
+    np.testing.assert_allclose(link6[:3, 0], [0, 0, -1], atol=1e-12)  # x axis
 
 
 def test_gripper_joints(robot):
@@ -173,21 +169,22 @@ def test_grasp_fix_block_and_friction(pkg):
 
 
 @pytest.mark.parametrize("pose", sorted(PAPER_POSES))
-def test_paper_pose_is_reachable(robot, pose):
-    kchain, specs = urdf_chain(robot, "base_link", "link6")
+def test_paper_pose_is_reachable(core_model, pose):
+    # The core's numeric IK from the middle of the joint ranges: another algorithm than the generator's closed form.
+    ik = sixdof_core.create_ik_solver("numeric", core_model, "arm")
     xyz, rpy_deg = PAPER_POSES[pose]
-    target = frame(xyz, [math.radians(a) for a in rpy_deg])
-    result = solve_ik(kchain, [s.lower for s in specs], [s.upper for s in specs], target, [0.0] * 6,
-                      restarts=100, random_seed=11)
-    assert result.success, f"{pose} pose unreachable: {result.position_error} m, {result.rotation_error} rad"
-    perr, rerr = pose_error(fk(kchain, result.q), target)
+    target = sixdof_core.pose_from_xyz_rpy(*xyz, *[math.radians(a) for a in rpy_deg])
+    result = ik.solve(target, sixdof_core.IkOptions(timeout=0.5, random_seed=11))
+    assert result, f"{pose} pose unreachable: {result.message}"
+    perr, rerr = sixdof_core.pose_error(ik.chain.forward(result.solution), target)
     assert perr < 1e-5 and rerr < 1e-5
-    assert all(s.lower <= q <= s.upper for s, q in zip(specs, result.q, strict=True))
+    assert ik.chain.within_limits(result.solution)
 
 
-def test_kdl_tree_has_the_whole_robot(robot):
-    kchain, specs = urdf_chain(robot, "base_link", "tcp")
-    assert kchain.getNrOfJoints() == 6 and len(specs) == 6
-    fchain, fspecs = urdf_chain(robot, "base_link", "finger2")
-    assert fchain.getNrOfJoints() == 7 and fspecs[-1].name == "finger2_joint"
-    assert isinstance(kchain.getSegment(0), kdl.Segment)
+def test_the_core_reads_the_whole_robot(core_model):
+    # Breadth first, siblings in document order: link6's children palm and tcp before palm's fingers.
+    assert core_model.link_names == [*LINKS[:8], "tcp", *LINKS[8:]]
+    assert core_model.variable_names == [*CONTRACT, "finger1_joint"]
+    assert core_model.joint("finger2_joint").mimic.joint == "finger1_joint"
+    assert sixdof_core.KinematicChain(core_model, "base_link", "tcp").dof == 6
+    assert sixdof_core.KinematicChain(core_model, "base_link", "finger1").joint_names[-1] == "finger1_joint"

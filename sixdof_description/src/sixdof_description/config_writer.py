@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import math
 
-import PyKDL as kdl  # noqa: N813 (KDL's own name)
 import yaml
 
+from sixdof_description.core_model import joint_space_inertia
 from sixdof_description.formatting import HEADER, fmt
-from sixdof_description.kinematics import to_jnt
-from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, Robot, arm_chain
+from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, Robot
 
 
 def _yaml(data: dict, note: str = "") -> str:
@@ -43,14 +42,11 @@ def render_joint_limits(robot: Robot) -> str:
 def arm_gains(robot: Robot) -> dict:
     """PD(+I) gains from the joint-space inertia at 'home pose' (critically damped at the design frequency)."""
     c = robot.design["controllers"]
-    kchain = arm_chain(robot, with_inertia=True)
-    mass = kdl.JntSpaceInertiaMatrix(len(ARM_JOINTS))
-    kdl.ChainDynParam(kchain, kdl.Vector(0.0, 0.0, -9.81)).JntToMass(
-        to_jnt(robot.states["home pose"]), mass)
+    mass = joint_space_inertia(robot, robot.states["home pose"])
     w = 2.0 * math.pi * float(c["natural_frequency_hz"])
     gains = {}
     for k, name in enumerate(ARM_JOINTS):
-        inertia = max(mass[k, k], float(c["min_inertia"]))
+        inertia = max(float(mass[k, k]), float(c["min_inertia"]))
         p = inertia * w * w
         gains[name] = {"p": round(p, 1), "d": round(2.0 * float(c["damping_ratio"]) * inertia * w, 2),
                        "i": round(float(c["integral_ratio"]) * p, 1)}

@@ -2,8 +2,8 @@
 
 Deterministic: the same design.yaml (and previous SRDF) always gives byte-identical files.
 
-The parts: robot_design.py (solids, joints, named states), urdf_writer.py, srdf_writer.py, config_writer.py (YAML)
-and formatting.py.
+The parts: robot_design.py (solids, joints), core_model.py (the arm as sixdof_core reads it: named states by IK, joint-
+space inertia), urdf_writer.py, srdf_writer.py, config_writer.py (YAML) and formatting.py.
 """
 
 from __future__ import annotations
@@ -17,7 +17,8 @@ from sixdof_description.config_writer import (
     render_kinematics,
     render_setup_answers,
 )
-from sixdof_description.robot_design import LINKS, build_robot, load_design, stl_bytes
+from sixdof_description.core_model import solve_named_states
+from sixdof_description.robot_design import LINKS, Robot, design_robot, load_design, stl_bytes
 from sixdof_description.srdf_writer import render_srdf
 from sixdof_description.urdf_writer import render_urdf
 
@@ -31,6 +32,13 @@ GENERATED_FILES = (
     *[f"meshes/visual/{name}.stl" for name in LINKS],
     *[f"meshes/collision/{name}.stl" for name in LINKS],
 )
+
+
+def build_robot(design: dict) -> Robot:
+    """The designed robot with its named states."""
+    robot = design_robot(design)
+    robot.states = solve_named_states(robot)
+    return robot
 
 
 def generate_files(design_path: Path, previous_srdf: str | None) -> dict:

@@ -1,25 +1,35 @@
-"""The sixdof arm built from config/design.yaml: link solids and their mass properties, joints, KDL chains and
-the named states solved by IK."""
+"""The sixdof arm built from config/design.yaml: link solids and their mass properties, and joints (the named states
+are solved by core_model.py, with sixdof_core's IK)."""
 
 from __future__ import annotations
 
 import io
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import PyKDL as kdl  # noqa: N813 (KDL's own name)
 import trimesh
 import yaml
 
 from sixdof_description import cad
-from sixdof_description.kinematics import JointSpec, chain, fk, frame, pose_error, solve_ik
 
 ARM_JOINTS = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
 GRIPPER_JOINTS = ("finger1_joint", "finger2_joint")
 LINKS = ("base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2")
 ROOT_LINK = "base_link"
+
+
+@dataclass(frozen=True)
+class JointSpec:
+    """One URDF joint of the design (origin in the parent link, axis in the child link)."""
+
+    name: str
+    xyz: tuple[float, float, float]
+    rpy: tuple[float, float, float]
+    axis: tuple[float, float, float]
+    joint_type: str  # revolute | prismatic | fixed
+    lower: float = 0.0
+    upper: float = 0.0
 
 
 @dataclass
@@ -39,14 +49,14 @@ class Robot:
     joint_params: dict  # per movable joint: velocity, effort, acceleration, damping, friction
     links: dict
     tcp_z: float
-    states: dict  # named arm states: name -> (joint values, frame, target pose)
+    states: dict  # named arm states: name -> arm joint values (core_model.solve_named_states)
 
 
 def load_design(path: Path) -> dict:
     with open(path, encoding="utf-8") as f:
         design = yaml.safe_load(f)
     required = ("robot_name", "density", "joints", "links", "gripper", "mesh", "colours", "friction",
-                "controllers", "named_states", "gripper_states", "ik")
+                "controllers", "named_states", "gripper_states")
     missing = [k for k in required if k not in design]
     if missing:
         raise cad.DesignError(f"{path}: missing design parameters {missing}")
@@ -135,63 +145,11 @@ JOINT_LINKS = {
 }
 
 
-def rigid_body(link: LinkModel) -> kdl.RigidBodyInertia:
-    i = link.inertia
-    rot = kdl.RotationalInertia(i[0, 0], i[1, 1], i[2, 2], i[0, 1], i[0, 2], i[1, 2])
-    return kdl.RigidBodyInertia(link.mass, kdl.Vector(*link.com), rot)
-
-
-def arm_chain(robot: Robot, with_inertia: bool = False, tip: str = "link6") -> kdl.Chain:
-    specs = [s for s in robot.joints if s.name in ARM_JOINTS]
-    if tip == "tcp":
-        specs.append(next(s for s in robot.joints if s.name == "tcp_joint"))
-    if not with_inertia:
-        return chain(specs)
-    inertias = [rigid_body(robot.links[JOINT_LINKS[s.name][1]]) for s in specs]
-    # The gripper (palm + fingers, open) rides on link6 as one rigid body.
-    by_name = {s.name: s for s in robot.joints}
-    palm_frame = frame(by_name["palm_joint"].xyz, by_name["palm_joint"].rpy)
-    hand = inertias[5] + palm_frame * rigid_body(robot.links["palm"])
-    opening = float(robot.design["gripper_states"]["open"])
-    for fname, sign in (("finger1", 1.0), ("finger2", -1.0)):
-        fj = by_name[f"{fname}_joint"]
-        f_frame = palm_frame * kdl.Frame(kdl.Vector(fj.xyz[0], fj.xyz[1] + sign * opening, fj.xyz[2]))
-        hand = hand + f_frame * rigid_body(robot.links[fname])
-    inertias[5] = hand
-    return chain(specs, inertias)
-
-
-def solve_named_states(robot: Robot) -> dict:
-    ik = robot.design["ik"]
-    specs = [s for s in robot.joints if s.name in ARM_JOINTS]
-    lower, upper = [s.lower for s in specs], [s.upper for s in specs]
-    states = {}
-    for name, st in robot.design["named_states"].items():
-        if st["frame"] not in ("link6", "tcp"):
-            raise cad.DesignError(f"named state '{name}': frame must be link6 or tcp, got '{st['frame']}'")
-        kchain = arm_chain(robot, tip=st["frame"])
-        target = frame(st["xyz"], [math.radians(a) for a in st["rpy_deg"]])
-        result = solve_ik(kchain, lower, upper, target, st["seed"], tolerance=float(ik["tolerance"]),
-                          max_iterations=int(ik["max_iterations"]), restarts=int(ik["restarts"]),
-                          random_seed=int(ik["random_seed"]))
-        if not result.success:
-            raise cad.DesignError(
-                f"named state '{name}': {st['frame']} pose {st['xyz']} rpy {st['rpy_deg']} is unreachable "
-                f"(best error {result.position_error:.3g} m, {result.rotation_error:.3g} rad)")
-        q = np.round(result.q, 6)
-        perr, rerr = pose_error(fk(kchain, q), target)
-        if perr > 1e-5 or rerr > 1e-5:
-            raise cad.DesignError(f"named state '{name}': rounded solution misses the pose by {perr:.3g} m")
-        states[name] = q
-    return states
-
-
-def build_robot(design: dict) -> Robot:
+def design_robot(design: dict) -> Robot:
+    """The robot's links and joints; its named states are solved afterwards (core_model.solve_named_states)."""
     offsets = gripper_offsets(design)
     specs, params = joint_specs(design, offsets)
-    robot = Robot(design, specs, params, build_links(design), offsets["tcp_z"], {})
-    robot.states = solve_named_states(robot)
-    return robot
+    return Robot(design, specs, params, build_links(design), offsets["tcp_z"], {})
 
 
 def stl_bytes(mesh: trimesh.Trimesh) -> bytes:

@@ -31,7 +31,9 @@ def _material_name(rgba) -> str:
     return "rgba_" + "_".join(f"{int(round(c * 100)):03d}" for c in rgba)
 
 
-def render_urdf(robot: Robot) -> str:
+def render_urdf(robot: Robot, meshes: bool = True) -> str:
+    """The URDF; without meshes (no <visual>, no <collision>) it is the kinematic and inertial model alone, which
+    sixdof_core reads before the meshes are written (core_model.py)."""
     d = robot.design
     colours = d["colours"]
     out = ['<?xml version="1.0"?>', f"<!-- {HEADER} -->", f'<robot name="{d["robot_name"]}">']
@@ -55,8 +57,7 @@ def render_urdf(robot: Robot) -> str:
             f'iyy="{fmt(i[1, 1])}" iyz="{fmt(i[1, 2])}" izz="{fmt(i[2, 2])}"/>',
             "    </inertial>",
         ]
-        out += [
-            f'  <link name="{name}">',
+        geometry = [
             "    <visual>",
             '      <origin xyz="0 0 0" rpy="0 0 0"/>',
             f'      <geometry><mesh filename="package://{PACKAGE}/meshes/visual/{name}.stl"/></geometry>',
@@ -66,9 +67,8 @@ def render_urdf(robot: Robot) -> str:
             '      <origin xyz="0 0 0" rpy="0 0 0"/>',
             f'      <geometry><mesh filename="package://{PACKAGE}/meshes/collision/{name}.stl"/></geometry>',
             "    </collision>",
-            *inertial,
-            "  </link>",
         ]
+        out += [f'  <link name="{name}">', *(geometry if meshes else []), *inertial, "  </link>"]
     out.append('  <link name="tcp"/>')
     for spec in robot.joints:
         parent, child = JOINT_LINKS[spec.name]

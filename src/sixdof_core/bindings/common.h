@@ -26,11 +26,12 @@ struct type_caster<Eigen::Isometry3d> {
   PYBIND11_TYPE_CASTER(Eigen::Isometry3d, const_name("numpy.ndarray[numpy.float64[4, 4]]"));
 
   bool load(handle src, bool convert) {
-    using Array = array_t<double, array::c_style | array::forcecast>;
-    if (!convert && !isinstance<array_t<double, array::c_style>>(src)) return false;
-    const Array matrix = Array::ensure(src);
+    const bool in_place = isinstance<array_t<double, array::c_style>>(src);
+    if (!in_place && !convert) return false;
+    const array matrix =
+        in_place ? reinterpret_borrow<array>(src) : array_t<double, array::c_style | array::forcecast>::ensure(src);
     if (!matrix || matrix.ndim() != 2 || matrix.shape(0) != 4 || matrix.shape(1) != 4) return false;
-    const double* m = matrix.data();
+    const double* m = static_cast<const double*>(matrix.data());
     if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0) {
       throw std::invalid_argument("a pose must be a 4x4 homogeneous transform: its last row must be [0, 0, 0, 1]");
     }

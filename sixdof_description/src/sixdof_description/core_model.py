@@ -19,8 +19,8 @@ ARM_GROUP = "arm"
 
 def robot_model(robot: Robot) -> sixdof_core.RobotModel:
     """The URDF and SRDF the generator writes, without the meshes (not written yet) and the named arm states."""
-    return sixdof_core.RobotModel(render_urdf(robot, meshes=False), render_srdf(dataclasses.replace(robot, states={}),
-                                                                                 None))
+    without_states = dataclasses.replace(robot, states={})
+    return sixdof_core.RobotModel(render_urdf(robot, meshes=False), render_srdf(without_states, None))
 
 
 def solve_named_states(robot: Robot) -> dict:

@@ -1,5 +1,6 @@
 #include "sixdof_core/kinematics.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sixdof_core {
@@ -122,6 +123,16 @@ Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
+}
+
+Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& r) {
+  // R = Rz(yaw) Ry(pitch) Rx(roll): r(2, 0) = -sin(pitch); at |pitch| = pi/2 only roll - yaw (or roll + yaw) is
+  // defined, and yaw = 0 is taken.
+  const double pitch = std::asin(std::max(-1.0, std::min(1.0, -r(2, 0))));
+  if (std::abs(r(2, 0)) > 1.0 - 1e-12) {
+    return Eigen::Vector3d(std::atan2(-r(1, 2), r(1, 1)), pitch, 0.0);
+  }
+  return Eigen::Vector3d(std::atan2(r(2, 1), r(2, 2)), pitch, std::atan2(r(1, 0), r(0, 0)));
 }
 
 Eigen::Isometry3d poseFromXyzRpy(double x, double y, double z, double roll, double pitch, double yaw) {

@@ -57,6 +57,8 @@ class KinematicChain {
 
 // Rotation from roll, pitch, yaw about the fixed x, y, z axes (tf2's setRPY): R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw);
+// The inverse (tf2's getRPY): roll and yaw in [-pi, pi], pitch in [-pi/2, pi/2]; yaw = 0 at pitch +-pi/2.
+Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& rotation);
 Eigen::Isometry3d poseFromXyzRpy(double x, double y, double z, double roll, double pitch, double yaw);
 
 // Pose error between two poses, both in the same frame: translation distance and rotation angle.

@@ -200,7 +200,8 @@ void RobotModel::parseSrdf(const std::string& srdf_xml) {
                               "' is not a number");
       }
       const JointModel& joint = joints_[jointIndex(joint_name)];
-      if (joint.limits.bounded && joint.type != JointType::kFixed &&
+      // A mimic joint follows its master and is not held to its own limits (MoveIt's rule).
+      if (joint.limits.bounded && joint.type != JointType::kFixed && !joint.mimic &&
           (value < joint.limits.lower || value > joint.limits.upper)) {
         throw RobotModelError("SRDF: " + context + ": value " + text + " of joint '" + joint_name +
                               "' is outside its limits [" + std::to_string(joint.limits.lower) + ", " +

@@ -64,8 +64,8 @@ def test_named_states_are_within_limits(srdf, robot):
         for joint, v in values.items():
             lo, hi = limits[joint]
             assert lo <= v <= hi, f"{name}: {joint}={v} outside [{lo}, {hi}]"
-    assert _states(srdf, "gripper") == {"open": {"finger1_joint": 0.04, "finger2_joint": 0.04},
-                                        "close": {"finger1_joint": 0.0, "finger2_joint": 0.0}}
+    # finger2_joint mimics finger1_joint: the states list the actuated joint only.
+    assert _states(srdf, "gripper") == {"open": {"finger1_joint": 0.04}, "close": {"finger1_joint": 0.0}}
 
 
 def _state(core_model, q_arm, finger=0.0) -> sixdof_core.RobotState:

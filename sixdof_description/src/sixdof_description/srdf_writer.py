@@ -43,8 +43,9 @@ def render_srdf(robot: Robot, previous: str | None) -> str:
         out += [f'    <joint name="{j}" value="{fmt(v)}"/>' for j, v in zip(ARM_JOINTS, q, strict=True)]
         out.append("  </group_state>")
     for name, value in d["gripper_states"].items():
+        # The actuated finger only: the other mimics it (named states list no mimic joints, as MoveIt's).
         out.append(f'  <group_state name="{name}" group="gripper">')
-        out += [f'    <joint name="{j}" value="{fmt(value)}"/>' for j in GRIPPER_JOINTS]
+        out.append(f'    <joint name="{GRIPPER_JOINTS[0]}" value="{fmt(value)}"/>')
         out.append("  </group_state>")
     for element in kept_states:
         ET.indent(element, space="  ", level=1)

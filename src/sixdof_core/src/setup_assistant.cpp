@@ -316,7 +316,22 @@ SetupAssistantOutput runSetupAssistantOnFiles(const SetupAssistantCommand& comma
     if (srdf_in.empty()) throw RobotModelError("SRDF file '" + command.srdf_in_path + "' is empty");
   }
   const auto resolver = PackageResolver::fromSearchRoots(roots);
+  auto write = [](const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out || !(out << text) || !out.flush()) throw RobotModelError("cannot write file '" + path + "'");
+  };
   SetupAssistantOutput result;
+  if (!command.urdf_out_path.empty()) {
+    RepairResult repaired;
+    try {
+      repaired = repairModel(urdf, command.repair, resolver);
+    } catch (const RobotModelError& e) {
+      throw RobotModelError(std::string(e.what()) + " (URDF '" + command.urdf_path + "')");
+    }
+    write(command.urdf_out_path, repaired.urdf);
+    write(command.repairs_path, describeRepairs(repaired));
+    return result;
+  }
   std::string description;
   try {
     if (command.srdf_out_path.empty()) {
@@ -334,10 +349,6 @@ SetupAssistantOutput runSetupAssistantOnFiles(const SetupAssistantCommand& comma
   } catch (const SrdfError& e) {
     throw SrdfError(std::string(e.what()) + " (SRDF '" + command.srdf_in_path + "')");
   }
-  auto write = [](const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out || !(out << text) || !out.flush()) throw RobotModelError("cannot write file '" + path + "'");
-  };
   if (!command.srdf_out_path.empty()) write(command.srdf_out_path, result.srdf);
   if (!command.describe_path.empty()) write(command.describe_path, description);
   return result;

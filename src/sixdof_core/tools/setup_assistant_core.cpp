@@ -36,6 +36,10 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     const auto result = sixdof_core::runSetupAssistantOnFiles(command);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!command.urdf_out_path.empty()) {
+      std::cout << "wrote " << command.urdf_out_path << "\nwrote " << command.repairs_path << "\n";
+      return 0;
+    }
     if (command.srdf_out_path.empty()) {
       std::cout << "wrote " << command.describe_path << "\n";
       return 0;

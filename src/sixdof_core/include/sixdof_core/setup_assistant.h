@@ -3,10 +3,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "sixdof_core/grasp_geometry.h"
+#include "sixdof_core/inertia.h"
 #include "sixdof_core/robot_model.h"
 #include "sixdof_core/srdf_writer.h"
 
@@ -99,12 +102,54 @@ SetupAssistantOutput runSetupAssistant(const std::string& urdf_xml, const std::s
                                        const SetupAssistantOptions& options,
                                        const PackageResolver& resolver = PackageResolver());
 
+// A mimic joint whose own limits do not hold the range its master gives it (multiplier x the master's range +
+// offset). Mimic joints follow their master and are never checked against their own limits (as in MoveIt), so
+// this is only worth a warning.
+struct MimicLimitConflict {
+  std::string joint;
+  std::string master;
+  double from = 0.0;  // the range the master gives it
+  double to = 0.0;
+  double lower = 0.0;  // its own limits
+  double upper = 0.0;
+};
+std::vector<MimicLimitConflict> mimicLimitConflicts(const RobotModel& model);
+
+// What the setup assistant repairs in a URDF before it writes it into a package.
+struct RepairOptions {
+  double density = kDefaultInertiaDensity;  // kg/m^3 of computed inertias
+  std::optional<GripperQuery> gripper;       // analyse this gripper (and add its TCP frame)
+  std::string tcp_joint = "tcp_joint";       // name of the fixed joint of an added TCP frame (made unique)
+};
+
+struct RepairResult {
+  std::string urdf;                     // the repaired URDF (the input text where nothing was repaired)
+  std::vector<InertiaRepair> inertias;  // computed inertias, written into `urdf`
+  std::optional<GraspGeometry> grasp;
+  // The TCP frame added to `urdf` (a link named query.tcp_link on a fixed joint below the parent link) when the
+  // robot has no link of that name; empty otherwise.
+  std::string tcp_frame_added;
+};
+
+// Computes the missing or unusable inertias of the moving links (inertiaRepairs) and, with a gripper, its grasp
+// geometry (analyzeGripper), and writes both into the URDF text (editUrdf: computed <inertial>s with a comment
+// saying where they come from; the TCP as a frame). Throws RobotModelError on a bad URDF and std::invalid_argument
+// on a bad gripper query or density, naming the problem.
+RepairResult repairModel(const std::string& urdf_xml, const RepairOptions& options,
+                         const PackageResolver& resolver = PackageResolver());
+
+// The repairs as YAML for the front end: `inertias` (link, problem, source, density, mass, com, inertia as ixx ixy
+// ixz iyy iyz izz), `tcp_frame_added` and, with a gripper, `grasp` (every field of GraspGeometry; the TCP as xyz
+// and rpy).
+std::string describeRepairs(const RepairResult& result);
+
 // What the setup assistant's front end (and a user) needs to know of a model, as YAML, read by the core so
 // that no other code parses URDF/SRDF: the robot name and root link; links in model order (whether they
 // have geometry); joints in model order (type, links, origin, axis, limits, mimic); the SRDF's groups (expanded
 // joints, active joints, chain ends, and the IK solver that fits a chain: `analytic` when the closed form
 // of AnalyticIkSolver applies, else `numeric`, with the reason); group states, end effectors and virtual
-// joints; and, when given, the collision-matrix counts.
+// joints; the mimic joints whose own limits conflict with their master's range; and, when given, the
+// collision-matrix counts.
 std::string describeModel(const RobotModel& model, const DisabledCollisions* collisions = nullptr);
 
 // The command line of `rosrun sixdof_core setup_assistant_core` (the C++ half of `setup_assistant`).
@@ -114,17 +159,22 @@ struct SetupAssistantCommand {
   std::string srdf_out_path;  // empty (only with describe_path): describe the model without sampling
   std::string describe_path;  // empty: no description
   SetupAssistantOptions options;
+  // Repair mode (instead of srdf_out_path / describe_path): the repaired URDF and the YAML of the repairs.
+  std::string urdf_out_path;
+  std::string repairs_path;
+  RepairOptions repair;
   bool help = false;
 };
 
 extern const char* const kSetupAssistantUsage;
 
 // Throws std::invalid_argument naming the problem (unknown argument, missing value or required option,
-// density not a whole number > 0, seed not a whole number >= 0).
+// density not a whole number > 0, seed not a whole number >= 0, a malformed number of the repair options).
 SetupAssistantCommand parseSetupAssistantArguments(const std::vector<std::string>& args);
 
 // Reads the files, runs the setup assistant and writes the SRDF (and, with describe_path, the description of
-// the model with the written SRDF). Without srdf_out_path: only describes the URDF (+ input SRDF) model.
+// the model with the written SRDF). Without srdf_out_path: only describes the URDF (+ input SRDF) model. In repair
+// mode: writes the repaired URDF and the repairs' YAML (repairModel, describeRepairs).
 // package:// mesh URIs are resolved in the three folders above the URDF first, then in ROS_PACKAGE_PATH.
 // Throws RobotModelError naming a file that cannot be read or written, and whatever runSetupAssistant throws.
 SetupAssistantOutput runSetupAssistantOnFiles(const SetupAssistantCommand& command);

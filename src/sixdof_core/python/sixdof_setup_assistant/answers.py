@@ -5,6 +5,7 @@ All keys are optional; an unknown key or a bad value is an error naming it (Answ
     name: my_robot_sixdof_config    # package name (the --name option wins)
     density: 10000                  # self-collision samples (the --density option wins)
     seed: 0                         # sampling seed (the --seed option wins)
+    default_density: 1000           # kg/m^3 of the inertias computed for moving links without a usable one
     planning_frame: world           # parent frame of the virtual joint (none when the root link has this name)
     arm:
       group: arm                    # group name
@@ -24,6 +25,14 @@ All keys are optional; an unknown key or a bad value is an error naming it (Answ
       arm: {home: {joint1: 0.0}}    # replaces the inferred `home`; give every joint of the group
       gripper: {open: {finger1_joint: 0.04}, close: {finger1_joint: 0.0}}
     acceleration_limits: {joint1: 4.0}   # per joint; others default to 2 x max_velocity
+    grasping:                       # the gripper's grasp geometry (default: inferred from its links' shapes)
+      tcp: {parent_link: link6, xyz: [0, 0, 0.113], rpy: [0, 0, 0]}   # refused when a link `tcp` exists
+      pad_links: [finger1, finger2]
+      closing_direction: [0, 1, 0]  # in the end effector's parent link frame
+      max_opening: 0.08             # m between the pads
+      grasp_fix: {palm_link: link6, gripper_links: [finger1, finger2], forces_angle_tolerance: 120,
+                  update_rate: 5, grip_count_threshold: 5, max_grip_count: 10, release_tolerance: 0.005,
+                  disable_collisions_on_attach: false}
 """
 
 from __future__ import annotations
@@ -34,6 +43,10 @@ from typing import Any
 import yaml
 
 SOLVERS = ("analytic", "numeric", "kdl")
+# gazebo_grasp_fix's own defaults (docs/your_own_arm.md), written into grasping.yaml unless the answers give others.
+GRASP_FIX_DEFAULTS: dict[str, Any] = {"forces_angle_tolerance": 120.0, "update_rate": 5.0, "grip_count_threshold": 5,
+                                      "max_grip_count": 10, "release_tolerance": 0.005,
+                                      "disable_collisions_on_attach": False}
 
 _SCHEMA: dict[str, Any] = {
     "name": str,
@@ -46,6 +59,16 @@ _SCHEMA: dict[str, Any] = {
     "end_effector": {"name": str, "parent_link": str},
     "named_states": dict,
     "acceleration_limits": dict,
+    "default_density": float,
+    "grasping": {
+        "tcp": {"parent_link": str, "xyz": "vector", "rpy": "vector"},
+        "pad_links": list,
+        "closing_direction": "vector",
+        "max_opening": float,
+        "grasp_fix": {"palm_link": str, "gripper_links": list, "forces_angle_tolerance": float, "update_rate": float,
+                      "grip_count_threshold": int, "max_grip_count": int, "release_tolerance": float,
+                      "disable_collisions_on_attach": bool},
+    },
 }
 
 
@@ -65,10 +88,19 @@ def _check(value: Any, schema: Any, where: str, source: str) -> None:
         return
     if schema is int and (isinstance(value, bool) or not isinstance(value, int)):
         raise AnswersError(f"{source}: '{where}' must be a whole number, got {value!r}")
+    if schema is float:
+        _number(value, where, source)
+    if schema == "vector" and (not isinstance(value, list) or len(value) != 3):
+        raise AnswersError(f"{source}: '{where}' must be a list of 3 numbers, got {value!r}")
+    if schema == "vector":
+        for number in value:
+            _number(number, where, source)
+    if schema is bool and not isinstance(value, bool):
+        raise AnswersError(f"{source}: '{where}' must be true or false, got {value!r}")
     if schema is str and (not isinstance(value, str) or not value):
         raise AnswersError(f"{source}: '{where}' must be a non-empty string, got {value!r}")
     if schema is list and (not isinstance(value, list) or not value or not all(isinstance(v, str) for v in value)):
-        raise AnswersError(f"{source}: '{where}' must be a non-empty list of joint names, got {value!r}")
+        raise AnswersError(f"{source}: '{where}' must be a non-empty list of names, got {value!r}")
     if schema is dict and not isinstance(value, dict):
         raise AnswersError(f"{source}: '{where}' must be a mapping, got {value!r}")
 
@@ -117,4 +149,35 @@ def load_answers(path: str | None) -> dict[str, Any]:
     for joint, value in data.get("acceleration_limits", {}).items():
         if _number(value, f"acceleration_limits.{joint}", path) <= 0:
             raise AnswersError(f"{path}: 'acceleration_limits.{joint}' must be > 0, got {value}")
+    _check_grasping(data, path)
     return data
+
+
+def _check_grasping(data: dict[str, Any], path: str) -> None:
+    """The checks of the density and grasping keys that the schema cannot express."""
+    for key in ("default_density", "grasping.max_opening"):
+        section, _, name = key.rpartition(".")
+        value = (data.get(section, {}) if section else data).get(name)
+        if value is not None and value <= 0:
+            raise AnswersError(f"{path}: '{key}' must be > 0, got {value}")
+    grasping = data.get("grasping", {})
+    if data.get("gripper") == "none" and grasping:
+        raise AnswersError(f"{path}: 'grasping' is given but 'gripper' is none")
+    tcp = grasping.get("tcp")
+    if tcp is not None and set(tcp) != {"parent_link", "xyz", "rpy"}:
+        raise AnswersError(f"{path}: 'grasping.tcp' needs parent_link, xyz and rpy, got {sorted(tcp)}")
+    pads = grasping.get("pad_links")
+    if pads is not None and (len(pads) != 2 or pads[0] == pads[1]):
+        raise AnswersError(f"{path}: 'grasping.pad_links' must name two different links, got {pads}")
+    direction = grasping.get("closing_direction")
+    if direction is not None and math.hypot(*direction) < 1e-9:
+        raise AnswersError(f"{path}: 'grasping.closing_direction' must not be zero")
+    fix = grasping.get("grasp_fix", {})
+    if "forces_angle_tolerance" in fix and not 90 <= fix["forces_angle_tolerance"] <= 180:
+        raise AnswersError(f"{path}: 'grasping.grasp_fix.forces_angle_tolerance' must be in [90, 180] degrees")
+    for key in ("update_rate", "release_tolerance"):
+        if key in fix and fix[key] <= 0:
+            raise AnswersError(f"{path}: 'grasping.grasp_fix.{key}' must be > 0, got {fix[key]}")
+    merged = {**GRASP_FIX_DEFAULTS, **fix}
+    if not 0 <= merged["grip_count_threshold"] < merged["max_grip_count"]:
+        raise AnswersError(f"{path}: 'grasping.grasp_fix' needs 0 <= grip_count_threshold < max_grip_count")

@@ -25,7 +25,9 @@ self-collision matrix), kinematics.yaml, joint_limits.yaml, controllers.yaml, a 
 (demo.launch, move_group.launch), an rviz config and a README, in DIR/NAME (default NAME: <robot>_sixdof_config).
 Then `ROS_PACKAGE_PATH=DIR:$ROS_PACKAGE_PATH roslaunch NAME demo.launch`. Choices are inferred (arm = the longest
 serial chain of actuated joints from the root, gripper = the moving joints after the arm's tip, home = zeros
-clamped into the limits, gripper open/close = the finger limits, analytic IK where the closed form fits);
+clamped into the limits, gripper open/close = the ends of the finger joints' ranges where the pads are furthest
+apart / closest, the grasp frame (TCP) between the pads, analytic IK where the closed form fits; moving links
+without a usable inertia get one computed from their geometry, and each such repair is a warning);
 --answers FILE overrides any of them (format: docs/your_own_arm.md). Re-running keeps files edited by hand and
 the SRDF's hand-written parts, and lists what it regenerates. With --srdf-out: only the SRDF (its collision
 matrix; the hand-written parts of --srdf-in are kept). Bad input: one line naming the problem, exit code 2,
@@ -113,6 +115,8 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as error:  # e.g. an output folder without write permission
         print(f"setup_assistant: {error.filename or ''}: {error.strerror or error}", file=sys.stderr)
         return 2
+    for warning in result.warnings:
+        print(f"setup_assistant: warning: {warning}", file=sys.stderr)
     for label, files in (("created", result.created), ("regenerated", result.regenerated),
                          ("kept (edited by hand; delete to regenerate)", result.kept),
                          ("removed (no longer generated)", result.removed)):

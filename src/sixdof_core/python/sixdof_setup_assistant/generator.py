@@ -20,9 +20,9 @@ from typing import Any
 
 import yaml
 
-from . import templates
+from . import grasping, templates
 from .answers import load_answers
-from .infer import infer
+from .infer import complete_gripper_states, infer
 from .xacro_loader import load_description
 
 MANIFEST = ".setup_assistant.yaml"
@@ -103,6 +103,7 @@ class Result:
     removed: list[str] = field(default_factory=list)  # generated before, not any more, not edited
     srdf_hand_edits_kept: bool = False
     report: dict[str, Any] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)  # what the setup assistant repaired or could not infer
 
 
 def _read(path: str) -> str:
@@ -147,12 +148,21 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
     os.makedirs(work)
     urdf_in = os.path.join(work, "input.urdf")
     _write(urdf_in, urdf_text)
-    core_urdf = urdf_in
     model_path = os.path.join(work, "model.yaml")
     env = core_environment(options.urdf)
-    run_core(["--urdf", core_urdf, "--describe", model_path], echo=False, env=env)
+    run_core(["--urdf", urdf_in, "--describe", model_path], echo=False, env=env)
     model = yaml.safe_load(_read(model_path))
     plan = infer(model, answers)
+    # The repairs: inertias of moving links without a usable one, the gripper's grasp geometry and its TCP frame.
+    repaired_urdf = os.path.join(work, "repaired.urdf")
+    repairs_path = os.path.join(work, "repairs.yaml")
+    run_core(["--urdf", urdf_in, "--urdf-out", repaired_urdf, "--repairs", repairs_path,
+              *grasping.core_arguments(plan, answers)], echo=False, env=env)
+    repairs = yaml.safe_load(_read(repairs_path))
+    if repairs.get("grasp"):
+        complete_gripper_states(plan, repairs["grasp"])
+    urdf_text = _read(repaired_urdf)
+    core_urdf = repaired_urdf
     name = options.name or answers.get("name") or f"{model['robot'].lower()}_sixdof_config"
     if not PACKAGE_NAME.match(name):
         raise GenerationError(f"package name '{name}' is not a valid ROS package name (^[a-z][a-z0-9_]*$)")
@@ -190,6 +200,7 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
               "--density", str(density), "--seed", str(seed)], env=env)
     report = yaml.safe_load(_read(report_path))
     result.report = report
+    result.warnings = grasping.warnings(model, repairs)
     arm_report = next((g for g in report["groups"] if g["name"] == plan.arm.name), None)
     if plan.arm.solver and arm_report and plan.arm.solver == "analytic" and arm_report["solver"] != "analytic":
         raise GenerationError(f"answers arm.solver: analytic does not fit group '{plan.arm.name}': "
@@ -210,8 +221,11 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         "config/motion_planning.rviz": templates.rviz_config(plan, report),
         "launch/demo.launch": templates.demo_launch(name, plan),
         "launch/move_group.launch": templates.move_group_launch(name, plan),
-        "README.md": templates.readme(name, plan, report, command),
+        "README.md": templates.readme(name, plan, report, command)
+        + grasping.readme_sections(plan, model, repairs, answers),
     }
+    if plan.gripper and repairs.get("grasp"):
+        files["config/grasping.yaml"] = grasping.grasping_yaml(plan, repairs, answers)
     staged = os.path.join(staging_root, name)
     os.makedirs(staged)
     # Whatever the user added to the package is carried over untouched; a file generated before that is no

@@ -8,8 +8,9 @@ links and joints in model order with types, limits and mimic relations. The rule
   child link of the arm's last joint.
 - gripper: every moving joint below the arm's tip (mimic joints included, as MoveIt lists them); none if there
   are none. End effector `hand` on the arm's tip.
-- named states: arm `home` = zeros clamped into the limits; gripper `open` = the finger joints' upper limits,
-  `close` = their lower limits (mimic joints follow their multiplier and offset).
+- named states: arm `home` = zeros clamped into the limits; gripper `open` / `close` = the end of each finger
+  joint's range where its pads are furthest apart / closest (the core's grasp geometry, filled in by
+  `complete_gripper_states`). States list only the actuated joints: mimic joints follow their master.
 - planning frame `world`: a fixed virtual joint world -> root link, unless the root link is `world` itself.
 """
 
@@ -36,6 +37,10 @@ class GroupPlan:
     solver: str = ""  # arm only: empty = whatever fits (the core's verdict)
 
 
+# A gripper state whose values come from the grasp geometry (complete_gripper_states).
+GRIPPER_STATES = ("open", "close")
+
+
 @dataclass
 class Plan:
     robot: str
@@ -43,7 +48,8 @@ class Plan:
     arm: GroupPlan
     gripper: GroupPlan | None
     end_effector: dict[str, str] | None
-    states: list[tuple[str, str, dict[str, float]]] = field(default_factory=list)  # (name, group, values)
+    # (name, group, values); the gripper's open/close have values None until complete_gripper_states
+    states: list[tuple[str, str, dict[str, float] | None]] = field(default_factory=list)
     planning_frame: str = "world"
 
     @property
@@ -135,13 +141,8 @@ def _clamp(value: float, joint: dict[str, Any]) -> float:
     return min(max(value, joint["lower"]), joint["upper"])
 
 
-def _with_mimics(view: ModelView, group_joints: list[str], values: dict[str, float]) -> dict[str, float]:
-    out = dict(values)
-    for name in group_joints:
-        mimic = view.joints[name].get("mimic")
-        if mimic and mimic["joint"] in values and name not in values:
-            out[name] = mimic["multiplier"] * values[mimic["joint"]] + mimic["offset"]
-    return {name: out[name] for name in group_joints if name in out}
+def _in_group_order(group_joints: list[str], values: dict[str, float]) -> dict[str, float]:
+    return {name: float(values[name]) for name in group_joints if name in values}
 
 
 def infer(model: dict[str, Any], answers: dict[str, Any]) -> Plan:
@@ -214,21 +215,25 @@ def infer(model: dict[str, Any], answers: dict[str, Any]) -> Plan:
     arm_active = [n for n in arm.joints if _actuated(view.joints[n])]
     states.append(("home", arm.name, {n: _clamp(0.0, view.joints[n]) for n in arm_active}))
     if gripper:
-        fingers = [n for n in gripper.joints if _actuated(view.joints[n])]
-        for state, limit in (("open", "upper"), ("close", "lower")):
-            values = {n: view.joints[n][limit] for n in fingers}
-            states.append((state, gripper.name, _with_mimics(view, gripper.joints, values)))
+        states += [(state, gripper.name, None) for state in GRIPPER_STATES]
     groups = {arm.name: arm, **({gripper.name: gripper} if gripper else {})}
     for group, named in answers.get("named_states", {}).items():
         if group not in groups:
             raise InferenceError(f"answers named_states: no group '{group}' (groups: {', '.join(groups)})")
-        states = [s for s in states if s[1] != group]  # given states replace the inferred ones of the group
+        # Given states replace the inferred ones of the group; the gripper's open/close stay unless given.
+        kept = GRIPPER_STATES if gripper and group == gripper.name else ()
+        states = [s for s in states if s[1] != group or (s[0] in kept and s[0] not in named)]
         for state, values in named.items():
+            where = f"answers named_states.{group}.{state}"
             for joint in values:
-                view.check_joint(joint, f"answers named_states.{group}.{state}")
+                view.check_joint(joint, where)
                 if joint not in groups[group].joints:
-                    raise InferenceError(f"answers named_states.{group}.{state}: joint '{joint}' is not in the group")
-            states.append((state, group, _with_mimics(view, groups[group].joints, dict(values))))
+                    raise InferenceError(f"{where}: joint '{joint}' is not in the group")
+                mimic = view.joints[joint].get("mimic")
+                if mimic:
+                    raise InferenceError(f"{where}: joint '{joint}' mimics '{mimic['joint']}': give '{mimic['joint']}' "
+                                         "only (mimic joints follow their master)")
+            states.append((state, group, _in_group_order(groups[group].joints, dict(values))))
 
     for joint in answers.get("acceleration_limits", {}):
         view.check_joint(joint, "answers acceleration_limits")
@@ -236,3 +241,19 @@ def infer(model: dict[str, Any], answers: dict[str, Any]) -> Plan:
             raise AnswersError(f"answers acceleration_limits: joint '{joint}' is fixed")
     return Plan(robot=model["robot"], root_link=root, arm=arm, gripper=gripper, end_effector=end_effector,
                 states=states, planning_frame=answers.get("planning_frame", "world"))
+
+
+def given_gripper_positions(plan: Plan) -> dict[str, dict[str, float]]:
+    """The gripper's open/close states the answers give (state -> joint -> value), for the grasp geometry."""
+    if not plan.gripper:
+        return {}
+    return {name: values for name, group, values in plan.states
+            if group == plan.gripper.name and name in GRIPPER_STATES and values is not None}
+
+
+def complete_gripper_states(plan: Plan, grasp: dict[str, Any]) -> None:
+    """Fills the gripper's inferred open/close states from the core's grasp geometry (its `open` / `closed`)."""
+    for i, (name, group, values) in enumerate(plan.states):
+        if values is None:
+            found = grasp["open" if name == "open" else "closed"]
+            plan.states[i] = (name, group, _in_group_order(plan.gripper.joints if plan.gripper else [], found))

@@ -1,59 +1,12 @@
 // describeModel(): what the setup assistant's front end needs to know of a model, as YAML.
-#include <cmath>
-#include <cstdio>
-#include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "sixdof_core/ik_analytic.h"
 #include "sixdof_core/setup_assistant.h"
+#include "yaml_text.h"
 
 namespace sixdof_core {
-
-namespace {
-
-// A YAML double-quoted scalar: names may hold any character.
-std::string yamlString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\x%02x", static_cast<unsigned char>(c));
-      out += buffer;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-// Shortest text that reads back as the same double (YAML: .inf / -.inf / .nan).
-std::string yamlNumber(double value) {
-  if (std::isnan(value)) return ".nan";
-  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::ostringstream out;
-    out << std::setprecision(precision) << value;
-    if (std::stod(out.str()) == value) return out.str();
-  }
-  std::ostringstream out;
-  out << std::setprecision(17) << value;
-  return out.str();
-}
-
-std::string yamlVector(const Eigen::Vector3d& v) {
-  return "[" + yamlNumber(v.x()) + ", " + yamlNumber(v.y()) + ", " + yamlNumber(v.z()) + "]";
-}
-
-std::string yamlNames(const std::vector<std::string>& names) {
-  std::string out = "[";
-  for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + yamlString(names[i]);
-  return out + "]";
-}
-
-}  // namespace
 
 std::string describeModel(const RobotModel& model, const DisabledCollisions* collisions) {
   std::ostringstream out;
@@ -134,6 +87,13 @@ std::string describeModel(const RobotModel& model, const DisabledCollisions* col
     out << "- {name: " << yamlString(vj.name) << ", type: " << yamlString(vj.type)
         << ", parent_frame: " << yamlString(vj.parent_frame) << ", child_link: " << yamlString(vj.child_link)
         << "}\n";
+  }
+  const auto conflicts = mimicLimitConflicts(model);
+  out << "mimic_limit_conflicts:" << (conflicts.empty() ? " []" : "") << "\n";
+  for (const auto& c : conflicts) {
+    out << "- {joint: " << yamlString(c.joint) << ", master: " << yamlString(c.master) << ", range: ["
+        << yamlNumber(c.from) << ", " << yamlNumber(c.to) << "], limits: [" << yamlNumber(c.lower) << ", "
+        << yamlNumber(c.upper) << "]}\n";
   }
   if (collisions) {
     std::map<std::string, size_t> counts;

@@ -41,6 +41,13 @@ namespace sixdof_sim {
 // update_rate <= 0, max_grip_count < grip_count_threshold, several <arm> blocks).
 std::optional<GraspFixConfig> parseGraspFixConfig(const std::string& urdf_xml);
 
+// The grasp fix of a config package's grasping.yaml (written by sixdof_core's setup assistant): its `grasp_fix`
+// mapping with palm_link, gripper_links and optionally arm_name and gazebo_grasp_fix's parameters, each missing
+// one at the plugin's own default (as for the URDF block). Throws std::invalid_argument naming `source` and the key
+// on YAML that cannot be read, a missing mapping or link, an unknown key, a value of the wrong type, and what
+// validateGraspFixConfig refuses.
+GraspFixConfig parseGraspingYaml(const std::string& yaml_text, const std::string& source);
+
 // Throws std::invalid_argument naming the problem when a config is unusable (same checks as above).
 void validateGraspFixConfig(const GraspFixConfig& config);
 

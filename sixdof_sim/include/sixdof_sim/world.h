@@ -40,7 +40,8 @@ struct WorldOptions {
   // Grasp fix on/off at start (setGraspFixEnabled changes it later). Needs the URDF's
   // gazebo_grasp_fix block or grasp_fix_config; enabling without either throws WorldError.
   bool grasp_fix_enabled = true;
-  // Overrides (or supplies) the URDF's grasp-fix block.
+  // The grasp fix of a robot whose URDF has no gazebo_grasp_fix block (e.g. a config package's grasping.yaml,
+  // parseGraspingYaml); the URDF's block wins where it has one.
   std::optional<GraspFixConfig> grasp_fix_config;
 };
 

@@ -1,6 +1,7 @@
 #include "sixdof_sim/grasp_fix.h"
 
 #include <tinyxml2.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +45,18 @@ int readInt(const tinyxml2::XMLElement* element, const char* name) {
     throw std::invalid_argument(std::string("gazebo_grasp_fix: <") + name + "> must be an integer");
   }
   return value;
+}
+
+// gazebo_grasp_fix's defaults for what a configuration leaves out (grip_count_threshold: max_grip_count / 2).
+GraspFixConfig pluginDefaults() {
+  GraspFixConfig config;
+  config.forces_angle_tolerance = 120.0;
+  config.update_rate = 5.0;
+  config.max_grip_count = 10;
+  config.grip_count_threshold = config.max_grip_count / 2;
+  config.release_tolerance = 0.005;
+  config.disable_collisions_on_attach = false;
+  return config;
 }
 
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -103,12 +116,7 @@ std::optional<GraspFixConfig> parseGraspFixConfig(const std::string& urdf_xml) {
   const tinyxml2::XMLElement* links_parent = arm != nullptr ? arm : plugin;
 
   // Defaults of the original plugin where the block omits a value.
-  GraspFixConfig config;
-  config.forces_angle_tolerance = 120.0;
-  config.update_rate = 5.0;
-  config.max_grip_count = 10;
-  config.release_tolerance = 0.005;
-  config.disable_collisions_on_attach = false;
+  GraspFixConfig config = pluginDefaults();
 
   if (const auto* e = links_parent->FirstChildElement("arm_name")) config.arm_name = elementText(e, "arm_name");
   const auto* palm = links_parent->FirstChildElement("palm_link");
@@ -143,6 +151,58 @@ std::optional<GraspFixConfig> parseGraspFixConfig(const std::string& urdf_xml) {
     }
   }
   validateGraspFixConfig(config);
+  return config;
+}
+
+GraspFixConfig parseGraspingYaml(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(source + ": not valid YAML: " + e.msg);
+  }
+  const YAML::Node fix = root.IsMap() ? root["grasp_fix"] : YAML::Node();
+  if (!fix || !fix.IsMap()) throw std::invalid_argument(source + ": no 'grasp_fix' mapping");
+  GraspFixConfig config = pluginDefaults();
+  bool threshold_given = false;
+  for (const auto& entry : fix) {
+    const std::string key = entry.first.as<std::string>();
+    const YAML::Node& value = entry.second;
+    const std::string where = source + ": 'grasp_fix." + key + "'";
+    try {
+      if (key == "arm_name") {
+        config.arm_name = value.as<std::string>();
+      } else if (key == "palm_link") {
+        config.palm_link = value.as<std::string>();
+      } else if (key == "gripper_links") {
+        if (!value.IsSequence()) throw std::invalid_argument(where + " must be a list of link names");
+        config.gripper_links = value.as<std::vector<std::string>>();
+      } else if (key == "forces_angle_tolerance") {
+        config.forces_angle_tolerance = value.as<double>();
+      } else if (key == "update_rate") {
+        config.update_rate = value.as<double>();
+      } else if (key == "grip_count_threshold") {
+        config.grip_count_threshold = value.as<int>();
+        threshold_given = true;
+      } else if (key == "max_grip_count") {
+        config.max_grip_count = value.as<int>();
+      } else if (key == "release_tolerance") {
+        config.release_tolerance = value.as<double>();
+      } else if (key == "disable_collisions_on_attach") {
+        config.disable_collisions_on_attach = value.as<bool>();
+      } else {
+        throw std::invalid_argument(source + ": unknown key 'grasp_fix." + key + "'");
+      }
+    } catch (const YAML::Exception&) {
+      throw std::invalid_argument(where + " has a value of the wrong type");
+    }
+  }
+  if (!threshold_given) config.grip_count_threshold = config.max_grip_count / 2;
+  try {
+    validateGraspFixConfig(config);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ": " + e.what());
+  }
   return config;
 }
 

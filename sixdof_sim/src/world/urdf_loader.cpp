@@ -89,7 +89,8 @@ RobotJoint describeJoint(const sixdof_core::JointModel& joint, const RobotLink& 
   if (child.mass <= 0.0) {
     throw std::invalid_argument("URDF link '" + child.name + "' cannot be simulated: it is moved by joint '" +
                                 joint.name + "' but has no <inertial> with mass > 0 (only links on fixed joints may "
-                                "go without)");
+                                "go without); run the robot from the config package `rosrun sixdof_core "
+                                "setup_assistant` generates, whose URDF has the missing inertias computed");
   }
   return rj;
 }

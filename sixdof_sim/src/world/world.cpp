@@ -120,7 +120,7 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
     }
   }
   impl_->buildStructure();
-  impl_->grasp_config = options.grasp_fix_config ? options.grasp_fix_config : impl_->robot.grasp_fix;
+  impl_->grasp_config = impl_->robot.grasp_fix ? impl_->robot.grasp_fix : options.grasp_fix_config;
   if (impl_->grasp_config) {
     const GraspFixConfig& config = *impl_->grasp_config;
     try {

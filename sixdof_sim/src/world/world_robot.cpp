@@ -202,7 +202,15 @@ void World::Impl::addRobotColliders() {
         robot_shapes.push_back(std::move(child));
       }
     }
-    if (compound->getNumChildShapes() == 0) continue;
+    // A moving body without geometry still gets a collider, one that collides with nothing: Bullet solves a
+    // link's joint constraints (servo, limit, gear) only within its collider's simulation island.
+    const bool shapeless = compound->getNumChildShapes() == 0;
+    if (shapeless && body.bullet_link < 0) continue;
+    if (shapeless) {
+      auto point = std::make_unique<btSphereShape>(kMargin);
+      compound->addChildShape(btTransform::getIdentity(), point.get());
+      robot_shapes.push_back(std::move(point));
+    }
     compound->setMargin(kMargin);
     auto collider = std::make_unique<btMultiBodyLinkCollider>(multibody.get(), body.bullet_link);
     collider->setCollisionShape(compound.get());
@@ -210,8 +218,8 @@ void World::Impl::addRobotColliders() {
     collider->setRestitution(0.0);
     collider->setUserIndex(kRobotBody);
     collider->setUserIndex2(static_cast<int>(b));
-    int group = btBroadphaseProxy::DefaultFilter;
-    int mask = btBroadphaseProxy::AllFilter;
+    int group = shapeless ? 0 : btBroadphaseProxy::DefaultFilter;
+    int mask = shapeless ? 0 : btBroadphaseProxy::AllFilter;
     if (body.bullet_link < 0) {
       // The fixed base never needs contacts with static geometry (the table it stands on).
       group = btBroadphaseProxy::StaticFilter;
@@ -227,7 +235,7 @@ void World::Impl::addRobotColliders() {
   }
 }
 
-// Joint servos, friction, limits.
+// Joint servos, friction, limits (not on mimic joints).
 void World::Impl::addJointConstraints() {
   for (size_t j = 0; j < joints.size(); ++j) {
     JointRuntime& runtime = joints[j];
@@ -251,7 +259,9 @@ void World::Impl::addJointConstraints() {
       runtime.friction = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.friction * dt());
       runtime.friction->setVelocityTarget(0.0, 1.0);
     }
-    if (info.bounded) {
+    // A mimic joint follows its master (whose limits bound it) and is not held to its own limits, as in MoveIt:
+    // vendors' linkages often give them limits that disagree with the master's range.
+    if (info.bounded && info.mimic_of.empty()) {
       auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(multibody.get(), link, info.lower, info.upper);
       world->addMultiBodyConstraint(limit.get());
       robot_constraints.push_back(std::move(limit));

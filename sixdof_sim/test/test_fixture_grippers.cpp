@@ -18,8 +18,8 @@
 #include <sixdof_core/kinematics.h>
 #include <sixdof_core/urdf_edit.h>
 
+#include "sixdof_sim/controllers.h"
 #include "sixdof_sim/grasp_fix.h"
-#include "sixdof_sim/gripper_controller.h"
 #include "test_helpers.h"
 
 namespace sixdof_sim {

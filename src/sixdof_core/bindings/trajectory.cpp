@@ -19,6 +19,10 @@ py::array_t<double> column(const Trajectory& trajectory) {
   return toArray(rows, trajectory.joint_names.size());
 }
 
+Eigen::VectorXd vectorOf(const std::vector<double>& values) {
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
 void bindPoints(py::module_& m) {
   py::class_<TrajectoryPoint>(m, "TrajectoryPoint", "trajectory_msgs/JointTrajectoryPoint without effort.")
       .def(py::init([](std::vector<double> positions, std::vector<double> velocities, std::vector<double> accelerations,
@@ -33,11 +37,13 @@ void bindPoints(py::module_& m) {
       .def_readwrite("accelerations", &TrajectoryPoint::accelerations)
       .def_readwrite("time_from_start", &TrajectoryPoint::time_from_start, "s");
 
-  py::class_<TrajectorySample>(m, "TrajectorySample", "ok, or a message naming the problem; the sampled point.")
-      .def_readonly("ok", &TrajectorySample::ok)
-      .def("__bool__", [](const TrajectorySample& s) { return s.ok; })
-      .def_readonly("message", &TrajectorySample::message)
-      .def_readonly("point", &TrajectorySample::point);
+  py::class_<TrajectorySample>(m, "TrajectorySample", "Positions, velocities and accelerations at one time.")
+      .def_property_readonly(
+          "position", [](const TrajectorySample& s) { return vectorOf(s.position); }, "(joints,)")
+      .def_property_readonly(
+          "velocity", [](const TrajectorySample& s) { return vectorOf(s.velocity); }, "(joints,)")
+      .def_property_readonly(
+          "acceleration", [](const TrajectorySample& s) { return vectorOf(s.acceleration); }, "(joints,)");
 
   py::class_<Trajectory>(m, "Trajectory", "A joint trajectory: joint names and timed points.")
       .def(py::init([](std::vector<std::string> joint_names, std::vector<TrajectoryPoint> points) {
@@ -61,8 +67,11 @@ void bindPoints(py::module_& m) {
       .def_property_readonly("accelerations", &column<&TrajectoryPoint::accelerations>,
                              "(points, joints); (0, joints) if none")
       .def("validate", &validateTrajectory, "'' if well formed, else a message naming the problem.")
-      .def("sample", &sampleTrajectory, py::arg("time"),
-           "The state at time (0 <= time <= duration), interpolated as joint_trajectory_controller does.");
+      .def(
+          "sample", [](const Trajectory& t, double time) { return TrajectorySampler(t).sample(time); },
+          py::arg("time"),
+          "The state at time, interpolated as joint_trajectory_controller does (at rest before the first and after "
+          "the last point). ValueError for a malformed trajectory or a non-finite time.");
 }
 
 }  // namespace

@@ -429,10 +429,9 @@ class TrajectoryPoint:
     time_from_start: float
 
 class TrajectorySample:
-    ok: Final[bool]
-    def __bool__(self) -> bool: ...
-    message: Final[str]
-    point: Final[TrajectoryPoint]
+    position: Final[_Array]
+    velocity: Final[_Array]
+    acceleration: Final[_Array]
 
 class Trajectory:
     def __init__(self, joint_names: Sequence[str], points: Sequence[TrajectoryPoint] = ...) -> None: ...

@@ -113,14 +113,19 @@ def test_time_parameterization_and_sampling(arm, context):
     np.testing.assert_allclose(trajectory.positions[-1], result.path[-1], atol=1e-6)
     assert np.abs(trajectory.velocities).max() <= 0.5 * 1.001
     middle = trajectory.sample(trajectory.duration / 2)
-    assert middle.ok and len(middle.point.positions) == 6
-    assert not trajectory.sample(-1.0)
+    assert middle.position.shape == (6,) and middle.velocity.shape == (6,)
+    # joint_trajectory_controller's semantics: before the first point, the first point at rest.
+    before = trajectory.sample(-1.0)
+    np.testing.assert_allclose(before.position, trajectory.positions[0])
+    assert not before.velocity.any()
     bad = sixdof_core.compute_time_optimal_trajectory(names, result.path,
                                                       sixdof_core.TimeParameterizationOptions([1.0] * 5, [2.0] * 6))
     assert bad.status == sixdof_core.TimeParameterizationStatus.INVALID_INPUT and bad.message
     handmade = sixdof_core.Trajectory(["a"], [sixdof_core.TrajectoryPoint([0.0], time_from_start=1.0),
                                              sixdof_core.TrajectoryPoint([1.0], time_from_start=0.5)])
     assert "increasing" in handmade.validate()
+    with pytest.raises(ValueError, match="increasing"):
+        handmade.sample(0.7)
 
 
 def test_the_scene_cannot_change_while_a_plan_runs(arm, context, table_scene):

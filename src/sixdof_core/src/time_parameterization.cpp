@@ -21,25 +21,28 @@ struct Segment {
   bool circular = false;
   double start = 0.0;   // arc length at the segment's start
   double length = 0.0;
-  Eigen::VectorXd a;    // line: start point; arc: centre
-  Eigen::VectorXd x;    // line: unit direction; arc: unit vector centre -> arc start
+  Eigen::VectorXd a;    // the segment's start point
+  Eigen::VectorXd x;    // line: unit direction; arc: unit normal from the arc start towards the centre
   Eigen::VectorXd y;    // arc: unit tangent at the arc start
   double radius = 0.0;
 
+  // An arc is written from its start point, not its centre: a nearly straight corner has a huge radius, and
+  // centre + radius * (...) would lose every digit of the small difference (positions went astray by 10^4).
   Eigen::VectorXd position(double s) const {
     if (!circular) return a + x * s;
     const double angle = s / radius;
-    return a + radius * (x * std::cos(angle) + y * std::sin(angle));
+    const double half_sin = std::sin(0.5 * angle);
+    return a + y * (radius * std::sin(angle)) + x * (2.0 * radius * half_sin * half_sin);
   }
   Eigen::VectorXd tangent(double s) const {
     if (!circular) return x;
     const double angle = s / radius;
-    return -x * std::sin(angle) + y * std::cos(angle);
+    return y * std::cos(angle) + x * std::sin(angle);
   }
   Eigen::VectorXd curvature(double s) const {
     if (!circular) return Eigen::VectorXd::Zero(x.size());
     const double angle = s / radius;
-    return -(x * std::cos(angle) + y * std::sin(angle)) / radius;
+    return (x * std::cos(angle) - y * std::sin(angle)) / radius;
   }
 };
 
@@ -342,7 +345,8 @@ void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation,
     const double angle = std::acos(std::clamp(in.dot(out), -1.0, 1.0));
     if (angle < 1e-9) continue;  // straight through
     const double half = 0.5 * angle;
-    const double by_deviation = max_deviation * std::sin(half) / (1.0 - std::cos(half));
+    // max_deviation * sin(half) / (1 - cos(half)), without the cancellation of 1 - cos for small angles.
+    const double by_deviation = max_deviation / std::tan(0.5 * half);
     const double length = std::min({0.5 * (points[i] - points[i - 1]).norm(),
                                     0.5 * (points[i + 1] - points[i]).norm(), by_deviation});
     const double radius = length / std::tan(half);
@@ -354,9 +358,8 @@ void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation,
     Segment& arc = arcs[i];
     arc.circular = true;
     arc.radius = radius;
-    const Eigen::VectorXd start = points[i] - in * length;
-    arc.a = points[i] + (out - in).normalized() * (radius / std::cos(half));
-    arc.x = (start - arc.a).normalized();
+    arc.a = points[i] - in * length;
+    arc.x = (out - in * in.dot(out)).normalized();  // the part of `out` across `in`: towards the centre
     arc.y = in;
     arc.length = radius * angle;
     blended[i] = true;
@@ -446,6 +449,18 @@ TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::s
   Solver solver(std::move(segments), std::move(grid), std::move(limits));
   solver.solve();
   result.trajectory = solver.sample(joint_names, options.sample_period);
+  // The path (straight segments, circular blends inside each corner's triangle) never leaves the waypoints' range
+  // per joint; sampled positions beyond it by rounding (a joint held at its limit pi read as pi + 4e-16, which a
+  // controller checking its limits refuses) are put back on it.
+  Eigen::VectorXd lowest = points.front();
+  Eigen::VectorXd highest = points.front();
+  for (const Eigen::VectorXd& p : points) {
+    lowest = lowest.cwiseMin(p);
+    highest = highest.cwiseMax(p);
+  }
+  for (TrajectoryPoint& point : result.trajectory.points) {
+    for (std::size_t j = 0; j < n; ++j) point.positions[j] = std::clamp(point.positions[j], lowest[j], highest[j]);
+  }
   // Exact end points (the path's own ends differ by rounding only).
   result.trajectory.points.front().positions = waypoints.front();
   result.trajectory.points.back().positions = std::vector<double>(points.back().data(), points.back().data() + n);

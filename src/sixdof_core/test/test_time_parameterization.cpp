@@ -113,6 +113,68 @@ TEST(TimeParameterization, DenseSmallStepPathLikeAPlannerOutput) {
   expectValid(r.trajectory, path, o);
 }
 
+TEST(TimeParameterization, StaysWithinTheWaypointsRangeOfEachJoint) {
+  // Random walks with joint4 at or just below pi (its limit), each parameterized twice: the second time over the
+  // first one's dense samples, whose corners are nearly straight (a Cartesian path retimed to other scaling
+  // factors). No position may leave the waypoints' range, not even by rounding: a controller refuses pi + 1e-16.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> step(0.0, 0.02);
+  std::normal_distribution<double> below(0.0, 0.01);
+  std::uniform_int_distribution<int> count(3, 40);
+  TimeParameterizationOptions slow = armOptions();
+  slow.velocity_scaling = slow.acceleration_scaling = 0.1;
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<std::vector<double>> path(count(rng), std::vector<double>(kJoints.size(), 0.0));
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      for (std::size_t j = 0; j < kJoints.size(); ++j) path[k][j] = (k > 0 ? path[k - 1][j] : 0.0) + step(rng);
+      path[k][3] = M_PI - (k % 2 == 0 ? 0.0 : std::abs(below(rng)));
+    }
+    const TimeParameterizationResult once = computeTimeOptimalTrajectory(kJoints, path, armOptions());
+    ASSERT_TRUE(once.ok()) << once.message;
+    std::vector<std::vector<double>> samples;
+    for (const auto& point : once.trajectory.points) samples.push_back(point.positions);
+    const TimeParameterizationResult twice = computeTimeOptimalTrajectory(kJoints, samples, slow);
+    ASSERT_TRUE(twice.ok()) << twice.message;
+    for (std::size_t j = 0; j < kJoints.size(); ++j) {
+      double lo = path[0][j], hi = path[0][j];
+      for (const auto& w : path) {
+        lo = std::min(lo, w[j]);
+        hi = std::max(hi, w[j]);
+      }
+      for (const Trajectory* t : {&once.trajectory, &twice.trajectory}) {
+        for (const auto& point : t->points) {
+          ASSERT_GE(point.positions[j], lo) << "trial " << trial << " joint " << j;
+          ASSERT_LE(point.positions[j], hi) << "trial " << trial << " joint " << j;
+        }
+      }
+    }
+  }
+}
+
+TEST(TimeParameterization, NearlyStraightCornerStaysOnThePath) {
+  // Three samples of an earlier parameterization (a retimed path): the corner turns by about 1e-8 rad. Its blend's
+  // radius is then huge, and an arc written from its centre gave positions of 10^4 rad.
+  const std::vector<std::vector<double>> path = {
+      {-0.08487150550100575, 0.046231422672101785, 0.08630041970398288, 3.1327754548765046, -0.04583224436218221,
+       -0.16777538938542458},
+      {-0.08525677448797624, 0.046866950106313705, 0.08715274476331113, 3.1325652222371128, -0.04744210388716565,
+       -0.16786312418444968},
+      {-0.08564204347494672, 0.047502477540525626, 0.08800506982263938, 3.132354989597721, -0.0490519634121491,
+       -0.16795085898347478}};
+  TimeParameterizationOptions slow = armOptions();
+  slow.max_velocity.assign(kJoints.size(), 2.0);
+  slow.max_acceleration.assign(kJoints.size(), 3.0);
+  slow.velocity_scaling = 0.1;
+  const TimeParameterizationResult r = computeTimeOptimalTrajectory(kJoints, path, slow);
+  ASSERT_TRUE(r.ok()) << r.message;
+  for (const auto& point : r.trajectory.points) {
+    for (std::size_t j = 0; j < kJoints.size(); ++j) {
+      EXPECT_GE(point.positions[j], std::min(path.front()[j], path.back()[j]) - 1e-12);
+      EXPECT_LE(point.positions[j], std::max(path.front()[j], path.back()[j]) + 1e-12);
+    }
+  }
+}
+
 TEST(TimeParameterization, MatchesTrapezoidalOptimumOnAStraightMove) {
   TimeParameterizationOptions o;
   o.max_velocity = {1.0};

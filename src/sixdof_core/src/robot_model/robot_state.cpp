@@ -5,6 +5,30 @@
 #include "sixdof_core/robot_model.h"
 
 namespace sixdof_core {
+namespace {
+
+bool isIdentityRotation(const Eigen::Matrix3d& m) {
+  return m(0, 0) == 1.0 && m(1, 1) == 1.0 && m(2, 2) == 1.0 && m(0, 1) == 0.0 && m(0, 2) == 0.0 && m(1, 0) == 0.0 &&
+         m(1, 2) == 0.0 && m(2, 0) == 0.0 && m(2, 1) == 0.0;
+}
+
+// t's rotation followed by `angle` about `axis` (unit, in t's frame). A coordinate axis (most joints) turns two of
+// the columns in place.
+void rotate(Eigen::Isometry3d* t, const Eigen::Vector3d& axis, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    if (std::abs(axis[i]) != 1.0 || axis[j] != 0.0 || axis[k] != 0.0) continue;
+    const double sign_s = axis[i] * s;
+    const Eigen::Vector3d col_j = t->linear().col(j);
+    t->linear().col(j) = c * col_j + sign_s * t->linear().col(k);
+    t->linear().col(k) = c * t->linear().col(k) - sign_s * col_j;
+    return;
+  }
+  t->linear() = t->linear() * Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+}
+
+}  // namespace
 
 RobotState::RobotState(RobotModelConstPtr model) : model_(std::move(model)) {
   if (!model_) throw std::invalid_argument("RobotState needs a robot model");
@@ -157,20 +181,27 @@ void RobotState::update() {
   link_transforms_[0] = Eigen::Isometry3d::Identity();
   for (size_t l = 1; l < links.size(); ++l) {
     const JointModel& joint = joints[links[l].parent_joint];
-    Eigen::Isometry3d t = link_transforms_[links[l].parent_link] * joint.origin;
+    const Eigen::Isometry3d& parent = link_transforms_[links[l].parent_link];
+    Eigen::Isometry3d& t = link_transforms_[l];
+    // Most joint origins are pure offsets: then the product is the parent's rotation and a moved origin.
+    if (isIdentityRotation(joint.origin.linear())) {
+      t.linear() = parent.linear();
+      t.translation() = parent * joint.origin.translation();
+    } else {
+      t = parent * joint.origin;
+    }
     const double value = joint_values_[links[l].parent_joint];
     switch (joint.type) {
       case JointType::kRevolute:
       case JointType::kContinuous:
-        t.rotate(Eigen::AngleAxisd(value, joint.axis));
+        rotate(&t, joint.axis, value);
         break;
       case JointType::kPrismatic:
-        t.translate(value * joint.axis);
+        t.translation() += t.linear() * (value * joint.axis);
         break;
       case JointType::kFixed:
         break;
     }
-    link_transforms_[l] = t;
   }
 }
 

@@ -9,11 +9,13 @@
 
 // The public CollisionScene: construction, the allowed collision matrix, padding and scale, objects and the
 // three queries. Geometry building is in collision/fcl_geometry.cpp, the OBB prefilter in collision/obb.cpp,
-// the shape-pair tests in collision/narrow_phase.cpp and the scene's pair walks in collision/scene_impl.cpp.
+// the shape-pair tests in collision/narrow_phase.cpp and the scene's pair walks in collision/scene_impl.cpp; the
+// sphere pre-check (precheckMotion) is in collision/precheck.cpp, its spheres in collision/spheres.cpp.
 
 namespace sixdof_core {
 
 using detail::Body;
+using detail::coveringSpheres;
 using detail::error;
 using detail::geometryObb;
 using detail::GeometryPtr;
@@ -48,8 +50,10 @@ SceneStatus buildShapes(Body* body) {
       status.message = "'" + body->name + "': " + describe(placed.shape) + ": " + status.message;
       return status;
     }
-    body->shapes.push_back(ShapeInstance{geometry, placed.origin, geometryObb(*geometry),
-                                         placed.origin.matrix().isIdentity(0.0)});
+    ShapeInstance shape{geometry, placed.origin, geometryObb(*geometry), placed.origin.matrix().isIdentity(0.0), {}};
+    // Only robot bodies move, so only they need the pre-check's spheres (world shapes are measured as they are).
+    if (body->type != BodyType::kWorldObject) shape.spheres = coveringSpheres(geometry, shape.obb);
+    body->shapes.push_back(std::move(shape));
   }
   return SceneStatus();
 }

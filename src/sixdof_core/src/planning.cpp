@@ -177,7 +177,11 @@ PlanningResult finish(PlanningResult r, PlanningStatus status, std::string messa
   r.status = status;  // kSuccess too: finish() ends every path of plan()
   r.message = std::move(message);
   r.planning_time = secondsSince(t0);
-  if (session) r.validity_checks = session->checks.load();
+  if (session) {
+    r.validity_checks = session->checks.load();
+    r.precheck_calls = session->precheck_calls.load();
+    r.precheck_states = session->precheck_states.load();
+  }
   return r;
 }
 
@@ -246,6 +250,7 @@ PlanningResult plan(const PlanningProblem& p) {
   Session session;
   session.is_valid = p.is_valid;
   session.explain = p.explain_invalid;
+  if (options.precheck) session.precheck = p.precheck;
   session.joint_space = std::make_shared<JointSpace>(p.joints);
   session.joint_space->space()->registerDefaultProjection(
       std::make_shared<FirstJointsProjection>(session.joint_space.get()));

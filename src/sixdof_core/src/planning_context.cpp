@@ -1,6 +1,7 @@
 #include "sixdof_core/planning_context.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -33,6 +34,41 @@ PlanningContext::PlanningContext(RobotModelConstPtr model, std::shared_ptr<const
     const int index = model_->linkIndex(link);
     if (index < 0) throw std::invalid_argument("collision scene link '" + link + "' is not in the robot model");
     scene_link_to_model_.push_back(index);
+  }
+  computeMotionGains();
+}
+
+void PlanningContext::computeMotionGains() {
+  const std::size_t links = scene_link_to_model_.size();
+  motion_gains_.assign(links, {});
+  // The group variable a joint moves with, and by what factor (a mimic joint follows its source); -1: it stays.
+  const auto& model_joints = model_->joints();
+  std::vector<int> moved_by(model_joints.size(), -1);
+  std::vector<double> factor(model_joints.size(), 1.0);
+  for (std::size_t j = 0; j < model_joints.size(); ++j) {
+    const JointModel& joint = model_joints[j];
+    const int source = joint.mimic ? joint.mimic->joint_index : static_cast<int>(j);
+    const auto v = std::find(variable_indices_.begin(), variable_indices_.end(), model_joints[source].variable_index);
+    if (model_joints[source].variable_index < 0 || v == variable_indices_.end()) continue;
+    moved_by[j] = static_cast<int>(v - variable_indices_.begin());
+    if (joint.mimic) factor[j] = std::abs(joint.mimic->multiplier);
+  }
+  // Up the tree from each link: a revolute joint's axis passes through its child link's origin, so it moves a point
+  // p of the link at most |p| plus the distance from there to the link's origin, bounded by the joint offsets
+  // (and the travel of prismatic joints) between them.
+  for (std::size_t i = 0; i < links; ++i) {
+    double lever = 0.0;
+    for (int link = scene_link_to_model_[i]; model_->links()[link].parent_joint >= 0;
+         link = model_->links()[link].parent_link) {
+      const int j = model_->links()[link].parent_joint;
+      const JointModel& joint = model_joints[j];
+      const bool prismatic = joint.type == JointType::kPrismatic;
+      if (moved_by[j] >= 0 && joint.type != JointType::kFixed) {
+        motion_gains_[i].push_back(MotionGain{j, link, moved_by[j], factor[j], prismatic, lever});
+      }
+      lever += joint.origin.translation().norm();
+      if (prismatic) lever += std::max(std::abs(joint.limits.lower), std::abs(joint.limits.upper));
+    }
   }
 }
 
@@ -102,27 +138,49 @@ void PlanningContext::sceneLinkPoses(const RobotState& state, std::vector<Eigen:
   for (std::size_t i = 0; i < scene_link_to_model_.size(); ++i) (*out)[i] = state.linkTransform(scene_link_to_model_[i]);
 }
 
+namespace {
+
+// A fresh id for the scratch state of the callbacks made from one reference state (scratchState()).
+std::uint64_t newScratchId() {
+  static std::atomic<std::uint64_t> next{1};
+  return next++;
+}
+
+// The calling thread's scratch state for the callbacks with id `scratch`, made from `reference`. The callbacks run
+// concurrently in parallel planning attempts, hence one per thread; it is reset to the reference when another
+// callback used it last, and otherwise keeps all but the group's values, which every call sets.
+RobotState& scratchState(std::uint64_t scratch, const RobotState& reference) {
+  thread_local std::optional<RobotState> state;
+  thread_local std::uint64_t state_scratch = 0;
+  if (!state) {
+    state.emplace(reference);
+  } else if (state_scratch != scratch) {
+    *state = reference;
+  }
+  state_scratch = scratch;
+  return *state;
+}
+
+}  // namespace
+
 JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
-  // Copies keep the callback valid after this context or the reference state are gone. The callback runs
-  // concurrently in parallel planning attempts, so its scratch state and poses are per thread; assigning
-  // the reference into them reuses their storage (no allocation per check).
-  return [scene = scene_, self = *this, reference](const Eigen::VectorXd& q) {
-    thread_local std::optional<RobotState> state;
+  return makeValidityFn(reference, newScratchId());
+}
+
+JointValidityFn PlanningContext::makeValidityFn(const RobotState& reference, std::uint64_t scratch) const {
+  // Copies keep the callback valid after this context or the reference state are gone.
+  return [scene = scene_, self = *this, reference, scratch](const Eigen::VectorXd& q) {
     thread_local std::vector<Eigen::Isometry3d> poses;
-    if (state) {
-      *state = reference;
-    } else {
-      state.emplace(reference);
-    }
     if (self.constrained_joints_) {
       for (std::size_t i = 0; i < self.joints_.size(); ++i) {
         const JointBounds& j = self.joints_[i];
         if (!j.continuous && (q[i] < j.lower || q[i] > j.upper)) return false;
       }
     }
-    state->setVariablePositions(self.variable_indices_, q);
-    if (self.state_constraint_ && !self.state_constraint_(*state)) return false;
-    self.sceneLinkPoses(*state, &poses);
+    RobotState& state = scratchState(scratch, reference);
+    state.setVariablePositions(self.variable_indices_, q);
+    if (self.state_constraint_ && !self.state_constraint_(state)) return false;
+    self.sceneLinkPoses(state, &poses);
     return !scene->isColliding(poses);
   };
 }
@@ -142,11 +200,50 @@ JointValidityExplainFn PlanningContext::explainFn(const RobotState& reference) c
   };
 }
 
+MotionPrecheckFn PlanningContext::precheckFn(const RobotState& reference) const {
+  return makePrecheckFn(reference, newScratchId());
+}
+
+MotionPrecheckFn PlanningContext::makePrecheckFn(const RobotState& reference, std::uint64_t scratch) const {
+  return [scene = scene_, self = *this, reference, scratch](const Eigen::VectorXd& q, const Eigen::VectorXd& step,
+                                                            double cap, double tolerance) -> MotionPrecheck {
+    thread_local std::vector<Eigen::Isometry3d> poses;
+    thread_local LinkMotionBound bound;
+    RobotState& state = scratchState(scratch, reference);
+    state.setVariablePositions(self.variable_indices_, q);
+    self.sceneLinkPoses(state, &poses);
+    // A revolute joint moves the link's origin at its step times the origin's distance from the joint's axis: now
+    // at most the distance to the joint's child frame, growing by at most what the joints in between move it.
+    bound.links.resize(poses.size());
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      bound.links[i].clear();
+      double inner_speed = 0.0;  // how fast the joints below the current one may move the link's origin, at most
+      for (const MotionGain& gain : self.motion_gains_[i]) {
+        const double amount = gain.factor * std::abs(step[gain.variable]);
+        if (amount == 0.0) continue;
+        if (gain.prismatic) {
+          bound.links[i].push_back({gain.joint, amount, 0.0, 0.0});
+          inner_speed += amount;
+        } else {
+          const double lever = (poses[i].translation() - state.linkTransform(gain.child_link).translation()).norm();
+          bound.links[i].push_back({gain.joint, amount * lever, amount, amount * inner_speed});
+          inner_speed += amount * gain.lever;
+        }
+      }
+    }
+    const SphereCertificate certificate = scene->precheckMotion(poses, bound, cap, tolerance);
+    return MotionPrecheck{certificate.proven, certificate.unprovable};
+  };
+}
+
 PlanningProblem PlanningContext::problem(const RobotState& start, const PlanningOptions& options) const {
   PlanningProblem p;
   p.joints = joints_;
-  p.is_valid = validityFn(start);
+  const std::uint64_t scratch = newScratchId();  // one scratch state for both: they alternate
+  p.is_valid = makeValidityFn(start, scratch);
   p.explain_invalid = explainFn(start);
+  // The pre-check proves collision-freedom only: not a state constraint (joint bounds hold between bounded ends).
+  if (!state_constraint_) p.precheck = makePrecheckFn(start, scratch);
   p.start = start.groupPositions(group_);
   p.options = options;
   return p;

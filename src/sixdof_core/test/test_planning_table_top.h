@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,8 +57,10 @@ struct TableTop {
 };
 
 // padding: link padding (m) of the scene the planner sees; discrete motion checks may cut corners by a few mm.
+// extra: more world objects (e.g. clutter on the table).
 inline TableTop makeTableTop(const std::string& urdf_path, const std::string& srdf_path,
-                             const std::string& description_dir, double padding) {
+                             const std::string& description_dir, double padding,
+                             const std::vector<sixdof_core::WorldObject>& extra = {}) {
   using sixdof_core::Shape;
   TableTop t;
   t.model = sixdof_core::RobotModel::fromFiles(
@@ -72,6 +75,10 @@ inline TableTop makeTableTop(const std::string& urdf_path, const std::string& sr
   t.scene->addWorldObject(tableTopObject("ball", Shape::Type::kSphere, {0.20, 0.30, 0.06}, {0.06, 0.0, 0.0}));
   // The robot stands on the table.
   t.scene->setAllowed("base_link", "table", true);
+  for (const sixdof_core::WorldObject& object : extra) {
+    const sixdof_core::SceneStatus status = t.scene->addWorldObject(object);
+    if (!status.ok()) throw std::invalid_argument("table top: " + status.message);
+  }
 
   try {
     t.ik = sixdof_core::createIkSolver("analytic", *t.model, "arm");

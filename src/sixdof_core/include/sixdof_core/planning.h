@@ -26,6 +26,18 @@ namespace sixdof_core {
 using JointValidityFn = std::function<bool(const Eigen::VectorXd&)>;
 // Optional: why a state is invalid (e.g. "link3 collides with table"), used only to word error messages.
 using JointValidityExplainFn = std::function<std::string(const Eigen::VectorXd&)>;
+// What a motion pre-check proves about the states q + w * step (continuous joints wrap): every one with |w| <= proven
+// is valid, i.e. is_valid would accept it; proven = 0: not even q is (is_valid decides). Then none with
+// |w| <= unprovable can be proven either.
+struct MotionPrecheck {
+  double proven = 0.0;
+  double unprovable = 0.0;
+};
+// Optional pre-check of motions from q along a joint-space step, proving no more than `cap` (a fraction of the step).
+// It must never overstate `proven`, and may understate it by up to `tolerance` (a cheaper proof). Thread-safe like
+// is_valid.
+using MotionPrecheckFn = std::function<MotionPrecheck(const Eigen::VectorXd& q, const Eigen::VectorXd& step,
+                                                      double cap, double tolerance)>;
 // Produces one goal state (e.g. one IK solution of a pose goal, randomly seeded); false = no solution.
 // Calls are serialised by the planner, so the sampler need not be thread-safe.
 using GoalSamplerFn = std::function<bool(Eigen::VectorXd* out)>;
@@ -89,6 +101,9 @@ struct PlanningOptions {
   double simplify_coarse_factor = 4.0;
   // After simplification, points are inserted so no joint moves more than this between points (0 = off).
   double max_joint_step = 0.0;
+  // Motions are checked at the same states either way; with the problem's pre-check, runs of them that it proves
+  // valid skip is_valid. false: every state is checked with is_valid (the pre-check's baseline).
+  bool precheck = true;
   // Reseeds OMPL's process-wide random generator: planning is then repeatable for sequential attempts
   // (or one attempt) with planners that stop at their first solution. Do not plan concurrently with it.
   std::optional<std::uint32_t> seed;
@@ -98,6 +113,7 @@ struct PlanningProblem {
   std::vector<JointBounds> joints;
   JointValidityFn is_valid;               // required
   JointValidityExplainFn explain_invalid;  // optional
+  MotionPrecheckFn precheck;               // optional
   Eigen::VectorXd start;
   // Exactly one of the three goal kinds must be given.
   std::optional<JointGoal> joint_goal;
@@ -113,6 +129,8 @@ struct PlanningResult : Result<PlanningStatus> {
   double simplification_time = 0.0;   // s, part of planning_time spent simplifying the returned path
   bool simplification_fallback = false;  // the coarse simplification failed its re-check (see options)
   std::size_t validity_checks = 0;    // calls of is_valid made by this call
+  std::size_t precheck_calls = 0;     // calls of the pre-check made by this call
+  std::size_t precheck_states = 0;    // motion states the pre-check proved valid (no is_valid call for them)
   int solved_attempts = 0;
   std::string planner_id;             // canonical id used
 };

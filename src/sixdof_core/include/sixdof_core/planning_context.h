@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -65,8 +66,14 @@ class PlanningContext {
   JointValidityFn validityFn(const RobotState& reference) const;
   // "link3 collides with box, ..." (every colliding pair) explaining an invalid state.
   JointValidityExplainFn explainFn(const RobotState& reference) const;
+  // The pre-check of motions from group values q along a joint step (other joints from reference): the scene's
+  // sphere proof (CollisionScene::precheckMotion) with each link's motion bounded from the step (lever arms
+  // measured at q, growing by what the joints between move). It proves collision-freedom only, not the path
+  // constraints' `state`. Thread-safe.
+  MotionPrecheckFn precheckFn(const RobotState& reference) const;
 
-  // A problem without a goal: joints, validity callbacks, start = the group's values in start.
+  // A problem without a goal: joints, validity callbacks and the pre-check (none under a path constraint's
+  // `state`), start = the group's values in start.
   PlanningProblem problem(const RobotState& start, const PlanningOptions& options) const;
 
   PlanningResult planToJoints(const RobotState& start, const Eigen::VectorXd& goal, double tolerance,
@@ -92,6 +99,10 @@ class PlanningContext {
   void sceneLinkPoses(const RobotState& state, std::vector<Eigen::Isometry3d>* out) const;
 
  private:
+  void computeMotionGains();
+  // validityFn and precheckFn working on the scratch state `scratch` (see planning_context.cpp).
+  JointValidityFn makeValidityFn(const RobotState& reference, std::uint64_t scratch) const;
+  MotionPrecheckFn makePrecheckFn(const RobotState& reference, std::uint64_t scratch) const;
   RobotState withGroup(const RobotState& reference, const Eigen::VectorXd& values) const;
   SampledGoal poseSampler(const RobotState& start, const Eigen::Isometry3d& tip_pose, const PoseGoalOptions& pose_goal,
                           const PlanningOptions& options) const;
@@ -107,6 +118,18 @@ class PlanningContext {
   bool constrained_joints_ = false;       // joints_ narrowed by path constraints
   std::function<bool(const RobotState&)> state_constraint_;
   std::function<std::string(const RobotState&)> explain_constraint_;
+  // The joints that move a scene link when the group moves, from the link up: the model joint, its child link, the
+  // group variable it moves with and by what factor (mimic joints), and the largest distance from its axis to the
+  // link's origin over every configuration (the offsets between them). Per scene link.
+  struct MotionGain {
+    int joint;
+    int child_link;
+    int variable;
+    double factor;
+    bool prismatic;
+    double lever;
+  };
+  std::vector<std::vector<MotionGain>> motion_gains_;
 };
 
 }  // namespace sixdof_core

@@ -2,12 +2,14 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <fcl/geometry/collision_geometry.h>
 #include <fcl/math/bv/AABB.h>
 
 #include "obb.h"
+#include "spheres.h"
 #include "sixdof_core/collision.h"
 #include "sixdof_core/geometry.h"
 
@@ -22,6 +24,7 @@ struct ShapeInstance {
   Eigen::Isometry3d origin;  // in the body's frame
   Obb obb;                   // in the shape's frame (geometry coordinates)
   bool origin_is_identity = false;
+  std::vector<Sphere> spheres;  // robot shapes: the pre-check's covering spheres, in the shape's frame
 };
 
 inline SceneStatus error(SceneStatusCode code, const std::string& message) {

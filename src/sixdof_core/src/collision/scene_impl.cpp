@@ -80,6 +80,7 @@ void CollisionScene::Impl::rebuild() {
       tag->shape = static_cast<int>(s);
       tag->tf = world[w].pose * shape.origin;
       tag->aabb = worldAabb(*shape.geometry, tag->tf);
+      tag->clearance = detail::clearanceShape(*shape.geometry, shape.obb, tag->tf);
       // The tree holds a private box proxy of the shape's world AABB: tight bounds for any rotation,
       // and FCL's CollisionObject never touches the (possibly shared, cached) real geometry.
       auto proxy = std::make_shared<fcl::Boxd>(tag->aabb.max_ - tag->aabb.min_);
@@ -93,6 +94,19 @@ void CollisionScene::Impl::rebuild() {
   }
   manager->registerObjects(objects);
   manager->setup();
+  // The pre-check's spheres of each robot body, gathered into its link's frame.
+  sphere_trees.assign(n, {});
+  for (int r = 0; r < n; ++r) {
+    const Body& body = robot(r);
+    const Eigen::Isometry3d base =
+        body.type == BodyType::kAttachedObject ? body.pose : Eigen::Isometry3d(Eigen::Isometry3d::Identity());
+    std::vector<detail::Sphere> spheres;
+    for (const ShapeInstance& shape : body.shapes) {
+      const Eigen::Isometry3d tf = base * shape.origin;
+      for (const detail::Sphere& s : shape.spheres) spheres.push_back(detail::Sphere{tf * s.center, s.radius});
+    }
+    sphere_trees[r] = detail::buildSphereTree(std::move(spheres));
+  }
 }
 
 void CollisionScene::Impl::checkPoses(const std::vector<Eigen::Isometry3d>& poses) const {
@@ -223,6 +237,7 @@ void CollisionScene::Impl::setOccupancy(std::shared_ptr<const OccupancyMap> map,
   const Eigen::Vector3d center = pose * (0.5 * (lo + hi));
   const Eigen::Vector3d extent = pose.linear().cwiseAbs() * (0.5 * (hi - lo));
   octree_aabb = fcl::AABBd(center - extent, center + extent);
+  octree_box = detail::clearanceBox(octree_aabb.min_, octree_aabb.max_);
 }
 
 void CollisionScene::Impl::octreeCollision(Query* q) const {

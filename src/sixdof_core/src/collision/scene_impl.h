@@ -41,6 +41,7 @@ struct WorldShapeTag {
   int shape = 0;
   Eigen::Isometry3d tf;
   fcl::AABBd aabb;
+  ClearanceShape clearance;  // what the pre-check measures
 };
 
 struct ShapePose {
@@ -67,12 +68,14 @@ struct CollisionScene::Impl {
   std::vector<std::unique_ptr<detail::WorldShapeTag>> world_tags;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> world_objects;
   std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager;
+  std::vector<std::vector<detail::SphereNode>> sphere_trees;  // per robot body, in its link's frame (pre-check)
 
   // The occupancy map and FCL's octree geometry over its tree; octree is null while the map has no occupied cell.
   std::shared_ptr<const OccupancyMap> occupancy;
   Eigen::Isometry3d occupancy_pose = Eigen::Isometry3d::Identity();
   std::shared_ptr<const fcl::OcTreed> octree;
   fcl::AABBd octree_aabb;  // world frame, around the occupied cells
+  detail::ClearanceShape octree_box;  // the same box, for the pre-check
   detail::Body octomap_body;
 
   Impl() { octomap_body.name = kOccupancyMapBody; octomap_body.type = BodyType::kWorldObject; }
@@ -87,6 +90,7 @@ struct CollisionScene::Impl {
     occupancy_pose = o.occupancy_pose;
     octree = o.octree;
     octree_aabb = o.octree_aabb;
+    octree_box = o.octree_box;
     rebuild();
   }
 
@@ -163,6 +167,11 @@ struct CollisionScene::Impl {
 
   // Robot bodies against the occupancy map's occupied cells.
   void octreeCollision(Query* q) const;
+
+  // CollisionScene::precheckMotion (precheck.cpp, where the Certifier walks the sphere trees).
+  class Certifier;
+  SphereCertificate certifyMotion(const std::vector<Eigen::Isometry3d>& poses, const LinkMotionBound& bound, double cap,
+                                  double tolerance) const;
 
   static void consider(DistanceReport* report, const detail::PairDistance& d, const detail::Body& b1,
                        const detail::Body& b2);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include <ompl/base/MotionValidator.h>
 #include <ompl/base/Planner.h>
 #include <ompl/base/ProjectionEvaluator.h>
 #include <ompl/base/SpaceInformation.h>
@@ -147,6 +148,58 @@ class CallbackValidityChecker : public ob::StateValidityChecker {
 };
 
 
+struct Session;
+
+// See Session::precheckPays().
+constexpr std::size_t kPrecheckTrial = 64;
+constexpr std::size_t kPrecheckMinShare = 8;
+// Runs of this many states or fewer go to is_valid without asking the pre-check: a call costs about as much as two
+// states' checks.
+constexpr int kShortRun = 2;
+// Where the pre-check proves nothing about a state, is_valid also takes this many on each side of it (they are
+// likely as close to an obstacle).
+constexpr int kUnprovenNeighbours = 2;
+
+// Checks a motion at the states OMPL's DiscreteMotionValidator checks (the state space's valid segment count: s2
+// and the evenly spaced states between), with the same answer, but lets the session's pre-check prove runs of them
+// valid at once: a state it proves free takes the states within its proven stretch of the motion with it; a state
+// it proves nothing about goes to the validity checker. In the order of OMPL's: bisection (the middle of each open
+// run first), or, for the last valid state, from s1 on.
+class PrecheckMotionValidator : public ob::MotionValidator {
+ public:
+  PrecheckMotionValidator(const ob::SpaceInformationPtr& si, std::shared_ptr<const JointSpace> joint_space,
+                          Session* session)
+      : ob::MotionValidator(si), joint_space_(std::move(joint_space)), session_(session) {}
+
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override;
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& last_valid) const override;
+
+ private:
+  // The motion's states k = 1..n (s1 + k/n of the way to s2; n = the valid segment count).
+  struct Motion {
+    const ob::State* s1;
+    const ob::State* s2;
+    int n;
+    Eigen::VectorXd from;
+    Eigen::VectorXd step;  // to s2, continuous joints the short way round
+  };
+  Motion motion(const ob::State* s1, const ob::State* s2) const;
+  // What the pre-check proves around state k, in states on each side (looking up to `reach` states away): proven
+  // (-1: not even state k), or, then, how many it cannot prove (is_valid decides them).
+  struct Around {
+    int proven = -1;
+    int unprovable = 0;
+  };
+  Around precheck(const Motion& m, int k, int reach) const;
+  // State k by is_valid; `test` is scratch.
+  bool stateValid(const Motion& m, int k, ob::State* test) const;
+  // The first invalid one of the states 1..n, or n + 1.
+  int firstInvalid(const Motion& m) const;
+
+  std::shared_ptr<const JointSpace> joint_space_;
+  Session* session_;
+};
+
 using PlannerFactory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr&)>;
 
 // Every OMPL geometric planner plan() offers, by id.
@@ -161,20 +214,40 @@ struct Session {
   std::shared_ptr<const JointSpace> coarse_space;
   ob::SpaceInformationPtr coarse_si;  // same space, coarser motion checks: see simplifyPath()
   std::atomic<std::size_t> checks{0};
+  std::atomic<std::size_t> precheck_calls{0};
+  std::atomic<std::size_t> precheck_states{0};
+  std::atomic<std::size_t> precheck_proofs{0};  // calls that proved something
   JointValidityFn is_valid;
   JointValidityExplainFn explain;
+  MotionPrecheckFn precheck;  // empty: motions are checked with OMPL's DiscreteMotionValidator
 
   bool valid(const Eigen::VectorXd& q) {
     ++checks;
     return is_valid(q);
   }
 
+  MotionPrecheck prove(const Eigen::VectorXd& q, const Eigen::VectorXd& step, double cap, double tolerance) {
+    ++precheck_calls;
+    const MotionPrecheck p = precheck(q, step, cap, tolerance);
+    if (p.proven > 0.0) ++precheck_proofs;
+    return p;
+  }
+
+  // Whether asking the pre-check still pays in this query: after its first kPrecheckTrial calls, only while at least
+  // one in kPrecheckMinShare proves something. A scene where it cannot (e.g. self pairs always closer than the
+  // spheres' overshoot, from an SRDF without its "Never" pairs) then costs little more than without it.
+  bool precheckPays() const {
+    const std::size_t calls = precheck_calls.load();
+    return calls < kPrecheckTrial || precheck_proofs.load() * kPrecheckMinShare >= calls;
+  }
+
   // Space information over `space` whose validity checker counts its checks here, with motions checked at
-  // `fraction` of the space's maximum extent.
+  // `fraction` of the space's maximum extent (with the pre-check when the session has one).
   ob::SpaceInformationPtr spaceInformation(const std::shared_ptr<const JointSpace>& space, double fraction) {
     auto si = std::make_shared<ob::SpaceInformation>(space->space());
     si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
         si, space, [this](const Eigen::VectorXd& q) { return valid(q); }));
+    if (precheck) si->setMotionValidator(std::make_shared<PrecheckMotionValidator>(si, space, this));
     si->setStateValidityCheckingResolution(fraction);
     si->setup();
     return si;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every benchmark executable (lib/<package>/*_bench in the install space) with its defaults, then the Python
 # bindings against the C++ core (src/sixdof_core/bench/binding_bench.py), and writes the combined report to
-# bench/results.md (kept in the repo; the README quotes it).
+# bench/results.md (kept in the repo; the README quotes it); then plots the scaling curves into bench/scaling_*.png
+# (scripts/plot_scaling.py).
 #   scripts/bench.sh                     all benchmarks
 #   scripts/bench.sh ik_bench bindings   only the named ones ("bindings": the bindings' section alone)
 set -euo pipefail
@@ -48,4 +49,6 @@ if [ $bindings = 1 ]; then
   python3 scripts/results_section.py "$out" "$out.bindings"
   rm -f "$out.bindings"
 fi
+# The scaling curves (bench/scaling_*.png) and their section, from the tables just written.
+python3 scripts/plot_scaling.py "$out"
 echo "wrote $out"

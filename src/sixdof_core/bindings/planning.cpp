@@ -71,6 +71,8 @@ void bindOptions(py::module_& m) {
       .def_readwrite("simplify", &PlanningOptions::simplify)
       .def_readwrite("simplify_coarse_factor", &PlanningOptions::simplify_coarse_factor)
       .def_readwrite("max_joint_step", &PlanningOptions::max_joint_step, "Densify the path to this step (0: off).")
+      .def_readwrite("precheck", &PlanningOptions::precheck,
+                     "The sphere pre-check of motions (the same answers, fewer FCL checks); False: FCL alone.")
       .def_readwrite("seed", &PlanningOptions::seed,
                      "Reseeds OMPL's process-wide generator: repeatable plans (do not plan concurrently with it).");
 
@@ -93,6 +95,8 @@ void bindOptions(py::module_& m) {
       .def_readonly("simplification_time", &PlanningResult::simplification_time)
       .def_readonly("simplification_fallback", &PlanningResult::simplification_fallback)
       .def_readonly("validity_checks", &PlanningResult::validity_checks)
+      .def_readonly("precheck_calls", &PlanningResult::precheck_calls)
+      .def_readonly("precheck_states", &PlanningResult::precheck_states, "Motion states proven without FCL.")
       .def_readonly("solved_attempts", &PlanningResult::solved_attempts)
       .def_readonly("planner_id", &PlanningResult::planner_id)
       .def("__repr__", [](const PlanningResult& r) {

@@ -360,6 +360,7 @@ class PlanningOptions:
     simplify: bool
     simplify_coarse_factor: float
     max_joint_step: float
+    precheck: bool
     seed: int | None
 
 class PoseGoalOptions:
@@ -375,6 +376,8 @@ class PlanningResult(_Result[PlanningStatus]):
     simplification_time: Final[float]
     simplification_fallback: Final[bool]
     validity_checks: Final[int]
+    precheck_calls: Final[int]
+    precheck_states: Final[int]
     solved_attempts: Final[int]
     planner_id: Final[str]
 

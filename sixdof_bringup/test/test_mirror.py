@@ -12,7 +12,7 @@ from sixdof_bringup.mirror import (
     SceneSnapshot,
     SimObjectState,
     non_colliding_objects,
-    rotation_angle,
+    orientation_angle,
     template_from_sim_object,
 )
 from sixdof_msgs.msg import SimObject
@@ -151,11 +151,11 @@ def test_templates_from_primitives_and_meshes():
         template_from_sim_object(bad, None)
 
 
-def test_rotation_angle_treats_q_and_minus_q_alike():
+def test_orientation_angle_treats_q_and_minus_q_alike():
     a, b = pose(yaw=0.3), pose(yaw=0.3)
     b.orientation.z, b.orientation.w = -b.orientation.z, -b.orientation.w
-    assert rotation_angle(a, b) == pytest.approx(0.0, abs=1e-6)
-    assert rotation_angle(pose(), pose(yaw=0.3)) == pytest.approx(0.3)
+    assert orientation_angle(a, b) == pytest.approx(0.0, abs=1e-6)
+    assert orientation_angle(pose(), pose(yaw=0.3)) == pytest.approx(0.3)
 
 
 def test_non_colliding_objects_from_the_world_file():

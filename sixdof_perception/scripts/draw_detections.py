@@ -8,7 +8,6 @@ Waits for a detected_objects frame and a colour image taken at or after it. Exit
 """
 
 import argparse
-import math
 import os
 import subprocess
 import sys
@@ -19,6 +18,7 @@ import numpy as np
 import rospy
 import tf2_ros
 from sensor_msgs.msg import CameraInfo, Image
+from sixdof_commander.transforms import matrix_from_pose
 
 from sixdof_msgs.msg import DetectedObjectArray
 from sixdof_perception.ros_conversions import transform_matrix
@@ -28,17 +28,10 @@ COLORS = {"red": "#ff4040", "green": "#40ff40", "blue": "#4080ff", "yellow": "#f
 
 def corners(obj) -> np.ndarray:
     """The 8 corners (planning frame) of the detection's box-shaped extent."""
-    p, q = obj.pose.pose.position, obj.pose.pose.orientation
-    yaw = 2.0 * math.atan2(q.z, q.w)
-    c, s = math.cos(yaw), math.sin(yaw)
+    pose = matrix_from_pose(obj.pose.pose)
     half = np.array([obj.size.x, obj.size.y, obj.size.z]) / 2.0
-    out = []
-    for sx in (-1, 1):
-        for sy in (-1, 1):
-            for sz in (-1, 1):
-                u, v, w = sx * half[0], sy * half[1], sz * half[2]
-                out.append([p.x + c * u - s * v, p.y + s * u + c * v, p.z + w])
-    return np.array(out)
+    signs = np.array([(sx, sy, sz) for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    return (signs * half) @ pose[:3, :3].T + pose[:3, 3]
 
 
 def main() -> int:

@@ -1,7 +1,6 @@
 """Shared parts of the move_group rostest (test_move_group.py): the paper's poses, message builders and a TestCase
 base that connects to move_group's services and actions once and wraps the calls the tests repeat."""
 
-import math
 import threading
 import time
 import unittest
@@ -35,6 +34,7 @@ from moveit_msgs.srv import (
     GetPositionIK,
     GetStateValidity,
 )
+from scipy.spatial.transform import Rotation
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 from trajectory_msgs.msg import JointTrajectory
@@ -51,30 +51,19 @@ SELF_COLLIDING = {"joint1": 0.0, "joint2": 0.15, "joint3": 1.87, "joint4": 0.0, 
 FIXTURE = "/trajectory_fixture"
 
 
-def quaternion_from_rpy(roll: float, pitch: float, yaw: float) -> Quaternion:
-    """Fixed-axes roll/pitch/yaw (tf2 setRPY) as a quaternion."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return Quaternion(
-        x=sr * cp * cy - cr * sp * sy,
-        y=cr * sp * cy + sr * cp * sy,
-        z=cr * cp * sy - sr * sp * cy,
-        w=cr * cp * cy + sr * sp * sy,
-    )
-
-
 def paper_pose(which: tuple) -> Pose:
     xyz, rpy = which
     pose = Pose()
     pose.position.x, pose.position.y, pose.position.z = xyz
-    pose.orientation = quaternion_from_rpy(*[math.radians(a) for a in rpy])
+    x, y, z, w = Rotation.from_euler("xyz", rpy, degrees=True).as_quat()
+    pose.orientation = Quaternion(x=x, y=y, z=z, w=w)
     return pose
 
 
 def quaternion_angle(a: Quaternion, b: Quaternion) -> float:
-    dot = abs(a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w)
-    return 2.0 * math.acos(min(1.0, dot))
+    """Angle (rad) of the rotation between two orientations."""
+    ra, rb = (Rotation.from_quat([q.x, q.y, q.z, q.w]) for q in (a, b))
+    return float((ra.inv() * rb).magnitude())
 
 
 def named_states() -> dict:

@@ -17,6 +17,7 @@ from moveit_msgs.srv import (
     GetStateValidity,
     GetStateValidityResponse,
 )
+from scipy.spatial.transform import Rotation
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 
@@ -183,8 +184,7 @@ class ConfigErrorsTest(unittest.TestCase):
         self.assertEqual(fk.error_code.val, MoveItErrorCodes.SUCCESS)
         tcp = fk.pose_stamped[0].pose
         q = tcp.orientation
-        # The tcp's z axis (third column of its rotation).
-        axis = (2 * (q.x * q.z + q.w * q.y), 2 * (q.y * q.z - q.w * q.x), 1 - 2 * (q.x * q.x + q.y * q.y))
+        axis = Rotation.from_quat([q.x, q.y, q.z, q.w]).as_matrix()[:, 2]  # the tcp's z axis
         probe = CollisionObject(id="probe", operation=CollisionObject.ADD)
         probe.header.frame_id = fk.pose_stamped[0].header.frame_id
         probe.pose.position.x, probe.pose.position.y, probe.pose.position.z = (

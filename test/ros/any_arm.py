@@ -23,12 +23,13 @@ import numpy as np
 import pytest
 import rosgraph
 import rospy
-from e2e import STARTUP_TIMEOUT, quaternion_matrix, rotation_angle, settled_joint_state
+from e2e import STARTUP_TIMEOUT, settled_joint_state
 from generated import generate_package, start_master, stop
 from geometry_msgs.msg import PoseStamped
 from moveit_msgs.msg import RobotState
 from moveit_msgs.srv import GetPositionFK, GetStateValidity
 from rosgraph_msgs.msg import Log
+from scipy.spatial.transform import Rotation
 from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, SixdofCommanderError
 from urdf_parser_py.urdf import URDF
@@ -140,9 +141,9 @@ def fk(link: str, names: list[str], positions: list[float]) -> PoseStamped:
     return response.pose_stamped[0]
 
 
-def pose_arrays(pose: PoseStamped) -> tuple[np.ndarray, np.ndarray]:
+def pose_arrays(pose: PoseStamped) -> tuple[np.ndarray, Rotation]:
     p, q = pose.pose.position, pose.pose.orientation
-    return np.array([p.x, p.y, p.z]), quaternion_matrix(q.x, q.y, q.z, q.w)
+    return np.array([p.x, p.y, p.z]), Rotation.from_quat([q.x, q.y, q.z, q.w])
 
 
 def reachable_goal(stack: Stack, joints: list[str]) -> PoseStamped:
@@ -169,7 +170,7 @@ def test_pose_goal_is_reached(stack: Stack) -> None:
     position, rotation = pose_arrays(fk(stack.tip, reached.name, reached.position))
     goal_position, goal_rotation = pose_arrays(goal)
     error = float(np.linalg.norm(position - goal_position))
-    angle = rotation_angle(rotation, goal_rotation)
+    angle = (rotation.inv() * goal_rotation).magnitude()
     rospy.loginfo("%s: pose goal reached within %.2f mm, %.3f deg", stack.robot, error * 1e3, np.degrees(angle))
     assert error < POSITION_TOLERANCE, f"{stack.robot}: reached {position}, goal {goal_position}"
     assert angle < ANGLE_TOLERANCE, f"{stack.robot}: orientation off by {np.degrees(angle):.2f} deg"

@@ -12,6 +12,7 @@ import rospy
 import tf2_ros
 from moveit_msgs.msg import PlanningSceneComponents
 from moveit_msgs.srv import GetPlanningScene, GetPlanningSceneRequest
+from scipy.spatial.transform import Rotation
 from sensor_msgs.msg import JointState
 
 from sixdof_msgs.srv import GetObjectState
@@ -93,33 +94,6 @@ def settled_joint_state(velocity_limit: float = 1e-3, sim_timeout: float = 5.0) 
             return msg
 
 
-def quaternion_matrix(x: float, y: float, z: float, w: float) -> np.ndarray:
-    n = math.sqrt(x * x + y * y + z * z + w * w)
-    x, y, z, w = x / n, y / n, z / n, w / n
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
-
-
-def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """Fixed-axis roll, pitch, yaw (tf2 setRPY): Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr, cp, sp, cy, sy = (f(a) for a in (roll, pitch, yaw) for f in (math.cos, math.sin))
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return rz @ ry @ rx
-
-
-def rotation_angle(a: np.ndarray, b: np.ndarray) -> float:
-    """Angle (rad) of the rotation taking a to b."""
-    c = (np.trace(a.T @ b) - 1.0) / 2.0
-    return math.acos(max(-1.0, min(1.0, c)))
-
-
 class TfPoses:
     """Poses of robot links in the base frame, from tf (robot_state_publisher of the simulator's joints)."""
 
@@ -127,8 +101,8 @@ class TfPoses:
         self.buffer = tf2_ros.Buffer(cache_time=rospy.Duration(30.0))
         self.listener = tf2_ros.TransformListener(self.buffer)
 
-    def pose(self, link: str, stamp: rospy.Time, frame: str = "base_link") -> tuple[np.ndarray, np.ndarray]:
-        """(position, rotation matrix) of link in frame for a robot at rest since stamp (e.g. a settled joint
+    def pose(self, link: str, stamp: rospy.Time, frame: str = "base_link") -> tuple[np.ndarray, Rotation]:
+        """(position, rotation) of link in frame for a robot at rest since stamp (e.g. a settled joint
         state's): the newest published tf sample at or after stamp (waits for one). Not tf's value *at* stamp:
         robot_state_publisher reads joint_states with a queue of one, so on a loaded machine its samples can lie
         far apart and tf would interpolate between a sample taken during the motion and one after it."""
@@ -139,4 +113,4 @@ class TfPoses:
         t = latest.transform
         position = np.array([t.translation.x, t.translation.y, t.translation.z])
         r = t.rotation
-        return position, quaternion_matrix(r.x, r.y, r.z, r.w)
+        return position, Rotation.from_quat([r.x, r.y, r.z, r.w])

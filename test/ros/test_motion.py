@@ -14,12 +14,11 @@ from e2e import (
     TfPoses,
     assert_scene_mirrors_simulator,
     case,
-    rotation_angle,
-    rpy_matrix,
     settled_joint_state,
     wait_for_stack,
 )
 from moveit_msgs.msg import MoveItErrorCodes
+from scipy.spatial.transform import Rotation
 from sixdof_commander import ArmDriver, MoveGroup, rad
 
 # docs/design.md: the paper's poses of link6 in base_link (rpy fixed axes, degrees).
@@ -48,7 +47,7 @@ class EndToEndMotion(unittest.TestCase):
                 _, stamp = self.settled_positions()
                 position, rotation = self.tf.pose("link6", stamp)
                 error = np.linalg.norm(position - np.array(xyz))
-                angle = math.degrees(rotation_angle(rotation, rpy_matrix(*rad(rpy_deg))))
+                angle = math.degrees((rotation.inv() * Rotation.from_euler("xyz", rad(rpy_deg))).magnitude())
                 rospy.loginfo(
                     "paper %s pose: position error %.2f mm, orientation error %.3f deg", name, error * 1e3, angle
                 )

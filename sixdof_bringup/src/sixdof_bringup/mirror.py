@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import AttachedCollisionObject, CollisionObject
 from shape_msgs.msg import Mesh, SolidPrimitive
+from sixdof_commander.transforms import rotation_angle
 
 from sixdof_msgs.msg import SimObject
 
@@ -52,15 +53,10 @@ def position_distance(a: Pose, b: Pose) -> float:
     return math.dist((a.position.x, a.position.y, a.position.z), (b.position.x, b.position.y, b.position.z))
 
 
-def rotation_angle(a: Pose, b: Pose) -> float:
-    """Angle (rad) of the rotation between the orientations of two poses; q and -q are the same rotation."""
+def orientation_angle(a: Pose, b: Pose) -> float:
+    """Angle (rad) of the rotation between the orientations of two poses."""
     qa, qb = a.orientation, b.orientation
-    na = math.sqrt(qa.x**2 + qa.y**2 + qa.z**2 + qa.w**2)
-    nb = math.sqrt(qb.x**2 + qb.y**2 + qb.z**2 + qb.w**2)
-    if na == 0.0 or nb == 0.0:
-        raise ValueError("pose orientation is a zero quaternion")
-    dot = abs(qa.x * qb.x + qa.y * qb.y + qa.z * qb.z + qa.w * qb.w) / (na * nb)
-    return 2.0 * math.acos(min(1.0, dot))
+    return rotation_angle((qa.x, qa.y, qa.z, qa.w), (qb.x, qb.y, qb.z, qb.w))
 
 
 def _check_threshold(value: float, what: str) -> float:
@@ -160,7 +156,7 @@ class SceneMirror:
                 self.managed.add(state.name)
             elif (
                 position_distance(known, self._scene_pose(state.name, state.pose)) > self.position_threshold
-                or rotation_angle(known, state.pose) > self.angle_threshold
+                or orientation_angle(known, state.pose) > self.angle_threshold
             ):
                 updates.world_objects.append(self._placed(state.name, state.pose, CollisionObject.MOVE))
                 self.managed.add(state.name)

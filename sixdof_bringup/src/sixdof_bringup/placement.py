@@ -6,6 +6,7 @@ import math
 from dataclasses import dataclass
 
 from geometry_msgs.msg import Pose
+from sixdof_commander.transforms import matrix_from_quaternion
 
 
 @dataclass(frozen=True)
@@ -17,11 +18,9 @@ class Placement:
 def tilt_angle(pose: Pose) -> float:
     """Angle between the pose's z axis and +z (rad)."""
     q = pose.orientation
-    norm2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w
-    if norm2 == 0.0:
+    if q.x == q.y == q.z == q.w == 0.0:
         raise ValueError("pose orientation is a zero quaternion")
-    # z component of the rotated z axis: R[2][2] = 1 - 2 (x^2 + y^2) for a unit quaternion.
-    zz = 1.0 - 2.0 * (q.x * q.x + q.y * q.y) / norm2
+    zz = matrix_from_quaternion((q.x, q.y, q.z, q.w))[2, 2]  # z component of the rotated z axis
     return math.acos(max(-1.0, min(1.0, zz)))
 
 

@@ -4,7 +4,6 @@ walls) and the bins with their colour classes."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -16,6 +15,7 @@ from sixdof_commander.sorting import (
     world_list,
     world_numbers,
 )
+from sixdof_commander.transforms import matrix_from_rpy
 
 from .detection import Box, Support
 
@@ -33,25 +33,6 @@ class StaticBox:
 
     def as_mask(self) -> Box:
         return Box(np.asarray(self.centre), self.rotation, np.asarray(self.size) / 2.0)
-
-
-def rotation_rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (URDF / the world file's rpy)."""
-    cr, sr, cp, sp, cy, sy = (
-        math.cos(roll),
-        math.sin(roll),
-        math.cos(pitch),
-        math.sin(pitch),
-        math.cos(yaw),
-        math.sin(yaw),
-    )
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
 
 
 def supports(world: Mapping) -> list[Support]:
@@ -74,7 +55,7 @@ def _static_box(entry: Mapping, where: str) -> StaticBox:
     return StaticBox(
         str(entry.get("name")),
         tuple(world_numbers(entry, "position", 3, where)),
-        rotation_rpy(*world_numbers(entry, "rpy", 3, where, [0.0, 0.0, 0.0])),
+        matrix_from_rpy(*world_numbers(entry, "rpy", 3, where, [0.0, 0.0, 0.0])),
         tuple(world_numbers(entry, "size", 3, where)),
     )
 
@@ -87,7 +68,9 @@ def static_boxes(world: Mapping) -> list[StaticBox]:
         if obj.get("static", False) is True and obj.get("collision", True) is not False and obj.get("shape") == "box":
             out.append(_static_box(obj, f"objects[{i}]"))
     for b in bins(world):
-        out.extend(StaticBox(wall.name, wall.centre, rotation_rpy(0.0, 0.0, wall.yaw), wall.size) for wall in b.walls())
+        out.extend(
+            StaticBox(wall.name, wall.centre, matrix_from_rpy(0.0, 0.0, wall.yaw), wall.size) for wall in b.walls()
+        )
     return out
 
 

@@ -12,18 +12,11 @@ import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from .exceptions import SixdofCommanderError
 from .robot_model import Group, Joint, RobotDescription
 from .transforms import homogeneous
-
-
-def _axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """3x3 rotation about the unit vector axis (Rodrigues)."""
-    x, y, z = axis
-    c, s = math.cos(angle), math.sin(angle)
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) * c + s * k + (1.0 - c) * np.outer(axis, axis)
 
 
 def joint_motion(joint: Joint, value: float) -> np.ndarray:
@@ -31,7 +24,7 @@ def joint_motion(joint: Joint, value: float) -> np.ndarray:
     axis = np.asarray(joint.axis, dtype=float)
     norm = np.linalg.norm(axis)
     if joint.type in ("revolute", "continuous"):
-        return homogeneous((0.0, 0.0, 0.0), _axis_rotation(axis / norm, value))
+        return homogeneous((0.0, 0.0, 0.0), Rotation.from_rotvec(axis / norm * value).as_matrix())
     if joint.type == "prismatic":
         return homogeneous(axis / norm * value, np.eye(3))
     return np.eye(4)

@@ -1,4 +1,8 @@
-"""Small rotation helpers (quaternions as (x, y, z, w), fixed-axis roll/pitch/yaw like tf2 setRPY)."""
+"""geometry_msgs and tuple adapters of scipy's Rotation, the project's one rotation implementation.
+
+Quaternions are (x, y, z, w) as in geometry_msgs; roll/pitch/yaw are fixed-axis angles, R = Rz(yaw) Ry(pitch)
+Rx(roll), as tf2's setRPY/getRPY and URDF's rpy (scipy's extrinsic "xyz" sequence).
+"""
 
 from __future__ import annotations
 
@@ -6,71 +10,51 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 Quaternion = tuple[float, float, float, float]
 
 
+def _tuple(q: np.ndarray) -> Quaternion:
+    return (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+
+
 def quaternion_from_rpy(roll: float, pitch: float, yaw: float) -> Quaternion:
     """Quaternion (x, y, z, w) of rotations about the fixed x, y, z axes: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
-    cp, sp = math.cos(pitch / 2.0), math.sin(pitch / 2.0)
-    cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
-    return (
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-        cr * cp * cy + sr * sp * sy,
-    )
+    return _tuple(Rotation.from_euler("xyz", (roll, pitch, yaw)).as_quat())
 
 
 def matrix_from_quaternion(q: Sequence[float]) -> np.ndarray:
-    """3x3 rotation matrix of a unit quaternion (x, y, z, w)."""
-    x, y, z, w = q
-    return np.array(
-        [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
+    """3x3 rotation matrix of a quaternion (x, y, z, w), normalized first; ValueError for a zero quaternion."""
+    return Rotation.from_quat(q).as_matrix()
 
 
 def quaternion_from_matrix(m: np.ndarray) -> Quaternion:
     """Unit quaternion (x, y, z, w) with w >= 0 of a 3x3 rotation matrix."""
-    trace = m[0, 0] + m[1, 1] + m[2, 2]
-    # Pick the largest diagonal term to divide by, for numerical stability.
-    if trace > 0.0:
-        s = 2.0 * math.sqrt(trace + 1.0)
-        q = ((m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s, 0.25 * s)
-    elif m[0, 0] > m[1, 1] and m[0, 0] > m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
-        q = (0.25 * s, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s, (m[2, 1] - m[1, 2]) / s)
-    elif m[1, 1] > m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 + m[1, 1] - m[0, 0] - m[2, 2])
-        q = ((m[0, 1] + m[1, 0]) / s, 0.25 * s, (m[1, 2] + m[2, 1]) / s, (m[0, 2] - m[2, 0]) / s)
-    else:
-        s = 2.0 * math.sqrt(1.0 + m[2, 2] - m[0, 0] - m[1, 1])
-        q = ((m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, 0.25 * s, (m[1, 0] - m[0, 1]) / s)
-    norm = math.sqrt(sum(c * c for c in q))
-    sign = -1.0 if q[3] < 0.0 else 1.0
-    return (sign * q[0] / norm, sign * q[1] / norm, sign * q[2] / norm, sign * q[3] / norm)
+    q = Rotation.from_matrix(m).as_quat()
+    return _tuple(-q if q[3] < 0.0 else q)
 
 
 def rpy_from_quaternion(q: Sequence[float]) -> tuple[float, float, float]:
-    """Fixed-axis (roll, pitch, yaw) of a unit quaternion, with pitch in [-pi/2, pi/2] (tf2 getRPY)."""
+    """Fixed-axis (roll, pitch, yaw) of a quaternion, with pitch in [-pi/2, pi/2] (tf2 getRPY). At gimbal lock
+    (pitch +-pi/2) only roll -+ yaw is defined: yaw is 0, as tf2 reports it."""
     m = matrix_from_quaternion(q)
     if abs(m[2, 0]) >= 1.0 - 1e-12:
-        # Gimbal lock: only roll - yaw (or roll + yaw) is defined; report yaw = 0 as tf2 does.
-        if m[2, 0] < 0.0:
-            return (math.atan2(m[0, 1], m[0, 2]), math.pi / 2.0, 0.0)
-        return (math.atan2(-m[0, 1], -m[0, 2]), -math.pi / 2.0, 0.0)
-    pitch = -math.asin(m[2, 0])
-    return (math.atan2(m[2, 1], m[2, 2]), pitch, math.atan2(m[1, 0], m[0, 0]))
+        # scipy would warn here; the same answer (yaw 0) without the warning.
+        pitch = -math.copysign(math.pi / 2.0, m[2, 0])
+        return (math.atan2(-m[1, 2], m[1, 1]), pitch, 0.0)
+    roll, pitch, yaw = Rotation.from_matrix(m).as_euler("xyz")
+    return (float(roll), float(pitch), float(yaw))
 
 
 def matrix_from_rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """3x3 rotation matrix Rz(yaw) Ry(pitch) Rx(roll)."""
-    return matrix_from_quaternion(quaternion_from_rpy(roll, pitch, yaw))
+    return Rotation.from_euler("xyz", (roll, pitch, yaw)).as_matrix()
+
+
+def rotation_angle(a: Sequence[float], b: Sequence[float]) -> float:
+    """Angle (rad, in [0, pi]) of the rotation between two quaternions (x, y, z, w); q and -q are the same."""
+    return float((Rotation.from_quat(a).inv() * Rotation.from_quat(b)).magnitude())
 
 
 def homogeneous(translation: Sequence[float], rotation: np.ndarray) -> np.ndarray:

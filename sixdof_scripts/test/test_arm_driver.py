@@ -55,7 +55,7 @@ def test_a_failed_call_is_described_by_its_code_name_and_words():
     assert str(error) == "NO_IK_SOLUTION (-31): pose unreachable"
     assert (error.name, error.code) == ("NO_IK_SOLUTION", MoveItErrorCodes(val=-31))
     assert str(CallError(MoveItErrorCodes.SUCCESS)) == "SUCCESS (1)"
-    assert str(CallError(12345)) == "UNKNOWN (12345)"
+    assert str(CallError(12345)) == "unknown MoveIt error code 12345"
 
 
 def test_every_moveit_error_code_has_its_name():

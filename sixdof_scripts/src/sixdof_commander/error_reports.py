@@ -18,7 +18,7 @@ from sixdof_msgs.msg import ErrorReport
 
 from ._ros import SERVICE_TIMEOUT, call_service, resolve
 
-# MoveItErrorCodes' constants by value: the one table of code names.
+# MoveItErrorCodes' constants by value: Python's one table of code names (C++'s: sixdof_msgs/error_code_names.h).
 ERROR_NAMES = {
     value: name for name, value in vars(MoveItErrorCodes).items() if name.isupper() and isinstance(value, int)
 }
@@ -33,8 +33,9 @@ KEPT_REPORTS = 64
 
 
 def error_name(value: int) -> str:
-    """The MoveItErrorCodes constant's name of a value ('UNKNOWN' for none)."""
-    return ERROR_NAMES.get(value, "UNKNOWN")
+    """The MoveItErrorCodes constant's name of a value; for none of them 'unknown MoveIt error code <value>', the
+    words of C++'s sixdof_msgs::errorCodeName."""
+    return ERROR_NAMES.get(value, f"unknown MoveIt error code {value}")
 
 
 @dataclass(frozen=True)
@@ -54,7 +55,7 @@ class CallError:
         return MoveItErrorCodes(val=self.val)
 
     def __str__(self) -> str:
-        text = f"{self.name} ({self.val})"
+        text = f"{self.name} ({self.val})" if self.val in ERROR_NAMES else self.name
         return f"{text}: {self.message}" if self.message else text
 
 

@@ -35,7 +35,8 @@ import yaml
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import ArmDriver
-from sixdof_commander.sorting import bins, color_class
+from sixdof_commander.colors import color_class
+from sixdof_commander.world_file import bins
 from std_msgs.msg import ColorRGBA
 
 from sixdof_msgs.msg import DetectedObjectArray, ObjectStates, SimObject

@@ -9,9 +9,9 @@ import sys
 import time
 
 import rospy
+from sixdof_commander.markers import object_markers
 from visualization_msgs.msg import Marker, MarkerArray
 
-from sixdof_bringup.markers import object_markers
 from sixdof_msgs.msg import ObjectStates
 from sixdof_msgs.srv import GetObjectState
 

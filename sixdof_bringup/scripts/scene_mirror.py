@@ -23,15 +23,10 @@ import rospy
 import yaml
 from sixdof_commander.mesh import load_stl
 from sixdof_commander.planning_scene import resolve_resource
+from sixdof_commander.scene_mirror import SceneMirror, SceneSnapshot, SimObjectState, template_from_sim_object
+from sixdof_commander.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
+from sixdof_commander.world_file import non_colliding_objects
 
-from sixdof_bringup.mirror import (
-    SceneMirror,
-    SceneSnapshot,
-    SimObjectState,
-    non_colliding_objects,
-    template_from_sim_object,
-)
-from sixdof_bringup.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
 from sixdof_msgs.msg import ObjectStates
 from sixdof_msgs.srv import GetObjectState
 

@@ -5,7 +5,7 @@ detected_objects (sixdof_msgs/DetectedObjectArray) and rviz markers, and kept in
 It never reads the simulator's object states: what it knows besides the cloud comes from the world file
 (the tables' top faces are the supports, the static scenery and the bins' walls go into the planning scene
 and are masked out of the cloud) and from tf (the robot's links are filtered out of the cloud).
-The planning scene follows what the camera sees through sixdof_bringup's SceneMirror: objects are added,
+The planning scene follows what the camera sees through sixdof_commander's SceneMirror: objects are added,
 moved and removed (a track missed ~forget_after frames in a row), ids stay stable across frames. An object
 the planning scene has attached to the robot is left alone (it stays attached until its user detaches it)
 and an object hidden by the robot keeps its last pose.
@@ -33,12 +33,12 @@ import rospy
 import tf2_ros
 import yaml
 from sensor_msgs.msg import PointCloud2
+from sixdof_commander.markers import object_marker
+from sixdof_commander.scene_mirror import SceneMirror, SceneSnapshot, SimObjectState, template_from_sim_object
+from sixdof_commander.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
 from std_msgs.msg import Header
 from visualization_msgs.msg import Marker, MarkerArray
 
-from sixdof_bringup.markers import object_marker
-from sixdof_bringup.mirror import SceneMirror, SceneSnapshot, SimObjectState, template_from_sim_object
-from sixdof_bringup.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
 from sixdof_msgs.msg import DetectedObjectArray
 from sixdof_perception import world as world_file
 from sixdof_perception.detection import Box, Detection, DetectorParams, detect_objects

@@ -24,9 +24,10 @@ import rospy
 import yaml
 from sixdof_commander import ArmDriver, SixdofCommanderError
 from sixdof_commander.arm_driver import pose_from_matrix
+from sixdof_commander.colors import color_class
 from sixdof_commander.grasping import grasp_tcp_pose, object_geometry, place_tcp_pose, raised, tip_pose
-from sixdof_commander.sorting import Bin, WorldFileError, bins, color_class
 from sixdof_commander.transforms import matrix_from_pose
+from sixdof_commander.world_file import Bin, WorldFileError, bins
 
 from sixdof_msgs.msg import DetectedObject, DetectedObjectArray, ObjectStates
 

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from sixdof_commander.sorting import color_class
+from sixdof_commander.colors import color_class
 
 
 @dataclass(frozen=True)

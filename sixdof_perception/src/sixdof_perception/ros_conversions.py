@@ -97,7 +97,7 @@ def detected_object(object_id: str, detection: Detection, header: Header) -> Det
 
 def sim_object(object_id: str, detection: Detection) -> SimObject:
     """A SimObject description of a detection, so that the scene mirror's and the object markers' helpers
-    (sixdof_bringup) serve detected objects too."""
+    (sixdof_commander.scene_mirror, sixdof_commander.markers) serve detected objects too."""
     return SimObject(
         name=object_id,
         shape=primitive(detection),

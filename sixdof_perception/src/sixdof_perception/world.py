@@ -8,14 +8,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
-from sixdof_commander.sorting import (
+from sixdof_commander.transforms import matrix_from_rpy
+from sixdof_commander.world_file import (
     WorldFileError,
     bins,
     check_world,
     world_list,
     world_numbers,
 )
-from sixdof_commander.transforms import matrix_from_rpy
 
 from .detection import Box, Support
 

@@ -15,7 +15,7 @@ import rostest
 from moveit_msgs.msg import PlanningSceneComponents
 from moveit_msgs.srv import GetPlanningScene, GetPlanningSceneRequest
 from shape_msgs.msg import SolidPrimitive
-from sixdof_commander.sorting import color_class
+from sixdof_commander.colors import color_class
 from std_msgs.msg import ColorRGBA
 
 from sixdof_msgs.msg import DetectedObjectArray, ObjectStates, SimObject

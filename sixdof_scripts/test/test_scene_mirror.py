@@ -6,15 +6,14 @@ import pytest
 from geometry_msgs.msg import Pose, Vector3
 from moveit_msgs.msg import CollisionObject
 from shape_msgs.msg import Mesh, SolidPrimitive
-
-from sixdof_bringup.mirror import (
+from sixdof_commander.scene_mirror import (
     SceneMirror,
     SceneSnapshot,
     SimObjectState,
-    non_colliding_objects,
     orientation_angle,
     template_from_sim_object,
 )
+
 from sixdof_msgs.msg import SimObject
 
 FINGERS = ["link6", "palm", "finger1", "finger2"]
@@ -156,13 +155,6 @@ def test_orientation_angle_treats_q_and_minus_q_alike():
     b.orientation.z, b.orientation.w = -b.orientation.z, -b.orientation.w
     assert orientation_angle(a, b) == pytest.approx(0.0, abs=1e-6)
     assert orientation_angle(pose(), pose(yaw=0.3)) == pytest.approx(0.3)
-
-
-def test_non_colliding_objects_from_the_world_file():
-    world = {"objects": [{"name": "cube"}, {"name": "marker", "collision": False}], "tables": [{"name": "table"}]}
-    assert non_colliding_objects(world) == {"marker"}
-    with pytest.raises(ValueError, match="objects"):
-        non_colliding_objects({"objects": {"name": "x"}})
 
 
 def test_static_objects_are_mirrored_lowered_by_the_support_clearance():

@@ -1,43 +1,15 @@
-"""Sorting by colour: the colour classes (from the hue) and the bins of a world file's bins: section
-(sixdof_sim/worlds/README.md#bins). Used by sort_objects.py and by sixdof_perception (which classifies what the
-camera sees with the same classes)."""
+"""What Python reads of a simulator world file (sixdof_sim/worlds/README.md): the bins of its bins: section with
+their colour classes, and the objects declared without collision. Used by sort_objects.py, scene_mirror
+(sixdof_bringup) and sixdof_perception."""
 
 from __future__ import annotations
 
-import colorsys
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import NamedTuple
 
-# Hue ranges (degrees) of the colour classes; red wraps around 0.
-HUE_CLASSES: tuple[tuple[str, float, float], ...] = (
-    ("red", 345.0, 15.0),
-    ("orange", 15.0, 40.0),
-    ("yellow", 40.0, 70.0),
-    ("green", 70.0, 170.0),
-    ("cyan", 170.0, 200.0),
-    ("blue", 200.0, 260.0),
-    ("purple", 260.0, 345.0),
-)
-UNKNOWN_COLOR = "unknown"
-
-
-def color_class(r: float, g: float, b: float, min_saturation: float = 0.3, min_value: float = 0.08) -> str:
-    """Colour class of an RGB colour (components in [0, 1]) from its hue; 'unknown' for greys and black
-    (the simulator's shading only darkens a surface, it keeps hue and saturation)."""
-    for c in (r, g, b):
-        if not (isinstance(c, int | float) and 0.0 <= c <= 1.0):
-            raise ValueError(f"colour components must be numbers in [0, 1], got {(r, g, b)}")
-    h, s, v = colorsys.rgb_to_hsv(r, g, b)
-    if s < min_saturation or v < min_value:
-        return UNKNOWN_COLOR
-    hue = h * 360.0
-    for name, low, high in HUE_CLASSES:
-        if (low <= hue < high) if low < high else (hue >= low or hue < high):
-            return name
-    return UNKNOWN_COLOR
-
+from .colors import color_class
 
 # Defaults of the world file's bins: section (sixdof_sim/worlds/README.md#bins, world_file.cpp).
 BIN_WALL_HEIGHT = 0.03
@@ -152,3 +124,13 @@ def bins(world: Mapping) -> list[Bin]:
         except (TypeError, ValueError) as err:
             raise WorldFileError(f"{where} ({name}): {err}") from err
     return out
+
+
+def non_colliding_objects(world: Mapping) -> set[str]:
+    """Names of the world file's objects declared `collision: false` (visual markers: never mirrored)."""
+    names = set()
+    for key in ("objects", "tables"):
+        for entry in world_list(check_world(world), key):
+            if entry.get("collision", True) is False:
+                names.add(str(entry.get("name")))
+    return names

@@ -3,10 +3,10 @@
 import pytest
 from geometry_msgs.msg import Pose, Vector3
 from shape_msgs.msg import SolidPrimitive
+from sixdof_commander.markers import object_marker, object_markers
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker
 
-from sixdof_bringup.markers import object_marker, object_markers
 from sixdof_msgs.msg import SimObject
 
 

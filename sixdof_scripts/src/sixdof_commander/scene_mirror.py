@@ -1,4 +1,5 @@
-"""Pure logic of scene_mirror: which planning-scene changes make move_group's scene match the simulator.
+"""Which planning-scene changes make move_group's scene match a set of objects: the simulator's (sixdof_bringup's
+scene_mirror) or the tracked detections (sixdof_perception's perception_node). No ROS communication.
 
 The mirror reconciles two snapshots instead of replaying events, so a missed message or a failed service
 call is repaired on the next cycle, and changes made by other clients (sixdof_commander's ArmDriver attaches
@@ -15,9 +16,10 @@ from dataclasses import dataclass, field
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import AttachedCollisionObject, CollisionObject
 from shape_msgs.msg import Mesh, SolidPrimitive
-from sixdof_commander.transforms import rotation_angle
 
 from sixdof_msgs.msg import SimObject
+
+from .transforms import rotation_angle
 
 
 @dataclass(frozen=True)
@@ -207,18 +209,3 @@ def template_from_sim_object(obj: SimObject, load_mesh: Callable[[str, Sequence[
     template.primitives.append(SolidPrimitive(type=obj.shape.type, dimensions=list(obj.shape.dimensions)))
     template.primitive_poses.append(identity)
     return template
-
-
-def non_colliding_objects(world: Mapping) -> set[str]:
-    """Names of the world file's objects declared `collision: false` (visual markers: never mirrored)."""
-    if not isinstance(world, Mapping):
-        raise ValueError("world file must be a YAML mapping")
-    names = set()
-    for key in ("objects", "tables"):
-        entries = world.get(key) or []
-        if not isinstance(entries, list):
-            raise ValueError(f"world file: '{key}' must be a list")
-        for entry in entries:
-            if isinstance(entry, Mapping) and entry.get("collision", True) is False:
-                names.add(str(entry.get("name")))
-    return names

@@ -1,4 +1,5 @@
-"""Pure logic of object_markers: rviz markers of the simulator's objects (shapes, colours, poses)."""
+"""rviz markers of objects described as the simulator describes them (SimObject: shape or mesh, colour): the
+simulator's objects (sixdof_bringup's object_markers) and the detected ones (sixdof_perception)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""What the nodes that fill move_group's planning scene share (scene_mirror, sixdof_perception's perception_node).
+"""What the nodes that fill move_group's planning scene share (sixdof_bringup's scene_mirror, sixdof_perception's
+perception_node).
 
 The robot model comes from move_group's `get_robot_model` (sixdof_commander's query_robot_model: the core's
 RobotModel is the project's only URDF/SRDF reader), the scene is read and changed through move_group's
@@ -19,13 +20,13 @@ import rospy
 import yaml
 from moveit_msgs.msg import MoveItErrorCodes, PlanningScene, PlanningSceneComponents
 from moveit_msgs.srv import ApplyPlanningScene, GetPlanningScene, GetPlanningSceneRequest
-from sixdof_commander import SixdofCommanderError
-from sixdof_commander._ros import ServerWaiter, query_robot_model
-from sixdof_commander.error_reports import ErrorReports
-from sixdof_commander.planning_scene import default_touch_links
-from sixdof_commander.robot_model import RobotDescription, SemanticDescription
 
-from sixdof_bringup.mirror import Updates
+from ._ros import ServerWaiter, query_robot_model
+from .error_reports import ErrorReports
+from .exceptions import SixdofCommanderError
+from .planning_scene import default_touch_links
+from .robot_model import RobotDescription, SemanticDescription
+from .scene_mirror import Updates
 
 # Default of the nodes' ~wait_for_move_group: they start beside move_group, which may load for a while on a
 # loaded machine; the bound only turns "move_group never came" into an error instead of a silent hang.

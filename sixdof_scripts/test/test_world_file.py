@@ -1,8 +1,9 @@
-"""sixdof_commander.sorting: colour classes and the world file's bins."""
+"""sixdof_commander.colors and world_file: colour classes, the world file's bins and non-colliding objects."""
 
 import pytest
 import yaml
-from sixdof_commander.sorting import WorldFileError, bins, color_class
+from sixdof_commander.colors import color_class
+from sixdof_commander.world_file import WorldFileError, bins, non_colliding_objects
 
 WORLD = yaml.safe_load("""
 bins:
@@ -49,3 +50,10 @@ def test_colour_classes():
     assert color_class(0.6, 0.6, 0.6) == "unknown"
     with pytest.raises(ValueError, match="colour components"):
         color_class(0.5, -0.1, 0.0)
+
+
+def test_non_colliding_objects_from_the_world_file():
+    world = {"objects": [{"name": "cube"}, {"name": "marker", "collision": False}], "tables": [{"name": "table"}]}
+    assert non_colliding_objects(world) == {"marker"}
+    with pytest.raises(WorldFileError, match="objects"):
+        non_colliding_objects({"objects": {"name": "x"}})

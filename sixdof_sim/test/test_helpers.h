@@ -42,7 +42,7 @@ inline GraspFixConfig graspConfig() {
 
 inline WorldOptions options(bool grasp_fix) {
   WorldOptions o;
-  o.package_search_roots = {std::string(SIXDOF_DESCRIPTION_DIR) + "/.."};
+  o.package_search_roots = {SIXDOF_DESCRIPTION_DIR, SIXDOF_SIM_DIR};
   o.grasp_fix_enabled = grasp_fix;
   o.grasp_fix_config = graspConfig();
   return o;

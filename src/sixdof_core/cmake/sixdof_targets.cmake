@@ -26,6 +26,18 @@ function(sixdof_add_gtests)
   endforeach()
 endfunction()
 
+# sixdof_package_share_dir(<package> <variable>): the folder of <package>'s installed files (share/<package>), for
+# tests that read a package's files (sixdof_description's URDF), found through its CMake config: <package> must be
+# a dependency. In a catkin devel space, whose share/ holds no files, the package's source folder as catkin records it.
+function(sixdof_package_share_dir package variable)
+  find_package(${package} REQUIRED)
+  if(${package}_SOURCE_PREFIX)
+    set(${variable} ${${package}_SOURCE_PREFIX} PARENT_SCOPE)
+  else()
+    set(${variable} ${${package}_PREFIX}/share/${package} PARENT_SCOPE)
+  endif()
+endfunction()
+
 # sixdof_add_rostests(<glob>): one rostest per launch file matching the pattern (e.g. test/*.test).
 function(sixdof_add_rostests pattern)
   find_package(rostest REQUIRED)

@@ -1,5 +1,5 @@
-"""Shared parts of the move_group rostest (test_move_group.py): the paper's poses, message builders and a TestCase
-base that connects to move_group's services and actions once and wraps the calls the tests repeat."""
+"""Shared parts of the move_group rostests (test_move_group.py, test_standard_interfaces.py): message builders and a
+TestCase base that connects to move_group's services and actions once and wraps the calls the tests repeat."""
 
 import threading
 import time
@@ -20,6 +20,7 @@ from moveit_msgs.msg import (
     MoveGroupGoal,
     MoveItErrorCodes,
     OrientationConstraint,
+    PlanningScene,
     PlanningSceneComponents,
     PositionConstraint,
     PositionIKRequest,
@@ -37,27 +38,16 @@ from moveit_msgs.srv import (
 from scipy.spatial.transform import Rotation
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
+from std_srvs.srv import Empty
 from trajectory_msgs.msg import JointTrajectory
 
 from sixdof_msgs.msg import ErrorReport
 
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
-# The paper's poses of link6 in base_link (rpy fixed axes, degrees).
-PAPER_HOME = ((0.366, 0.000, 0.286), (-180.0, 0.688, 179.995))
-PAPER_TARGET = ((-0.568, 0.058, 0.396), (-133.151, 35.219, 1.048))
 # The elbow folded back so far that the forearm (link4) hits the shoulder (link1); found by sampling the
 # node's check_state_validity over joint2/joint3/joint5.
 SELF_COLLIDING = {"joint1": 0.0, "joint2": 0.15, "joint3": 1.87, "joint4": 0.0, "joint5": -1.12, "joint6": 0.0}
 FIXTURE = "/trajectory_fixture"
-
-
-def paper_pose(which: tuple) -> Pose:
-    xyz, rpy = which
-    pose = Pose()
-    pose.position.x, pose.position.y, pose.position.z = xyz
-    x, y, z, w = Rotation.from_euler("xyz", rpy, degrees=True).as_quat()
-    pose.orientation = Quaternion(x=x, y=y, z=z, w=w)
-    return pose
 
 
 def quaternion_angle(a: Quaternion, b: Quaternion) -> float:
@@ -159,7 +149,11 @@ def pose_goal(link: str, pose: Pose, frame: str = "base_link", tolerance: float 
 
 
 class MoveGroupTestCase(unittest.TestCase):
-    """move_group's services and actions as class attributes (connected once per test class) and call helpers."""
+    """move_group's services and actions as class attributes (connected once per test class) and call helpers.
+
+    Every test starts from the same state, whatever ran before it: setUp puts the trajectory fixture's joints back
+    at its initial positions (the home pose, fingers open) and empties the planning scene.
+    """
 
     @classmethod
     def setUpClass(cls) -> None:
@@ -183,6 +177,17 @@ class MoveGroupTestCase(unittest.TestCase):
         cls.states = named_states()
         cls.limits = rospy.get_param("robot_description_planning/joint_limits")
         cls.reports = ErrorReports()
+        rospy.wait_for_service(FIXTURE + "/reset", timeout=60.0)
+        cls.reset_fixture = rospy.ServiceProxy(FIXTURE + "/reset", Empty)
+        cls.initial = rospy.get_param(FIXTURE + "/initial_positions")
+
+    def setUp(self) -> None:
+        self.reset_fixture()
+        deadline = time.monotonic() + 10.0
+        while any(abs(self.current()[n] - v) > 1e-9 for n, v in self.initial.items()):
+            self.assertLess(time.monotonic(), deadline, "joint_states never showed the fixture's initial positions")
+        # A full scene (is_diff false) without objects: no world objects, nothing attached.
+        self.assertTrue(self.apply_scene(scene=PlanningScene(is_diff=False)).success, "the scene was not emptied")
 
     # --- helpers ---------------------------------------------------------------------------------------
     def assert_code(self, code: MoveItErrorCodes, expected: int, *fragments: str) -> None:
@@ -225,6 +230,10 @@ class MoveGroupTestCase(unittest.TestCase):
         response = self.fk(fk_link_names=[link], robot_state=robot_state(values))
         self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         return response.pose_stamped[0].pose
+
+    def named_pose(self, name: str) -> Pose:
+        """link6's pose (compute_fk) in the arm's named state `name`: a reachable pose goal."""
+        return self.link_pose(self.states[("arm", name)])
 
     def plan_request(self, goal: Constraints, group: str = "arm") -> MotionPlanRequest:
         request = MotionPlanRequest()

@@ -14,13 +14,10 @@ from geometry_msgs.msg import Pose, Quaternion
 from move_group_test_helpers import (
     ARM,
     FIXTURE,
-    PAPER_HOME,
-    PAPER_TARGET,
     SELF_COLLIDING,
     MoveGroupTestCase,
     box,
     joint_goal,
-    paper_pose,
     pose_goal,
     quaternion_angle,
     robot_state,
@@ -35,10 +32,10 @@ from moveit_msgs.msg import (
     MoveGroupGoal,
     MoveItErrorCodes,
     PlanningScene,
-    PositionIKRequest,
     RobotState,
 )
 from moveit_msgs.srv import GetCartesianPathRequest
+from scipy.spatial.transform import Rotation
 from shape_msgs.msg import Plane
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 from visualization_msgs.msg import Marker, MarkerArray
@@ -48,27 +45,29 @@ PKG = "sixdof_planning"
 
 class MoveGroupTest(MoveGroupTestCase):
     # --- kinematics ----------------------------------------------------------------------------------
-    def test_01_fk_of_home_state_is_the_paper_home_pose(self) -> None:
-        pose = self.link_pose(self.states[("arm", "home pose")])
-        expected = paper_pose(PAPER_HOME)
-        self.assertAlmostEqual(pose.position.x, expected.position.x, delta=1e-3)
-        self.assertAlmostEqual(pose.position.y, expected.position.y, delta=1e-3)
-        self.assertAlmostEqual(pose.position.z, expected.position.z, delta=1e-3)
-        self.assertLess(quaternion_angle(pose.orientation, expected.orientation), 1e-2)
+    def test_01_fk_at_zero_matches_the_design(self) -> None:
+        # docs/design.md: at zero the wrist centre is 0.30 ahead of the shoulder (0.30 up, + the 0.30 upper arm),
+        # link6's flange 0.08 further along +x, its z axis along +x and its x axis down.
+        pose = self.link_pose(dict.fromkeys(ARM, 0.0))
+        self.assertAlmostEqual(pose.position.x, 0.38, delta=1e-6)
+        self.assertAlmostEqual(pose.position.y, 0.0, delta=1e-6)
+        self.assertAlmostEqual(pose.position.z, 0.60, delta=1e-6)
+        x, y, z, w = Rotation.from_euler("xyz", (0.0, math.pi / 2, 0.0)).as_quat()
+        self.assertLess(quaternion_angle(pose.orientation, Quaternion(x=x, y=y, z=z, w=w)), 1e-4)
 
-    def test_02_ik_of_paper_poses_round_trips(self) -> None:
-        for which in (PAPER_HOME, PAPER_TARGET):
-            request = PositionIKRequest(group_name="arm", avoid_collisions=True)
-            request.pose_stamped.header.frame_id = "base_link"
-            request.pose_stamped.pose = paper_pose(which)
+    def test_02_ik_of_named_state_poses_round_trips(self) -> None:
+        for name in ("home pose", "place pose"):
+            request = self.ik_request(self.named_pose(name))
+            request.avoid_collisions = True
             response = self.ik(ik_request=request)
             self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
             values = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True))
             pose = self.link_pose({n: values[n] for n in ARM})
-            self.assertAlmostEqual(pose.position.x, which[0][0], delta=1e-4)
-            self.assertAlmostEqual(pose.position.y, which[0][1], delta=1e-4)
-            self.assertAlmostEqual(pose.position.z, which[0][2], delta=1e-4)
-            self.assertLess(quaternion_angle(pose.orientation, request.pose_stamped.pose.orientation), 1e-3)
+            target = request.pose_stamped.pose
+            self.assertAlmostEqual(pose.position.x, target.position.x, delta=1e-4)
+            self.assertAlmostEqual(pose.position.y, target.position.y, delta=1e-4)
+            self.assertAlmostEqual(pose.position.z, target.position.z, delta=1e-4)
+            self.assertLess(quaternion_angle(pose.orientation, target.orientation), 1e-3)
 
     # --- planning ------------------------------------------------------------------------------------
     def test_10_plan_to_named_state_starts_at_current_state(self) -> None:
@@ -96,7 +95,7 @@ class MoveGroupTest(MoveGroupTestCase):
             self.assertAlmostEqual(start[name], current[name], delta=1e-6)
 
     def test_11_plan_to_a_pose(self) -> None:
-        target = paper_pose(PAPER_TARGET)
+        target = self.named_pose("after place pose")
         response = self.plan(motion_plan_request=self.plan_request(pose_goal("link6", target))).motion_plan_response
         self.assert_code(response.error_code, MoveItErrorCodes.SUCCESS)
         last = dict(zip(ARM, response.trajectory.joint_trajectory.points[-1].positions, strict=True))
@@ -223,7 +222,7 @@ class MoveGroupTest(MoveGroupTestCase):
         self.execute_trajectory(trajectory, MoveItErrorCodes.CONTROL_FAILED, "deviates", "joint2")
 
     def test_23_slow_controller_times_out(self) -> None:
-        trajectory = self.plan_to(self.states[("arm", "home pose")]).trajectory.joint_trajectory
+        trajectory = self.plan_to(self.states[("arm", "after pick pose")]).trajectory.joint_trajectory
         rospy.set_param(FIXTURE + "/slowdown", 4.0)
         try:
             self.execute_trajectory(trajectory, MoveItErrorCodes.TIMED_OUT, "Controller is taking too long")
@@ -231,7 +230,7 @@ class MoveGroupTest(MoveGroupTestCase):
             rospy.set_param(FIXTURE + "/slowdown", 1.0)
 
     def test_24_controller_error_is_reported(self) -> None:
-        trajectory = self.plan_to(self.states[("arm", "home pose")]).trajectory.joint_trajectory
+        trajectory = self.plan_to(self.states[("arm", "pick pose")]).trajectory.joint_trajectory
         rospy.set_param(FIXTURE + "/fail_with", "fixture says joint3 missed its goal")
         try:
             self.execute_trajectory(
@@ -265,7 +264,7 @@ class MoveGroupTest(MoveGroupTestCase):
 
     def test_25_move_group_action_plans_and_executes(self) -> None:
         goal = MoveGroupGoal()
-        goal.request = self.plan_request(joint_goal(self.states[("arm", "home pose")]))
+        goal.request = self.plan_request(joint_goal(self.states[("arm", "pick pose")]))
         goal.planning_options.plan_only = True
         result = self.move_group_result(goal)
         self.assert_result(self.move_group, MoveItErrorCodes.SUCCESS)
@@ -277,18 +276,18 @@ class MoveGroupTest(MoveGroupTestCase):
         self.assertTrue(result.executed_trajectory.joint_trajectory.points)
         current = self.current()
         for name in ARM:
-            self.assertAlmostEqual(current[name], self.states[("arm", "home pose")][name], delta=1e-3)
+            self.assertAlmostEqual(current[name], self.states[("arm", "pick pose")][name], delta=1e-3)
 
     # --- bad input: an error code and a message naming the problem; the node keeps serving ------------
     def test_30_ik_rejects_nan_and_non_unit_quaternions(self) -> None:
-        pose = paper_pose(PAPER_HOME)
+        pose = self.named_pose("home pose")
         pose.position.y = float("nan")
         code = self.ik(ik_request=self.ik_request(pose)).error_code
         self.assert_code(code, MoveItErrorCodes.FAILURE, "position.y", "nan")
-        pose = paper_pose(PAPER_HOME)
+        pose = self.named_pose("home pose")
         pose.position.z = float("inf")
         self.assert_code(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.FAILURE, "inf")
-        pose = paper_pose(PAPER_HOME)
+        pose = self.named_pose("home pose")
         pose.orientation.w *= 1.1
         pose.orientation.x *= 1.1
         pose.orientation.y *= 1.1
@@ -296,17 +295,17 @@ class MoveGroupTest(MoveGroupTestCase):
         code = self.ik(ik_request=self.ik_request(pose)).error_code
         self.assert_code(code, MoveItErrorCodes.FAILURE, "unit quaternion")
         # Within the 1e-3 tolerance the quaternion is accepted.
-        pose = paper_pose(PAPER_HOME)
+        pose = self.named_pose("home pose")
         pose.orientation.w *= 1.0004
         self.assert_code(self.ik(ik_request=self.ik_request(pose)).error_code, MoveItErrorCodes.SUCCESS)
         self.assert_serving()
 
     def test_31_unknown_group_link_joint_and_state(self) -> None:
-        code = self.ik(ik_request=self.ik_request(paper_pose(PAPER_HOME), group="leg")).error_code
+        code = self.ik(ik_request=self.ik_request(self.named_pose("home pose"), group="leg")).error_code
         self.assert_code(code, MoveItErrorCodes.INVALID_GROUP_NAME, "'leg'", "'arm'")
         code = self.fk(fk_link_names=["link9"], robot_state=RobotState()).error_code
         self.assert_code(code, MoveItErrorCodes.INVALID_LINK_NAME, "'link9'")
-        request = self.ik_request(paper_pose(PAPER_HOME))
+        request = self.ik_request(self.named_pose("home pose"))
         request.ik_link_name = "link3"
         self.assert_code(self.ik(ik_request=request).error_code, MoveItErrorCodes.INVALID_LINK_NAME, "'link3'")
         response = self.plan(motion_plan_request=self.plan_request(Constraints(name="home pose")))
@@ -341,7 +340,7 @@ class MoveGroupTest(MoveGroupTestCase):
                 setattr(request, field, value)
                 code = self.plan(motion_plan_request=request).motion_plan_response.error_code
                 self.assert_code(code, MoveItErrorCodes.FAILURE, field, "[0.001, 1]")
-        request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[self.named_pose("home pose")], max_step=0.01)
         request.max_cartesian_speed = 0.2
         self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.FAILURE, "max_cartesian_speed")
         self.assert_serving()
@@ -349,16 +348,17 @@ class MoveGroupTest(MoveGroupTestCase):
     def test_33_cartesian_path_bad_requests(self) -> None:
         request = GetCartesianPathRequest(group_name="arm", waypoints=[], max_step=0.01)
         self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.FAILURE, "waypoints is empty")
-        pose = paper_pose(PAPER_HOME)
+        home = self.named_pose("home pose")
+        pose = self.named_pose("home pose")
         pose.orientation.w = 0.0
         pose.orientation.x = pose.orientation.y = pose.orientation.z = 0.0
-        request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME), pose], max_step=0.01)
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[home, pose], max_step=0.01)
         self.assert_code(
             self.cartesian(request).error_code, MoveItErrorCodes.FAILURE, "waypoints[1]", "unit quaternion"
         )
-        request = GetCartesianPathRequest(group_name="arm", waypoints=[paper_pose(PAPER_HOME)], max_step=0.0)
+        request = GetCartesianPathRequest(group_name="arm", waypoints=[self.named_pose("home pose")], max_step=0.0)
         self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.FAILURE, "max_step")
-        request = GetCartesianPathRequest(group_name="gripper", waypoints=[paper_pose(PAPER_HOME)], max_step=0.01)
+        request = GetCartesianPathRequest(group_name="gripper", waypoints=[self.named_pose("home pose")], max_step=0.01)
         self.assert_code(self.cartesian(request).error_code, MoveItErrorCodes.NO_IK_SOLUTION, "'gripper'")
         self.assert_serving()
 

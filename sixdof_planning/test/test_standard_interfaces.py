@@ -2,7 +2,8 @@
 """rostest of move_group's moveit_msgs interfaces beyond planning and execution: path constraints, the request
 fields sixdof refuses by name, workspace parameters, full and diff robot states, get_planning_scene components, the
 scene topics MoveIt's move_group listens to, constraint evaluation in check_state_validity and the error reports.
-Runs after test_move_group.py against the same move_group and trajectory fixture (move_group.test)."""
+Runs against the same move_group and trajectory fixture as test_move_group.py (move_group.test); every test starts
+from the fixture's initial state and an empty scene (MoveGroupTestCase.setUp)."""
 
 import sys
 import time

@@ -4,9 +4,10 @@ arm_controller/follow_joint_trajectory and gripper_controller/follow_joint_traje
 trajectory onto the joint state (linear interpolation in time).
 
 Knobs (private parameters, read per goal, set by the tests):
-  ~initial_positions  {joint: value} at start-up (others 0)
+  ~initial_positions  {joint: value} at start-up and after ~reset (others 0)
   ~slowdown           plays trajectories this many times slower (1.0); > 1.2 makes move_group time out
   ~fail_with          when non-empty, aborts every goal with GOAL_TOLERANCE_VIOLATED and this error string
+Service ~reset (std_srvs/Empty): every joint back at ~initial_positions, the known start each test begins from.
 """
 
 import bisect
@@ -16,6 +17,7 @@ import actionlib
 import rospy
 from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryResult
 from sensor_msgs.msg import JointState
+from std_srvs.srv import Empty, EmptyResponse
 
 JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "finger1_joint", "finger2_joint"]
 CONTROLLERS = {
@@ -28,9 +30,11 @@ RATE_HZ = 100.0
 class TrajectoryFixture:
     def __init__(self) -> None:
         initial = rospy.get_param("~initial_positions", {})
+        self._initial = {name: float(initial.get(name, 0.0)) for name in JOINTS}
         self._lock = threading.Lock()
-        self._positions = {name: float(initial.get(name, 0.0)) for name in JOINTS}
+        self._positions = dict(self._initial)
         self._publisher = rospy.Publisher("joint_states", JointState, queue_size=10)
+        self._reset = rospy.Service("~reset", Empty, self._on_reset)
         self._servers = []
         for controller, joints in CONTROLLERS.items():
             server = actionlib.SimpleActionServer(
@@ -41,6 +45,11 @@ class TrajectoryFixture:
             )
             server.start()
             self._servers.append((controller, server))
+
+    def _on_reset(self, _request: object) -> EmptyResponse:
+        with self._lock:
+            self._positions = dict(self._initial)
+        return EmptyResponse()
 
     def _server(self, controller: str) -> actionlib.SimpleActionServer:
         return dict(self._servers)[controller]

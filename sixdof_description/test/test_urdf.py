@@ -23,6 +23,8 @@ CONTRACT = {
     "joint6": ("link5", "link6", (0.08, 0, 0), (0, PI / 2, 0), (0, 0, 1), (-2 * PI, 2 * PI)),
 }
 LINKS = ["base_link", "link1", "link2", "link3", "link4", "link5", "link6", "palm", "finger1", "finger2"]
+# docs/design.md: the paper's poses of link6 in base_link (rpy fixed axes, degrees). This module is the one place
+# that asserts them: both reachable, the SRDF's home pose at the first.
 PAPER_POSES = {
     "home": ((0.366, 0.0, 0.286), (-180.0, 0.688, 179.995)),
     "target": ((-0.568, 0.058, 0.396), (-133.151, 35.219, 1.048)),
@@ -179,6 +181,15 @@ def test_paper_pose_is_reachable(core_model, pose):
     perr, rerr = sixdof_core.pose_error(ik.chain.forward(result.solution), target)
     assert perr < 1e-5 and rerr < 1e-5
     assert ik.chain.within_limits(result.solution)
+
+
+def test_home_pose_state_is_the_paper_home_pose(core_model):
+    state = sixdof_core.RobotState(core_model)
+    state.set_to_named_state("arm", "home pose")
+    xyz, rpy_deg = PAPER_POSES["home"]
+    target = sixdof_core.pose_from_xyz_rpy(*xyz, *[math.radians(a) for a in rpy_deg])
+    perr, rerr = sixdof_core.pose_error(state.link_pose("link6"), target)
+    assert perr < 1e-3 and rerr < 1e-2
 
 
 def test_the_core_reads_the_whole_robot(core_model):

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""End-to-end motion through the whole headless stack (demo.launch headless:=true): the paper's two poses
-measured from tf, every named pose and gripper state, a pose outside the workspace failing cleanly, and the
-simulator's objects mirrored into the planning scene."""
+"""End-to-end motion through the whole headless stack (demo.launch headless:=true): poses reached by the paper's
+moveto_xyzrpy measured from tf, every named pose and gripper state, a pose outside the workspace failing cleanly,
+and the simulator's objects mirrored into the planning scene."""
 
 import math
 import sys
@@ -17,15 +17,14 @@ from e2e import (
     settled_joint_state,
     wait_for_stack,
 )
-from moveit_msgs.msg import MoveItErrorCodes
+from moveit_msgs.msg import MoveItErrorCodes, RobotState
+from moveit_msgs.srv import GetPositionFK
 from scipy.spatial.transform import Rotation
 from sixdof_commander import ArmDriver, MoveGroup, rad
 
-# docs/design.md: the paper's poses of link6 in base_link (rpy fixed axes, degrees).
-PAPER_POSES = {
-    "home": ([0.366, -0.000, 0.286], [-180.000, 0.688, 179.995]),
-    "target": ([-0.568, 0.058, 0.396], [-133.151, 35.219, 1.048]),
-}
+# Pose goals for moveto_xyzrpy: link6 in these named states of the arm (compute_fk). The paper's own two poses are
+# asserted in sixdof_description's test_urdf.py.
+GOAL_STATES = ("home pose", "place pose")
 
 
 class EndToEndMotion(unittest.TestCase):
@@ -40,17 +39,27 @@ class EndToEndMotion(unittest.TestCase):
         msg = settled_joint_state()
         return dict(zip(msg.name, msg.position, strict=True)), msg.header.stamp
 
-    def test_paper_poses_reached_within_1mm_and_half_a_degree(self):
-        for name, (xyz, rpy_deg) in PAPER_POSES.items():
+    def named_pose(self, name: str) -> tuple[list, Rotation]:
+        """link6's position and orientation in the arm's named state `name` (move_group's compute_fk)."""
+        values = self.driver.arm.get_named_target_values(name)
+        state = RobotState(is_diff=True)
+        state.joint_state.name, state.joint_state.position = list(values), list(values.values())
+        response = rospy.ServiceProxy("compute_fk", GetPositionFK)(fk_link_names=["link6"], robot_state=state)
+        self.assertEqual(response.error_code.val, MoveItErrorCodes.SUCCESS, f"compute_fk of '{name}'")
+        p, q = response.pose_stamped[0].pose.position, response.pose_stamped[0].pose.orientation
+        return [p.x, p.y, p.z], Rotation.from_quat([q.x, q.y, q.z, q.w])
+
+    def test_poses_reached_within_1mm_and_half_a_degree(self):
+        for name in GOAL_STATES:
             with case(pose=name):
-                self.assertTrue(self.driver.moveto_xyzrpy(xyz + rad(rpy_deg)), self.driver.last_failure)
+                xyz, goal = self.named_pose(name)
+                rpy = list(goal.as_euler("xyz"))
+                self.assertTrue(self.driver.moveto_xyzrpy(xyz + rpy), self.driver.last_failure)
                 _, stamp = self.settled_positions()
                 position, rotation = self.tf.pose("link6", stamp)
                 error = np.linalg.norm(position - np.array(xyz))
-                angle = math.degrees((rotation.inv() * Rotation.from_euler("xyz", rad(rpy_deg))).magnitude())
-                rospy.loginfo(
-                    "paper %s pose: position error %.2f mm, orientation error %.3f deg", name, error * 1e3, angle
-                )
+                angle = math.degrees((rotation.inv() * goal).magnitude())
+                rospy.loginfo("%s: position error %.2f mm, orientation error %.3f deg", name, error * 1e3, angle)
                 self.assertLess(error, 0.001)
                 self.assertLess(angle, 0.5)
 
@@ -88,7 +97,8 @@ class EndToEndMotion(unittest.TestCase):
         after, _ = self.settled_positions()
         for joint in arm.get_active_joints():
             self.assertAlmostEqual(after[joint], before[joint], delta=0.005, msg=f"{joint} moved on a failed goal")
-        self.assertTrue(self.driver.moveto_xyzrpy(PAPER_POSES["home"][0] + rad(PAPER_POSES["home"][1])))
+        xyz, goal = self.named_pose("home pose")
+        self.assertTrue(self.driver.moveto_xyzrpy(xyz + list(goal.as_euler("xyz"))), self.driver.last_failure)
 
     def test_simulator_objects_are_mirrored_into_the_planning_scene(self):
         assert_scene_mirrors_simulator(self, rospy.get_param("scene_mirror/support_clearance", 0.002))

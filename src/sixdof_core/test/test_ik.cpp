@@ -62,15 +62,8 @@ double roundTripSuccessRate(const IkSolver& solver, int count, const IkOptions& 
   return static_cast<double>(successes) / count;
 }
 
-Eigen::Isometry3d paperHome() {
-  const double deg = M_PI / 180.0;
-  return poseFromXyzRpy(0.366, 0.000, 0.286, -180.0 * deg, 0.688 * deg, 179.995 * deg);
-}
-
-Eigen::Isometry3d paperTarget() {
-  const double deg = M_PI / 180.0;
-  return poseFromXyzRpy(-0.568, 0.058, 0.396, -133.151 * deg, 35.219 * deg, 1.048 * deg);
-}
+// A reachable pose of link6 (tool down over the table), for the tests of bad input around it.
+Eigen::Isometry3d reachablePose() { return poseFromXyzRpy(0.35, 0.05, 0.25, M_PI, 0.0, M_PI); }
 
 TEST(IkRoundTrip, AnalyticSolvesEveryReachablePose) {
   const auto model = armModel();
@@ -257,20 +250,6 @@ TEST(IkAnalytic, FailureReasons) {
   EXPECT_NE(result.message.find("joint limit"), std::string::npos);
 }
 
-TEST(IkPaperPoses, EverySolverReachesBoth) {
-  const auto model = armModel();
-  for (const std::string name : {"analytic", "numeric", "kdl"}) {
-    const auto solver = createIkSolver(name, *model, "arm");
-    for (const auto& target : {paperHome(), paperTarget()}) {
-      const IkResult result = solver->solve(target, attemptsOnly(200));
-      ASSERT_TRUE(result.ok()) << name << ": " << toString(result.status) << " " << result.message;
-      const PoseError error = poseError(solver->chain().forward(result.solution), target);
-      EXPECT_LT(error.position, kPoseTolerance) << name;
-      EXPECT_LT(error.orientation, kPoseTolerance) << name;
-    }
-  }
-}
-
 TEST(IkPositionOnly, ReachesThePosition) {
   const auto arm = armModel();
   const auto ur = urModel();
@@ -316,10 +295,10 @@ TEST(IkBadInput, StatusesAreExact) {
   const auto model = armModel();
   for (const std::string name : {"analytic", "numeric", "kdl"}) {
     const auto solver = createIkSolver(name, *model, "arm");
-    Eigen::Isometry3d nan_pose = paperHome();
+    Eigen::Isometry3d nan_pose = reachablePose();
     nan_pose.translation().x() = std::nan("");
     EXPECT_EQ(solver->solve(nan_pose).status, IkStatus::kInvalidInput) << name;
-    Eigen::Isometry3d sheared = paperHome();
+    Eigen::Isometry3d sheared = reachablePose();
     sheared.linear()(0, 1) += 0.1;
     EXPECT_EQ(solver->solve(sheared).status, IkStatus::kInvalidInput) << name;
     const IkResult quaternion =
@@ -333,11 +312,11 @@ TEST(IkBadInput, StatusesAreExact) {
         << name;
     IkOptions short_seed;
     short_seed.seed = Eigen::VectorXd::Zero(5);
-    EXPECT_EQ(solver->solve(paperHome(), short_seed).status, IkStatus::kInvalidInput) << name;
+    EXPECT_EQ(solver->solve(reachablePose(), short_seed).status, IkStatus::kInvalidInput) << name;
     IkOptions nan_seed;
     nan_seed.seed = Eigen::VectorXd::Constant(6, std::nan(""));
-    EXPECT_EQ(solver->solve(paperHome(), nan_seed).status, IkStatus::kInvalidInput) << name;
-    EXPECT_EQ(solver->solve(paperHome(), attemptsOnly(0)).status, IkStatus::kInvalidInput) << name;
+    EXPECT_EQ(solver->solve(reachablePose(), nan_seed).status, IkStatus::kInvalidInput) << name;
+    EXPECT_EQ(solver->solve(reachablePose(), attemptsOnly(0)).status, IkStatus::kInvalidInput) << name;
   }
   EXPECT_THROW(createIkSolver("analytic", *model, "no_such_group"), RobotModelError);
   EXPECT_THROW(createIkSolver("trac_ik", *model, "arm"), std::invalid_argument);

@@ -3,7 +3,13 @@
 
 Starts rviz itself (after subscribing to /rosout, so that no early message is missed), then checks that every
 plugin is live on the ROS graph, that a published DisplayTrajectory is drawn by the ghost robot at the
-trajectory's final state, and that rviz logged no error.
+trajectory's final state, the planning scene's objects and the goal robot's colours, and that rviz logged no error.
+
+The tests share one rviz (started once: each start costs seconds under llvmpipe) and run in their names' order
+(unittest sorts them), which is the fixture: test_0 needs no rviz; test_1..test_4 each wait for the subscriptions they
+use and compare screenshots against a baseline taken in the test itself, so they do not depend on each other's
+drawing, except that test_2 expects no ghost robot yet (no trajectory published before it); test_5 runs last and checks
+the log of the whole session.
 """
 
 import os
@@ -39,6 +45,7 @@ from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import ErrorReport
+from sixdof_rviz.screenshots import channels, marker_sphere_mask, screenshot, settled_screenshot
 
 ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
@@ -46,53 +53,37 @@ ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
 HARMLESS = ("no such package media_export", "error while executing command")
 
 
-def read_screenshot(path: str) -> np.ndarray:
-    """Takes a screenshot of the whole X display and returns it as an HxWx3 uint8 array."""
-    subprocess.run(["import", "-window", "root", path], check=True)
-    ppm = subprocess.run(["convert", path, "-depth", "8", "ppm:-"], check=True, capture_output=True).stdout
-    # Binary PPM: "P6\n<w> <h>\n<max>\n" then the pixels.
-    header = ppm.split(b"\n", 3)
-    width, height = (int(v) for v in header[1].split())
-    return np.frombuffer(header[3], dtype=np.uint8, count=width * height * 3).reshape(height, width, 3)
-
-
 def ghost_mask(image: np.ndarray) -> np.ndarray:
     """Pixels in the PlannedPath robot's colour (220, 0, 220 in the config): red and blue alike and high,
     green low, whatever the shading. The goal robot (sky blue), the robot model (orange and grey) and the background are
     not."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (r > 70) & (b > 70) & (g * 2 < np.minimum(r, b)) & (np.abs(r - b) * 3 < np.maximum(r, b))
 
 
 def world_mask(image: np.ndarray) -> np.ndarray:
     """World objects' colour (60, 170, 60 in the config)."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (g > 90) & (g * 2 > r * 3) & (g * 2 > b * 3)
 
 
 def attached_mask(image: np.ndarray) -> np.ndarray:
     """Attached objects' colour (140, 60, 220 in the config): blue clearly above red, red well above green."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (b > 90) & (b * 4 > r * 5) & (r * 2 > g * 3)
-
-
-def marker_sphere_mask(image: np.ndarray) -> np.ndarray:
-    """The goal marker's yellow sphere (0.9, 0.9, 0.2), just beyond the gripper on link6's z axis."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
-    return (r > 150) & (g * 4 > r * 3) & (b * 2 < g)
 
 
 def reachable_mask(image: np.ndarray) -> np.ndarray:
     """The goal robot's "reachable" colour (0, 190, 255 in the config): sky blue, red low and green between 0.4 and 1
     times blue. None of the arm's URDF materials (orange, greys) nor the other displays' colours match."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (b > 90) & (r * 3 < b) & (g * 10 > b * 4) & (g <= b)
 
 
 def unreachable_mask(image: np.ndarray) -> np.ndarray:
     """The goal robot's "unreachable" colour (230, 0, 0 in the config); the arm's orange material (0.93, 0.45, 0.1) has
     half as much green as red."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (r > 90) & (g * 5 < r) & (b * 5 < r)
 
 
@@ -166,6 +157,12 @@ def trajectory_to(joint1: float) -> DisplayTrajectory:
     return msg
 
 
+def on_graph(topic: str, node: str, publishes: bool) -> bool:
+    """Whether the master lists `node` among the publishers (or subscribers) of `topic`."""
+    publishers, subscribers, _ = rosgraph.Master("/test_rviz_plugins").getSystemState()
+    return any(name == topic and node in nodes for name, nodes in (publishers if publishes else subscribers))
+
+
 class RvizPluginsTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls) -> None:
@@ -178,7 +175,13 @@ class RvizPluginsTest(unittest.TestCase):
         cls.path_pub = rospy.Publisher("move_group/display_planned_path", DisplayTrajectory, queue_size=1, latch=True)
         cls.shot_dir = os.environ.get("SIXDOF_RVIZ_SHOT_DIR") or tempfile.mkdtemp(prefix="sixdof_rviz_shots_")
         os.makedirs(cls.shot_dir, exist_ok=True)
-        rospy.sleep(1.0)  # let /rosout connect before rviz starts talking
+        # rviz's rosout publisher connects to the subscribers the master knows when rviz starts.
+        for _ in range(300):
+            if on_graph("/rosout", rospy.get_name(), publishes=False):
+                break
+            rospy.sleep(0.1)
+        else:
+            raise AssertionError("the /rosout subscription never reached the master")
         cls.rviz_log_path = os.path.join(cls.shot_dir, "rviz.log")
         cls.rviz_log = open(cls.rviz_log_path, "w")
         cls.rviz = subprocess.Popen(
@@ -211,18 +214,14 @@ class RvizPluginsTest(unittest.TestCase):
         self.fail("timed out waiting for " + what)
 
     def graph_has(self, topic: str, publishes: bool) -> bool:
-        publishers, subscribers, _ = rosgraph.Master("/test_rviz_plugins").getSystemState()
-        for name, nodes in publishers if publishes else subscribers:
-            if name == topic and "/rviz" in nodes:
-                return True
-        return False
+        return on_graph(topic, "/rviz", publishes)
 
     def ghost_pixels(self, name: str, baseline: np.ndarray, unlike: np.ndarray) -> np.ndarray:
         """Mask of ghost-coloured pixels that were not in the baseline, once the drawing differs from `unlike`
         (the previous picture) and is still."""
         previous = None
         for _ in range(100):
-            mask = ghost_mask(read_screenshot(os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
+            mask = ghost_mask(screenshot(save_as=os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
             changed = (mask ^ unlike).sum() > 500
             if changed and previous is not None and mask.sum() > 500 and (mask ^ previous).sum() < 50:
                 return mask
@@ -282,8 +281,9 @@ class RvizPluginsTest(unittest.TestCase):
 
     def test_2_ghost_draws_the_trajectory(self) -> None:
         self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
-        rospy.sleep(3.0)  # a few frames with the robot model and goal marker drawn
-        baseline = ghost_mask(read_screenshot(os.path.join(self.shot_dir, "0_before.png")))
+        # Once the goal marker is drawn and the drawing is still, the robot model is too.
+        self.wait_for_pixels("0_marker", marker_sphere_mask, np.zeros((1, 1), dtype=bool), 20)
+        baseline = ghost_mask(settled_screenshot(save_as=os.path.join(self.shot_dir, "0_before.png")))
         self.assertLess(baseline.sum(), 200, "ghost colour on screen before any trajectory")
         self.path_pub.publish(trajectory_to(1.2))
         plus = self.ghost_pixels("1_joint1_plus", baseline, unlike=np.zeros_like(baseline))
@@ -300,7 +300,7 @@ class RvizPluginsTest(unittest.TestCase):
 
     def wait_for_pixels(self, name: str, mask_function, baseline: np.ndarray, minimum: int) -> np.ndarray:
         for _ in range(100):
-            mask = mask_function(read_screenshot(os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
+            mask = mask_function(screenshot(save_as=os.path.join(self.shot_dir, f"{name}.png"))) & ~baseline
             if mask.sum() > minimum:
                 return mask
             rospy.sleep(0.3)
@@ -308,7 +308,7 @@ class RvizPluginsTest(unittest.TestCase):
 
     def test_3_planning_scene_objects(self) -> None:
         self.wait_for(lambda: self.graph_has("/move_group/display_planned_path", False), "PlannedPath subscription")
-        baseline = read_screenshot(os.path.join(self.shot_dir, "3_scene_before.png"))
+        baseline = screenshot(save_as=os.path.join(self.shot_dir, "3_scene_before.png"))
         # The marker's green arrow and the panel's icons share the world colour: only new pixels count.
         world_before, attached_before = world_mask(baseline), attached_mask(baseline)
         # Stands in for move_group's monitored_planning_scene: the full scene, latched, after each change.
@@ -316,7 +316,7 @@ class RvizPluginsTest(unittest.TestCase):
         scene_pub.publish(full_scene())
         try:
             for _ in range(100):
-                image = read_screenshot(os.path.join(self.shot_dir, "4_scene.png"))
+                image = screenshot(save_as=os.path.join(self.shot_dir, "4_scene.png"))
                 world, attached = world_mask(image) & ~world_before, attached_mask(image) & ~attached_before
                 if world.sum() > 1000 and attached.sum() > 100:
                     break
@@ -327,8 +327,7 @@ class RvizPluginsTest(unittest.TestCase):
             # malformed mesh (above the box) is not, and the rest is still drawn.
             scene_pub.publish(full_scene(meshes=True))
             self.wait_for_pixels("4_scene_meshes_appear", world_mask, world_before | world, 500)
-            rospy.sleep(1.0)  # a few more frames
-            meshes_image = read_screenshot(os.path.join(self.shot_dir, "4_scene_meshes.png"))
+            meshes_image = settled_screenshot(save_as=os.path.join(self.shot_dir, "4_scene_meshes.png"))
         finally:
             scene_pub.unregister()
         meshes_world = world_mask(meshes_image) & ~world_before
@@ -352,7 +351,7 @@ class RvizPluginsTest(unittest.TestCase):
     def test_4_goal_state_ik(self) -> None:
         self.wait_for(lambda: self.graph_has("/sixdof_rviz/goal_pose", False), "GoalState goal pose subscription")
         rospy.wait_for_message("/sixdof_rviz/goal_state", JointState, timeout=60.0)
-        red_before = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "5_goal_before.png")))
+        red_before = unreachable_mask(screenshot(save_as=os.path.join(self.shot_dir, "5_goal_before.png")))
         # Stand-ins for move_group's compute_ik / check_state_validity with scripted answers; as move_group, the
         # failed IK call's words go to move_group/error_reports before the answer.
         answers = {"ik": MoveItErrorCodes.NO_IK_SOLUTION, "valid": True}
@@ -409,7 +408,7 @@ class RvizPluginsTest(unittest.TestCase):
             # (Red pixels are no measure here: rviz draws links without a URDF material red, and the goal robot
             # no longer hides the RobotModel.)
             answers["ik"] = MoveItErrorCodes.SUCCESS
-            blue_no_ik = reachable_mask(read_screenshot(os.path.join(self.shot_dir, "6_goal_no_ik.png")))
+            blue_no_ik = reachable_mask(screenshot(save_as=os.path.join(self.shot_dir, "6_goal_no_ik.png")))
             pose_pub.publish(target)
             self.wait_for(lambda: any(self.values(g)["joint1"] == solution["joint1"] for g in goals), "IK goal")
             goal_values = self.values(goals[-1])
@@ -421,7 +420,7 @@ class RvizPluginsTest(unittest.TestCase):
             # Reachable but in collision: red again, and not published as a goal.
             answers["valid"] = False
             published = len(goals)
-            red_ok = unreachable_mask(read_screenshot(os.path.join(self.shot_dir, "7_goal_ok.png")))
+            red_ok = unreachable_mask(screenshot(save_as=os.path.join(self.shot_dir, "7_goal_ok.png")))
             pose_pub.publish(target)
             self.wait_for_pixels("8_goal_collision", unreachable_mask, red_ok, 2000)
             self.assertEqual(len(goals), published)

@@ -34,6 +34,8 @@ from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, SixdofCommanderError
 from urdf_parser_py.urdf import URDF
 
+from sixdof_rviz.screenshots import marker_sphere_mask, settled_screenshot
+
 # robot name -> (description file in test/robots, has a gripper)
 ROBOTS = {
     "ur_like": ("urdf/ur_like.urdf.xacro", False),
@@ -245,19 +247,10 @@ class Rviz:
         raise AssertionError("no rviz window on the display")
 
     def yellow_pixels(self, window: str) -> int:
-        """Pixels of the Goal State marker's yellow drag sphere (0.9, 0.9, 0.2) in the 3D view of the window."""
-        for attempt in range(3):  # import fails now and then while rviz redraws the window
-            shot = subprocess.run(["import", "-window", window, "-depth", "8", "ppm:-"], capture_output=True)
-            if shot.returncode == 0:
-                break
-            assert attempt < 2, f"no screenshot of the rviz window: {shot.stderr.decode()}"
-            time.sleep(1.0)
-        ppm = shot.stdout
-        header = ppm.split(b"\n", 3)
-        width, height = (int(v) for v in header[1].split())
-        image = np.frombuffer(header[3], dtype=np.uint8, count=width * height * 3).reshape(height, width, 3)
-        r, g, b = (image[:, 400:, i].astype(int) for i in range(3))  # right of the Displays panel
-        return int(((r > 150) & (g > 150) & (r - b > 80) & (g - b > 80)).sum())
+        """Pixels of the Goal State marker's yellow drag sphere in the 3D view of the window, once rviz's drawing is
+        still (the robot and any marker drawn)."""
+        image = settled_screenshot(window, timeout=STARTUP_TIMEOUT)
+        return int(marker_sphere_mask(image[:, 400:]).sum())  # right of the Displays panel
 
     def close(self) -> list[str]:
         stop(self.process, timeout=20.0)
@@ -284,7 +277,6 @@ def test_rviz_config_opens_and_its_goal_marker_solves(stack: Stack) -> None:
     rviz = Rviz(config, workspace / f"{stack.robot}_rviz.log")
     try:
         window = rviz.window()
-        time.sleep(5.0)  # a few frames: the robot and the (absent) marker are drawn
         disabled_yellow = rviz.yellow_pixels(window)
     finally:
         errors = rviz.close()

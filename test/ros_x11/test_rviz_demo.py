@@ -14,31 +14,24 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
+from sixdof_rviz.screenshots import channels, screenshot
+
 # rviz prints these when the optional package media_export is missing; they are harmless.
 HARMLESS = ("no such package media_export", "error while executing command")
 # Hang guard only: rviz under Mesa llvmpipe shows its first frame within seconds when healthy.
 WAIT = 120.0
 
 
-def screenshot(path: str) -> np.ndarray:
-    """The whole X display as an HxWx3 uint8 array."""
-    subprocess.run(["import", "-window", "root", path], check=True)
-    ppm = subprocess.run(["convert", path, "-depth", "8", "ppm:-"], check=True, capture_output=True).stdout
-    header = ppm.split(b"\n", 3)
-    width, height = (int(v) for v in header[1].split())
-    return np.frombuffer(header[3], dtype=np.uint8, count=width * height * 3).reshape(height, width, 3)
-
-
 def robot_mask(image: np.ndarray) -> np.ndarray:
     """The arm's orange material (0.93, 0.45, 0.10) under any shading: red high, green about half of red,
     blue low. The brown table (0.55, 0.40, 0.25) has too much blue, the red cube too little green."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (r > 90) & (g * 10 > r * 3) & (g * 10 < r * 7) & (b * 10 < r * 3)
 
 
 def cube_mask(image: np.ndarray) -> np.ndarray:
     """The red cube (0.9, 0.1, 0.1)."""
-    r, g, b = (image[:, :, i].astype(int) for i in range(3))
+    r, g, b = channels(image)
     return (r > 90) & (g * 4 < r) & (b * 4 < r)
 
 
@@ -67,7 +60,7 @@ class RvizDemo(unittest.TestCase):
             # rviz draws the robot once tf arrives and the cube once the markers do: take shots until both show.
             while time.monotonic() < deadline:
                 # The 3D view only: the Displays panel on the left has small orange and red icons.
-                image = screenshot(f"{tmp}/shot.png")[:, 400:]
+                image = screenshot(save_as=f"{tmp}/shot.png")[:, 400:]
                 robot, cube = int(robot_mask(image).sum()), int(cube_mask(image).sum())
                 if robot > 2000 and cube > 50:
                     break

@@ -94,6 +94,18 @@ def settled_joint_state(velocity_limit: float = 1e-3, sim_timeout: float = 5.0) 
             return msg
 
 
+def object_at_rest(name: str, speed: float = 1e-3, sim_timeout: float = 5.0):
+    """The simulator's state of object `name` once its linear (m/s) and angular (rad/s) speeds are below `speed`,
+    or the last one after sim_timeout simulated seconds (the caller asserts where it lies)."""
+    end = rospy.get_time() + sim_timeout
+    while True:
+        state = object_state(name)
+        v, w = state.twist.linear, state.twist.angular
+        if max(math.hypot(v.x, v.y, v.z), math.hypot(w.x, w.y, w.z)) < speed or rospy.get_time() >= end:
+            return state
+        rospy.rostime.wallsleep(0.01)
+
+
 class TfPoses:
     """Poses of robot links in the base frame, from tf (robot_state_publisher of the simulator's joints)."""
 

@@ -11,7 +11,7 @@ import unittest
 
 import rospy
 import rostest
-from e2e import case, object_state, planning_scene, settled_joint_state, wait_for_stack
+from e2e import case, object_at_rest, object_state, planning_scene, settled_joint_state, wait_for_stack
 from geometry_msgs.msg import Pose, Twist
 from sixdof_commander import ArmDriver
 
@@ -51,9 +51,9 @@ class EndToEndPickPlace(unittest.TestCase):
         pose.orientation.w = 1.0
         response = self.set_state(CUBE, pose, Twist())
         self.assertTrue(response.success, response.status_message)
-        # Let it rest (sim time) before planning around it.
+        # At rest before planning around it.
         settled_joint_state()
-        rospy.sleep(0.5)
+        object_at_rest(CUBE)
         self.assert_in_world_at(x, y)
 
     def test_pick_and_place_at_several_positions(self):
@@ -71,8 +71,7 @@ class EndToEndPickPlace(unittest.TestCase):
                 self.assertTrue(self.driver.release_at([px, py, HALF_HEIGHT]), self.driver.last_failure)
                 self.assertTrue(self.driver.retreat(), self.driver.last_failure)
                 settled_joint_state()
-                rospy.sleep(0.5)
-                final = object_state(CUBE)
+                final = object_at_rest(CUBE)
                 self.assertEqual(final.attached_to, "")
                 result = placement(final.object.pose, (px, py, HALF_HEIGHT))
                 rospy.loginfo(

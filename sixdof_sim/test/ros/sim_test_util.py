@@ -41,6 +41,24 @@ def trajectory_goal(
     return goal
 
 
+def wait_until(condition, timeout: float) -> bool:
+    """Whether condition() holds within `timeout` simulated seconds (polled every 10 ms of wall time)."""
+    deadline = rospy.Time.now() + rospy.Duration(timeout)
+    while not rospy.is_shutdown():
+        if condition():
+            return True
+        if rospy.Time.now() > deadline:
+            return False
+        rospy.rostime.wallsleep(0.01)
+    return False
+
+
+def at_rest(state, speed: float = 1e-3) -> bool:
+    """Whether a get_object_state answer's linear (m/s) and angular (rad/s) speeds are below `speed`."""
+    v, w = state.twist.linear, state.twist.angular
+    return max(math.hypot(v.x, v.y, v.z), math.hypot(w.x, w.y, w.z)) < speed
+
+
 class JointStateListener:
     """Keeps the latest joint_states message. A free-running simulator publishes far faster than rospy
     delivers, so the latest message may lag: checks wait for a condition instead of reading once."""

@@ -178,7 +178,7 @@ class SimActionsTest(unittest.TestCase):
 
     def test_preemption(self) -> None:
         self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 3.0)]))
-        rospy.sleep(1.0)
+        rospy.sleep(1.0)  # the behaviour under test: a goal preempted a third into its motion (simulated time)
         first = self.arm.gh  # the first goal's handle, before the client moves on
         state, result = self.run_goal(trajectory_goal(ARM_JOINTS, [(TARGET_B, 2.0)]))
         self.assertEqual(first.get_goal_status(), GoalStatus.PREEMPTED)
@@ -187,12 +187,12 @@ class SimActionsTest(unittest.TestCase):
 
     def test_cancel_holds_position(self) -> None:
         self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 2.0)]))
-        rospy.sleep(1.0)
+        rospy.sleep(1.0)  # the behaviour under test: a goal canceled halfway through its motion (simulated time)
         self.arm.cancel_goal()
         self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
         self.assertEqual(self.arm.get_state(), GoalStatus.PREEMPTED)
         held = self.joints.settled(ARM_JOINTS)
-        rospy.sleep(1.0)
+        rospy.sleep(1.0)  # the behaviour under test: the joints hold where they stopped, 1 s later too
         self.assertTrue(self.joints.wait_near(ARM_JOINTS, held, 0.005, timeout=0.0))
         self.assertGreater(abs(held[0]), 0.05)  # it had moved, and stopped short of the target
         self.assertLess(abs(held[0]), abs(TARGET[0]) - 0.02)

@@ -16,8 +16,10 @@ from sim_test_util import (
     GraspEventListener,
     JointStateListener,
     arm_geometry,
+    at_rest,
     top_down_ik,
     trajectory_goal,
+    wait_until,
 )
 from std_srvs.srv import Empty
 
@@ -88,7 +90,7 @@ class SimGraspTest(unittest.TestCase):
         pose.orientation.x, pose.orientation.y = 0.0, 0.0
         pose.orientation.z, pose.orientation.w = math.sin(0.5 * grasp[0]), math.cos(0.5 * grasp[0])
         self.assertTrue(self.set_object(CUBE, pose, self.cube().twist).success)
-        rospy.sleep(0.5)
+        self.assertTrue(wait_until(lambda: at_rest(self.cube()), TIMEOUT), "the turned cube did not come to rest")
         self.move_arm(above)
         self.move_arm(grasp)
 
@@ -107,7 +109,7 @@ class SimGraspTest(unittest.TestCase):
         state, result, text = self.gripper_goal(0.04)
         self.assertEqual(state, GoalStatus.SUCCEEDED, text)
         self.assertTrue(self.grasps.wait_for(GraspEvent.DETACHED, CUBE, 10.0), "no detach event")
-        rospy.sleep(1.0)
+        self.assertTrue(wait_until(lambda: at_rest(self.cube()), TIMEOUT), "the released cube did not come to rest")
         cube = self.cube()
         self.assertEqual(cube.attached_to, "")
         self.assertLess(cube.object.pose.position.z, z_before + 0.02)  # fell back onto the table

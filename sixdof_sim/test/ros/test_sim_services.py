@@ -12,7 +12,15 @@ from control_msgs.msg import FollowJointTrajectoryAction, GripperCommand, Grippe
 from control_msgs.srv import QueryTrajectoryState
 from rosgraph_msgs.msg import Clock
 from shape_msgs.msg import SolidPrimitive
-from sim_test_util import FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
+from sim_test_util import (
+    FINGER_JOINTS,
+    JointStateListener,
+    at_rest,
+    sim_service,
+    trajectory_goal,
+    wait_for_servers,
+    wait_until,
+)
 from std_srvs.srv import Empty
 
 from sixdof_msgs.msg import ObjectStates, SimObject
@@ -77,7 +85,7 @@ class SimServicesTest(unittest.TestCase):
         self.assertAlmostEqual(self.settled_clock(), paused_at + 0.25, delta=1e-6)
         self.assertFalse(self.step(0).success)
         self.unpause()
-        rospy.sleep(0.1)  # returns only because simulated time runs again
+        rospy.sleep(0.1)  # the behaviour under test: returns only because simulated time runs again
         self.assertGreater(self.clock(), paused_at + 0.25)
 
     def test_reset_keeps_the_clock_monotonic_and_restores_objects(self) -> None:
@@ -101,7 +109,7 @@ class SimServicesTest(unittest.TestCase):
         duplicate = self.spawn(ball)
         self.assertFalse(duplicate.success)
         self.assertIn("ball", duplicate.status_message)
-        rospy.sleep(1.0)
+        self.assertTrue(wait_until(lambda: at_rest(self.get_object("ball")), TIMEOUT), "the ball did not come to rest")
         state = self.get_object("ball")
         self.assertTrue(state.success)
         self.assertEqual(state.object.shape.type, SolidPrimitive.SPHERE)
@@ -119,14 +127,14 @@ class SimServicesTest(unittest.TestCase):
 
     def test_latest_gripper_goal_owns_the_fingers(self) -> None:
         self.fingers.send_goal(trajectory_goal(FINGER_JOINTS, [([0.01, 0.01], 3.0)]))
-        rospy.sleep(0.5)
+        self.assertTrue(wait_until(lambda: self.fingers.get_state() == GoalStatus.ACTIVE, TIMEOUT), "fingers goal")
         self.gripper.send_goal(GripperCommandGoal(command=GripperCommand(position=0.035)))
         self.assertTrue(self.gripper.wait_for_result(rospy.Duration(TIMEOUT)))
         self.assertEqual(self.gripper.get_state(), GoalStatus.SUCCEEDED)
         self.assertTrue(self.fingers.wait_for_result(rospy.Duration(TIMEOUT)))
         self.assertEqual(self.fingers.get_state(), GoalStatus.PREEMPTED)
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025))
-        rospy.sleep(1.0)  # the preempted trajectory towards 0.01 no longer drives the finger
+        rospy.sleep(1.0)  # the behaviour under test: for 1 s the preempted trajectory towards 0.01 drives nothing
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025, timeout=0.0))
         # The trajectory controller cannot say what it commands: it commands nothing now, and (as
         # joint_trajectory_controller) the call fails.

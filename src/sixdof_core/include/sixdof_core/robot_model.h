@@ -136,7 +136,9 @@ class PackageResolver {
   // An explicit package directory, looked up before the search roots.
   PackageResolver& addPackage(const std::string& package, const std::string& directory);
 
-  // Throws RobotModelError when the package is unknown or the file does not exist.
+  // package://pkg/path (pkg found in the explicit folders, then below the search roots), file:///abs or an absolute
+  // path, to the existing file. Throws RobotModelError naming the URI when the URI is malformed or relative, the
+  // package is unknown or the file does not exist.
   std::string resolve(const std::string& uri) const;
   // Throws RobotModelError when the package cannot be found.
   std::string packageDirectory(const std::string& package) const;

@@ -92,7 +92,13 @@ std::string PackageResolver::resolve(const std::string& uri) const {
     const std::string rest = uri.substr(package_scheme.size());
     const size_t slash = rest.find('/');
     if (slash == std::string::npos || slash == 0) throw RobotModelError("malformed package URI '" + uri + "'");
-    path = fs::path(packageDirectory(rest.substr(0, slash))) / rest.substr(slash + 1);
+    std::string directory;
+    try {
+      directory = packageDirectory(rest.substr(0, slash));
+    } catch (const RobotModelError& e) {
+      throw RobotModelError("'" + uri + "': " + e.what());
+    }
+    path = fs::path(directory) / rest.substr(slash + 1);
   } else if (uri.rfind(file_scheme, 0) == 0) {
     path = uri.substr(file_scheme.size());
   } else {

@@ -115,8 +115,7 @@ int main(int argc, char** argv) {
     World world(urdf, spec, options);
     moveJoints(world);
     const auto build_start = std::chrono::steady_clock::now();
-    CameraRenderer renderer(world, urdf, spec,
-                            sixdof_sim::CameraRendererOptions{options.package_search_roots, threads});
+    CameraRenderer renderer(world, spec, sixdof_sim::CameraRendererOptions{threads});
     const double build_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - build_start).count();
 

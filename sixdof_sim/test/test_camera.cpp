@@ -48,7 +48,7 @@ struct Scene {
   explicit Scene(const std::vector<CameraSpec>& cameras = {frontCamera()})
       : spec(boxWorld(cameras)),
         world(test::robotUrdf(), spec, test::options(false)),
-        renderer(world, test::robotUrdf(), spec, CameraRendererOptions{test::options(false).package_search_roots, 2}) {}
+        renderer(world, spec, CameraRendererOptions{2}) {}
   WorldSpec spec;
   World world;
   CameraRenderer renderer;
@@ -224,8 +224,7 @@ TEST(Camera, SeesTheRobotInItsMaterialColours) {
   spec.ground.enabled = false;  // every hit is the robot
   spec.cameras = {c};
   World world(test::robotUrdf(), spec, test::options(false));
-  CameraRenderer renderer(world, test::robotUrdf(), spec,
-                          CameraRendererOptions{test::options(false).package_search_roots, 2});
+  CameraRenderer renderer(world, spec, CameraRendererOptions{2});
   CameraFrame f;
   renderer.render(0, &f);
   int robot = 0, orange = 0;
@@ -304,8 +303,7 @@ TEST(CameraConfig, UnknownParentLinkRefusedByTheRenderer) {
   const WorldSpec spec = boxWorld({c});
   World world(test::robotUrdf(), spec, test::options(false));
   try {
-    CameraRenderer renderer(world, test::robotUrdf(), spec,
-                            CameraRendererOptions{test::options(false).package_search_roots, 1});
+    CameraRenderer renderer(world, spec, CameraRendererOptions{1});
     ADD_FAILURE() << "accepted an unknown parent link";
   } catch (const WorldError& e) {
     EXPECT_NE(std::string(e.what()).find("'parent'"), std::string::npos) << e.what();

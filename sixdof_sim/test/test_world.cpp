@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "test_helpers.h"
@@ -32,6 +33,20 @@ TEST_F(WorldTest, JointsComeFromTheUrdf) {
   EXPECT_GT(joint2.max_effort, 0.0);
   EXPECT_EQ(world.jointIndex("palm_joint"), -1);  // fixed joints are merged
   EXPECT_EQ(world.jointPositions(), world.initialJointPositions());
+}
+
+TEST_F(WorldTest, HandsOutTheModelItWasBuiltFrom) {
+  // The camera renderer and the node read the robot from this model instead of parsing the URDF again.
+  const sixdof_core::RobotModel& model = world.robotModel();
+  EXPECT_EQ(model.rootLink(), "base_link");
+  std::vector<std::string> links;
+  for (const sixdof_core::LinkModel& link : model.links()) links.push_back(link.name);
+  std::vector<std::string> world_links = world.linkNames();
+  std::sort(links.begin(), links.end());
+  std::sort(world_links.begin(), world_links.end());
+  EXPECT_EQ(links, world_links);
+  EXPECT_EQ(world.packageResolver().resolve("package://sixdof_description/urdf/sixdof.urdf"),
+            std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf");
 }
 
 TEST_F(WorldTest, ZeroPoseForwardKinematicsMatchesTheDesign) {
@@ -169,8 +184,15 @@ TEST_F(WorldTest, SpawnDeleteAndTeleportObjects) {
   EXPECT_NE(r.message.find("mass"), std::string::npos) << r.message;
   bad.mass = 0.1;
   bad.shape.type = ShapeType::kMesh;
-  bad.shape.mesh_resource = "package://sixdof_description/meshes/does_not_exist.stl";
-  EXPECT_EQ(world.spawnObject(bad).status, Status::kInvalidArgument);
+  // Mesh URIs resolve with the core's PackageResolver; what it cannot resolve is refused naming the URI.
+  for (const std::string uri : {"package://sixdof_description/meshes/does_not_exist.stl",
+                                "package://no_such_package/meshes/box.stl", "meshes/relative.stl"}) {
+    bad.shape.mesh_resource = uri;
+    const Result refused = world.spawnObject(bad);
+    EXPECT_EQ(refused.status, Status::kInvalidArgument) << uri;
+    EXPECT_NE(refused.message.find("'" + uri + "'"), std::string::npos) << refused.message;
+  }
+  EXPECT_NE(world.spawnObject(bad).message.find("neither a package URI nor an absolute path"), std::string::npos);
 
   world.step(1000);  // falls 0.47 m onto the table and rests there
   ObjectState state;

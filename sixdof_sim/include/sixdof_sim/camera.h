@@ -48,8 +48,6 @@ struct CameraFrame {
 };
 
 struct CameraRendererOptions {
-  // package:// URIs of the URDF and of mesh objects resolve against these (as WorldOptions).
-  std::vector<std::string> package_search_roots;
   int threads = 0;  // render threads; 0: one per hardware thread
 };
 
@@ -59,12 +57,12 @@ struct CameraRendererOptions {
 // Not thread-safe; the World must outlive the renderer and must not step during render().
 class CameraRenderer {
  public:
-  // `world` was built from `urdf_xml` and `spec`; the renderer takes the robot's visuals from the URDF, the
-  // cameras and the ground plane from the spec and the objects (with their current poses) from the world.
-  // Throws WorldError naming the camera and key on an invalid camera (validateCameraSpec), a parent link
-  // the robot does not have, duplicate camera names or a camera frame name that is a robot link; and on
-  // unreadable meshes.
-  CameraRenderer(const World& world, const std::string& urdf_xml, const WorldSpec& spec,
+  // `world` was built from `spec`; the renderer takes the robot's visuals from the world's robot model
+  // (World::robotModel), the cameras and the ground plane from the spec and the objects (with their current poses)
+  // from the world, their meshes resolved with World::packageResolver. Throws WorldError naming the camera and key
+  // on an invalid camera (validateCameraSpec), a parent link the robot does not have, duplicate camera names or a
+  // camera frame name that is a robot link; and on unreadable meshes.
+  CameraRenderer(const World& world, const WorldSpec& spec,
                  const CameraRendererOptions& options = CameraRendererOptions());
   ~CameraRenderer();
   CameraRenderer(const CameraRenderer&) = delete;

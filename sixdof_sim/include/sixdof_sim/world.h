@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "sixdof_core/robot_model.h"
 #include "sixdof_sim/world_types.h"
 
 namespace sixdof_sim {
@@ -34,8 +35,9 @@ struct WorldOptions {
   int solver_iterations = 20;
   // Servo position gain (1/s) of kPosition mode: time constant 1/gain. gain * time_step must be <= 1.
   double position_gain = 100.0;
-  // Directories that package://<pkg>/<path> URIs resolve against: <root>/<pkg>/<path>, first match.
-  // A root may also be a package directory itself (<root> ends in /<pkg>).
+  // Where package://<pkg>/<path> URIs (the URDF's meshes, mesh objects) find <pkg>: each root is a package folder or
+  // a folder holding packages a few levels deep, the package named by its package.xml (ROS_PACKAGE_PATH's
+  // entries; the core's sixdof_core::PackageResolver).
   std::vector<std::string> package_search_roots;
   // Grasp fix on/off at start (setGraspFixEnabled changes it later). Needs the URDF's
   // gazebo_grasp_fix block or grasp_fix_config; enabling without either throws WorldError.
@@ -71,6 +73,12 @@ class World {
   void reset();
 
   // ---- robot ----
+  // The core model of the URDF (no SRDF), the one the world was built from: the camera renderer and the node
+  // read the robot (links, visuals, root link) from it instead of parsing the URDF again.
+  const sixdof_core::RobotModel& robotModel() const;
+  // The resolver of package:// and file:// URIs built from WorldOptions::package_search_roots: the URDF's meshes
+  // and mesh objects resolve with it. A URI it cannot resolve is refused with a message naming the URI.
+  const sixdof_core::PackageResolver& packageResolver() const;
   const std::vector<JointInfo>& joints() const;  // actuated joints in URDF order (incl. mimics)
   std::vector<std::string> jointNames() const;
   int jointIndex(const std::string& name) const;  // -1 if unknown

@@ -37,11 +37,10 @@ geometry_msgs::TransformStamped transform(const std::string& parent, const std::
 
 }  // namespace
 
-CameraPublisher::CameraPublisher(const ros::NodeHandle& nh, const World& world, const std::string& urdf_xml,
-                                 const WorldSpec& spec, const std::vector<std::string>& package_search_roots,
+CameraPublisher::CameraPublisher(const ros::NodeHandle& nh, const World& world, const WorldSpec& spec,
                                  tf2_ros::StaticTransformBroadcaster& static_tf) {
   if (spec.cameras.empty()) return;
-  renderer_ = std::make_unique<CameraRenderer>(world, urdf_xml, spec, CameraRendererOptions{package_search_roots, 0});
+  renderer_ = std::make_unique<CameraRenderer>(world, spec);
   std::vector<geometry_msgs::TransformStamped> frames;
   for (const CameraSpec& spec_camera : renderer_->cameras()) {
     ros::NodeHandle camera_nh(nh, spec_camera.name);

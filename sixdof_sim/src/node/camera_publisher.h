@@ -23,8 +23,8 @@ namespace sixdof_sim {
 class CameraPublisher : public JointDriver {
  public:
   // Throws WorldError naming the camera and key on a bad camera (see CameraRenderer).
-  CameraPublisher(const ros::NodeHandle& nh, const World& world, const std::string& urdf_xml, const WorldSpec& spec,
-                  const std::vector<std::string>& package_search_roots, tf2_ros::StaticTransformBroadcaster& static_tf);
+  CameraPublisher(const ros::NodeHandle& nh, const World& world, const WorldSpec& spec,
+                  tf2_ros::StaticTransformBroadcaster& static_tf);
   ~CameraPublisher() override;
 
   void update(double now) override;

@@ -7,7 +7,6 @@
 #include <sensor_msgs/JointState.h>
 #include <sixdof_msgs/GraspEvent.h>
 #include <sixdof_msgs/ObjectStates.h>
-#include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +19,6 @@
 #include "controller_params.h"
 #include "conversions.h"
 #include "gripper_action.h"
-#include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/world_file.h"
 #include "trajectory_action.h"
 
@@ -114,21 +112,22 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
   WorldOptions world_options;
   world_options.time_step = options_.physics_step;
   world_options.package_search_roots = packageRoots();
+  world_options.grasp_fix_enabled = false;
+  world_ = std::make_unique<World>(urdf, spec, world_options);
   // grasp_fix defaults to true in every launch file; a robot without the URDF block (no gripper, or one that
   // is not set up for it) simply runs without it.
-  const bool has_grasp_fix_block = parseGraspFixConfig(urdf).has_value();
-  if (options_.grasp_fix && !has_grasp_fix_block) {
+  if (options_.grasp_fix && !world_->graspFixAvailable()) {
     ROS_INFO_STREAM("[sixdof_sim] grasp fix off: the URDF has no <gazebo><plugin name=\"gazebo_grasp_fix\"> block");
+  } else if (options_.grasp_fix) {
+    world_->setGraspFixEnabled(true);
   }
-  world_options.grasp_fix_enabled = options_.grasp_fix && has_grasp_fix_block;
-  world_ = std::make_unique<World>(urdf, spec, world_options);
   // docs/design.md: the world frame is the robot's (fixed) root link; a robot whose root is `world` (an arm on
   // a mount joint) publishes that frame itself.
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
-  if (model->getRoot()->name != "world") {
+  const std::string& root_link = world_->robotModel().rootLink();
+  if (root_link != "world") {
     geometry_msgs::TransformStamped world_to_root;
     world_to_root.header.frame_id = "world";
-    world_to_root.child_frame_id = model->getRoot()->name;
+    world_to_root.child_frame_id = root_link;
     world_to_root.transform.rotation.w = 1.0;
     static_tf_broadcaster_.sendTransform(world_to_root);
   }
@@ -146,7 +145,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
         clock));
   }
   drivers_.push_back(
-      std::make_unique<CameraPublisher>(nh_, *world_, urdf, spec, packageRoots(), static_tf_broadcaster_));
+      std::make_unique<CameraPublisher>(nh_, *world_, spec, static_tf_broadcaster_));
   world_->setPreStepCallback([this](double sim_time) {
     for (const std::unique_ptr<JointDriver>& d : drivers_) {
       d->update(clock_offset_ + sim_time);

@@ -13,7 +13,6 @@
 #include <thread>
 
 #include "camera_meshes.h"
-#include "mesh_loader.h"
 #include "sixdof_core/robot_model.h"
 
 namespace sixdof_sim {
@@ -130,7 +129,6 @@ struct CameraRenderer::Impl {
   std::vector<CameraSpec> cameras;
   std::vector<std::uint64_t> frames;  // frames rendered per camera (noise seeds)
   int threads = 1;
-  std::vector<std::string> roots;
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::map<std::string, RTCScene> shapes;  // one hierarchy per unit primitive and per mesh file
@@ -214,8 +212,14 @@ struct CameraRenderer::Impl {
         *unit_to_shape = scaling(Eigen::Vector3d::Constant(shape.radius));
         return unitShape("sphere");
       case ShapeType::kMesh: {
-        const std::string path = shape.mesh_path.empty() ? resolveResource(shape.mesh_resource, roots) : shape.mesh_path;
-        if (path.empty()) throw WorldError("mesh '" + shape.mesh_resource + "' not found");
+        std::string path = shape.mesh_path;  // robot link meshes come resolved by the model
+        if (path.empty()) {
+          try {
+            path = world.packageResolver().resolve(shape.mesh_resource);
+          } catch (const sixdof_core::RobotModelError& e) {
+            throw WorldError(e.what());
+          }
+        }
         *unit_to_shape = scaling(shape.mesh_scale);
         return unitShape(path);
       }
@@ -249,17 +253,9 @@ struct CameraRenderer::Impl {
     s.rgb[2] = static_cast<float>(color.b);
   }
 
-  // The robot's visuals (their collision shapes for links without any) from the core robot model, the project's
-  // only URDF reader.
-  void addRobot(const std::string& urdf_xml) {
-    std::shared_ptr<const sixdof_core::RobotModel> model;
-    try {
-      model = std::make_shared<const sixdof_core::RobotModel>(urdf_xml, "",
-                                                              sixdof_core::PackageResolver::fromSearchRoots(roots));
-    } catch (const sixdof_core::RobotModelError& e) {
-      throw WorldError(std::string("camera renderer: ") + e.what());
-    }
-    for (const sixdof_core::LinkModel& link : model->links()) {
+  // The robot's visuals (their collision shapes for links without any) from the world's core robot model.
+  void addRobot() {
+    for (const sixdof_core::LinkModel& link : world.robotModel().links()) {
       auto add = [&](const sixdof_core::PlacedShape& placed, const Color& color) {
         Eigen::Affine3d unit_to_shape;
         LinkVisual visual;
@@ -434,8 +430,7 @@ struct CameraRenderer::Impl {
   }
 };
 
-CameraRenderer::CameraRenderer(const World& world, const std::string& urdf_xml, const WorldSpec& spec,
-                               const CameraRendererOptions& options)
+CameraRenderer::CameraRenderer(const World& world, const WorldSpec& spec, const CameraRendererOptions& options)
     : impl_(std::make_unique<Impl>(world)) {
   Impl& d = *impl_;
   const std::vector<std::string> link_names = world.linkNames();
@@ -455,7 +450,6 @@ CameraRenderer::CameraRenderer(const World& world, const std::string& urdf_xml, 
   }
   d.cameras = spec.cameras;
   d.frames.assign(spec.cameras.size(), 0);
-  d.roots = options.package_search_roots;
   d.threads =
       options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   // BVH builds stay on the calling thread: shapes are built once and the per-frame top-level build of a few
@@ -467,7 +461,7 @@ CameraRenderer::CameraRenderer(const World& world, const std::string& urdf_xml, 
   d.top = rtcNewScene(d.device);
   rtcSetSceneFlags(d.top, RTC_SCENE_FLAG_DYNAMIC);
   rtcSetSceneBuildQuality(d.top, RTC_BUILD_QUALITY_LOW);
-  d.addRobot(urdf_xml);
+  d.addRobot();
   if (spec.ground.enabled) {
     d.ground = d.addInstance(d.unitShape("square"));
     Eigen::Affine3d t = Eigen::Affine3d::Identity();

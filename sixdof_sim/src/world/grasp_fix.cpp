@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gazebo_extensions.h"
+
 namespace sixdof_sim {
 namespace {
 
@@ -94,8 +96,12 @@ std::optional<GraspFixConfig> parseGraspFixConfig(const std::string& urdf_xml) {
   }
   const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
   if (robot == nullptr) throw std::invalid_argument("URDF has no <robot> element");
+  return readGraspFixPlugin(*robot);
+}
+
+std::optional<GraspFixConfig> readGraspFixPlugin(const tinyxml2::XMLElement& robot) {
   const tinyxml2::XMLElement* plugin = nullptr;
-  for (const tinyxml2::XMLElement* gazebo = robot->FirstChildElement("gazebo"); gazebo != nullptr;
+  for (const tinyxml2::XMLElement* gazebo = robot.FirstChildElement("gazebo"); gazebo != nullptr;
        gazebo = gazebo->NextSiblingElement("gazebo")) {
     for (const tinyxml2::XMLElement* p = gazebo->FirstChildElement("plugin"); p != nullptr;
          p = p->NextSiblingElement("plugin")) {

@@ -7,21 +7,15 @@
 #include <map>
 #include <stdexcept>
 
-#include "sixdof_sim/grasp_fix.h"
+#include "gazebo_extensions.h"
 
 namespace sixdof_sim {
 namespace {
 
 // <gazebo reference="link"><mu1>value</mu1></gazebo> for every link that has one.
-std::map<std::string, double> parseLinkFriction(const std::string& urdf_xml) {
+std::map<std::string, double> readLinkFriction(const tinyxml2::XMLElement& robot) {
   std::map<std::string, double> friction;
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw std::invalid_argument(std::string("URDF is not valid XML: ") + doc.ErrorStr());
-  }
-  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
-  if (robot == nullptr) return friction;
-  for (const tinyxml2::XMLElement* gazebo = robot->FirstChildElement("gazebo"); gazebo != nullptr;
+  for (const tinyxml2::XMLElement* gazebo = robot.FirstChildElement("gazebo"); gazebo != nullptr;
        gazebo = gazebo->NextSiblingElement("gazebo")) {
     const char* reference = gazebo->Attribute("reference");
     const tinyxml2::XMLElement* mu1 = gazebo->FirstChildElement("mu1");
@@ -101,8 +95,15 @@ RobotDescription describeRobot(const sixdof_core::RobotModel& model, const std::
   RobotDescription description;
   description.name = model.name();
   description.root_link = model.rootLink();
-  description.grasp_fix = parseGraspFixConfig(urdf_xml);
-  const std::map<std::string, double> friction = parseLinkFriction(urdf_xml);
+  // The <gazebo> extensions, all from one parse of the text.
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(urdf_xml.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw std::invalid_argument(std::string("URDF is not valid XML: ") + doc.ErrorStr());
+  }
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) throw std::invalid_argument("URDF has no <robot> element");
+  description.grasp_fix = readGraspFixPlugin(*robot);
+  const std::map<std::string, double> friction = readLinkFriction(*robot);
   for (const auto& entry : friction) {
     if (model.linkIndex(entry.first) < 0) {
       throw std::invalid_argument("URDF <gazebo reference=\"" + entry.first + "\">: no such link");

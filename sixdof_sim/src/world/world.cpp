@@ -107,9 +107,12 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
   if (!world.gravity.allFinite()) throw WorldError("gravity is not finite");
   impl_->options = options;
   impl_->spec = world;
+  impl_->resolver = sixdof_core::PackageResolver::fromSearchRoots(options.package_search_roots);
   try {
-    impl_->robot =
-        parseRobotDescription(urdf_xml, sixdof_core::PackageResolver::fromSearchRoots(options.package_search_roots));
+    impl_->model = std::make_shared<const sixdof_core::RobotModel>(urdf_xml, "", impl_->resolver);
+    impl_->robot = describeRobot(*impl_->model, urdf_xml);
+  } catch (const sixdof_core::RobotModelError& e) {
+    throw WorldError(e.what());
   } catch (const std::invalid_argument& e) {
     throw WorldError(e.what());
   }

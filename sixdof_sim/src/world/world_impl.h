@@ -22,7 +22,6 @@
 #include <cmath>
 #include <map>
 
-#include "mesh_loader.h"
 #include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/urdf_loader.h"
 #include "sixdof_sim/world.h"
@@ -118,7 +117,12 @@ struct ObjectRuntime {
 struct World::Impl {
   WorldOptions options;
   WorldSpec spec;
+  sixdof_core::PackageResolver resolver;  // from options.package_search_roots
+  std::shared_ptr<const sixdof_core::RobotModel> model;  // the URDF's one model; robot is read from it
   RobotDescription robot;
+
+  // A mesh object's file (robot link meshes come resolved by the model); std::invalid_argument naming the URI.
+  std::string meshFile(const Shape& shape) const;
 
   // Bullet, rebuilt from scratch by build() (construction and reset()).
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config;

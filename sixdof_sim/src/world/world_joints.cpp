@@ -9,6 +9,10 @@ bool World::Impl::linkWorldPose(const std::string& link, Eigen::Isometry3d* pose
   return true;
 }
 
+const sixdof_core::RobotModel& World::robotModel() const { return *impl_->model; }
+
+const sixdof_core::PackageResolver& World::packageResolver() const { return impl_->resolver; }
+
 const std::vector<JointInfo>& World::joints() const { return impl_->joint_infos; }
 
 std::vector<std::string> World::jointNames() const {

@@ -39,6 +39,15 @@ Result validateObjectSpec(const ObjectSpec& spec) {
   return Result::success();
 }
 
+std::string World::Impl::meshFile(const Shape& shape) const {
+  if (!shape.mesh_path.empty()) return shape.mesh_path;
+  try {
+    return resolver.resolve(shape.mesh_resource);
+  } catch (const sixdof_core::RobotModelError& e) {
+    throw std::invalid_argument(e.what());
+  }
+}
+
 std::unique_ptr<btCollisionShape> World::Impl::makeShape(const Shape& shape, Eigen::Vector3d* centre) {
   *centre = Eigen::Vector3d::Zero();
   std::unique_ptr<btCollisionShape> out;
@@ -53,13 +62,7 @@ std::unique_ptr<btCollisionShape> World::Impl::makeShape(const Shape& shape, Eig
       out = std::make_unique<btSphereShape>(shape.radius);
       break;
     case ShapeType::kMesh: {
-      // Robot link shapes come resolved from the core model; objects carry only their resource.
-      const std::string path =
-          shape.mesh_path.empty() ? resolveResource(shape.mesh_resource, options.package_search_roots) : shape.mesh_path;
-      if (path.empty()) {
-        throw std::invalid_argument("mesh '" + shape.mesh_resource + "' not found (package search roots: " +
-                                    std::to_string(options.package_search_roots.size()) + ")");
-      }
+      const std::string path = meshFile(shape);
       // The core's loader (cached per process, scale applied): the hull needs only the vertices.
       const sixdof_core::MeshLoadResult loaded = sixdof_core::loadMesh(path, shape.mesh_scale);
       if (!loaded) throw std::invalid_argument(loaded.message);

@@ -13,7 +13,7 @@ moves the arm to its home pose and then:
 The report is the "## sort" section of bench/results.md ("## sort with depth noise" when the camera's depth is
 noisy: scripts/bench_sort.sh --depth-noise SIGMA gives the world's cameras that noise and passes it on here).
 
-    bench/sort_bench.py --world sixdof_sim/worlds/sorting.yaml --layouts 10 --seed 1 --report report.md
+    bench/sort_bench.py --layouts 10 --seed 1 --report report.md
 """
 
 from __future__ import annotations
@@ -31,12 +31,11 @@ import time
 from collections import Counter
 
 import rospy
-import yaml
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import ArmDriver
 from sixdof_commander.colors import color_class
-from sixdof_commander.world_file import bins
+from sixdof_commander.sim_world import wait_for_world
 from std_msgs.msg import ColorRGBA
 
 from sixdof_msgs.msg import DetectedObjectArray, ObjectStates, SimObject
@@ -58,8 +57,7 @@ class Bench:
     def __init__(self, args: argparse.Namespace) -> None:
         self.args = args
         self.rng = random.Random(args.seed)
-        with open(args.world, encoding="utf-8") as stream:
-            self.bins = bins(yaml.safe_load(stream))
+        self.bins = wait_for_world().bins
         self.bin_rgb_by_class: dict[str, tuple[float, float, float]] = {}
         self.driver = ArmDriver(velocity_scaling=0.5, acceleration_scaling=0.5)
         for service in ("spawn_object", "delete_object", "get_object_state"):
@@ -179,7 +177,7 @@ class Bench:
             result_file = os.path.join(tmp, "sort.json")
             start = time.monotonic()
             run = subprocess.run(
-                ["rosrun", "sixdof_scripts", "sort_objects.py", "--world", self.args.world, "--json", result_file],
+                ["rosrun", "sixdof_scripts", "sort_objects.py", "--json", result_file],
                 capture_output=True,
                 text=True,
                 timeout=self.args.sort_timeout,
@@ -217,10 +215,7 @@ class Bench:
             )
 
     def run(self) -> None:
-        self.bin_rgb_by_class = {}
-        with open(self.args.world, encoding="utf-8") as stream:
-            for entry in yaml.safe_load(stream).get("bins") or []:
-                self.bin_rgb_by_class[color_class(*entry["color"][:3])] = tuple(entry["color"][:3])
+        self.bin_rgb_by_class = {b.color: b.rgb for b in self.bins}
         end = time.monotonic() + self.args.max_minutes * 60.0
         for index in range(self.args.layouts):
             if time.monotonic() > end:
@@ -278,7 +273,6 @@ class Bench:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--world", required=True, help="the sorting world file (bins: section)")
     parser.add_argument("--layouts", type=int, default=50, help="random layouts (default 50)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--max-minutes", type=float, default=60.0, help="stop starting layouts after this long")

@@ -57,7 +57,7 @@ stack_start launch roslaunch -p "$stack_port" sixdof_bringup demo.launch headles
 stack_wait_ready table "${stack_pids[-1]}" || { echo "[bench-sort] the stack did not come up (see $ROS_LOG_DIR/launch.out)" >&2; exit 1; }
 
 status=0
-python3 bench/sort_bench.py --world "$world" --depth-noise "$noise" "${args[@]}" --report "$report" || status=$?
+python3 bench/sort_bench.py --depth-noise "$noise" "${args[@]}" --report "$report" || status=$?
 if [ -s "$report" ]; then
   python3 scripts/results_section.py bench/results.md "$report"
   echo "[bench-sort] wrote its section of bench/results.md"

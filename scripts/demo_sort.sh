@@ -36,7 +36,7 @@ rosrun sixdof_perception draw_detections.py "$artifacts/sort_detections.png" --c
 
 stage "3/4 sorting what the camera sees"
 sort_status=0
-rosrun sixdof_scripts sort_objects.py --world "$world" --json "$artifacts/sort_result.json" || sort_status=$?
+rosrun sixdof_scripts sort_objects.py --json "$artifacts/sort_result.json" || sort_status=$?
 
 stage "4/4 rviz screenshot of the result (virtual X display)"
 stack_rviz_screenshot "$artifacts/sort_result.png" || fail "rviz screenshot (see $ROS_LOG_DIR/rviz.out)"

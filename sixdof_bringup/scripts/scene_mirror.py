@@ -10,7 +10,8 @@ Private parameters:
   ~angle_threshold     ... or turned more than this (rad, 0.01)
   ~grace               seconds to leave a grasp-fix attach/detach to the script that caused it (0.5)
   ~support_clearance   static objects (the table the robot stands on) are mirrored this much lower (m, 0.002)
-  ~world_file          world YAML; its objects with `collision: false` are not mirrored ('' : none)
+  ~world               the simulator's world parameter (sixdof_sim/world, waited for up to 60 s): its objects
+                       declared `collision: false` are not mirrored ('': none)
   ~ignore              object names never mirrored ([])
   ~wait_for_move_group s (wall clock) to wait for move_group's services and the simulator's get_object_state
                        (60; 0: forever); the robot model comes from move_group's get_robot_model
@@ -20,12 +21,11 @@ import sys
 import time
 
 import rospy
-import yaml
 from sixdof_commander.mesh import load_stl
 from sixdof_commander.planning_scene import resolve_resource
 from sixdof_commander.scene_mirror import SceneMirror, SceneSnapshot, SimObjectState, template_from_sim_object
 from sixdof_commander.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
-from sixdof_commander.world_file import non_colliding_objects
+from sixdof_commander.sim_world import WORLD_PARAMETER, wait_for_world
 
 from sixdof_msgs.msg import ObjectStates
 from sixdof_msgs.srv import GetObjectState
@@ -38,10 +38,9 @@ class SceneMirrorNode:
         if not isinstance(ignore, list):
             raise ValueError(f"parameter {rospy.resolve_name('~ignore')} must be a list of names")
         self.skip = {str(n) for n in ignore}
-        world_file = rospy.get_param("~world_file", "")
-        if world_file:
-            with open(world_file, encoding="utf-8") as stream:
-                self.skip |= non_colliding_objects(yaml.safe_load(stream))
+        world = rospy.get_param("~world", WORLD_PARAMETER)
+        if world:
+            self.skip |= wait_for_world(world).non_colliding()
         position_threshold = number_param("~position_threshold", 0.001)
         angle_threshold = number_param("~angle_threshold", 0.01)
         grace = number_param("~grace", 0.5)

@@ -2,17 +2,19 @@
 """perception_node: objects on the table from the camera's organized depth cloud, published as
 detected_objects (sixdof_msgs/DetectedObjectArray) and rviz markers, and kept in move_group's planning scene.
 
-It never reads the simulator's object states: what it knows besides the cloud comes from the world file
-(the tables' top faces are the supports, the static scenery and the bins' walls go into the planning scene
-and are masked out of the cloud) and from tf (the robot's links are filtered out of the cloud).
+It never reads the simulator's object states: what it knows besides the cloud comes from the world the
+simulator loaded, its ~world parameter (the tables' top faces are the supports, the static scenery and the bins'
+walls go into the planning scene and are masked out of the cloud) and from tf (the robot's links are filtered out
+of the cloud).
 The planning scene follows what the camera sees through sixdof_commander's SceneMirror: objects are added,
 moved and removed (a track missed ~forget_after frames in a row), ids stay stable across frames. An object
 the planning scene has attached to the robot is left alone (it stays attached until its user detaches it)
 and an object hidden by the robot keeps its last pose.
 
 Private parameters:
-  ~world_file          world YAML (required): supports, scenery, bins, cameras
-  ~camera              camera name ('': the world file's first camera); subscribes <camera>/depth/points
+  ~world               name of the simulator's world parameter (sixdof_sim/world): supports, scenery, cameras;
+                       waited for up to 60 s (wall clock)
+  ~camera              camera name ('': the world's first camera); subscribes <camera>/depth/points
   ~rate                frames processed per wall-clock second at most (5)
   ~hand_padding        m added around the box of each end effector's links (a held object is inside) (0.02)
   ~forget_after        frames a track may be missed before it is removed (5)
@@ -31,16 +33,16 @@ import time
 import numpy as np
 import rospy
 import tf2_ros
-import yaml
 from sensor_msgs.msg import PointCloud2
 from sixdof_commander.markers import object_marker
 from sixdof_commander.scene_mirror import SceneMirror, SceneSnapshot, SimObjectState, template_from_sim_object
 from sixdof_commander.scene_node import MOVE_GROUP_WAIT, MoveGroupScene, number_param, run
+from sixdof_commander.sim_world import WORLD_PARAMETER, wait_for_world
 from std_msgs.msg import Header
 from visualization_msgs.msg import Marker, MarkerArray
 
 from sixdof_msgs.msg import DetectedObjectArray
-from sixdof_perception import world as world_file
+from sixdof_perception import world as scenery
 from sixdof_perception.detection import Box, Detection, DetectorParams, detect_objects
 from sixdof_perception.ros_conversions import (
     cloud_arrays,
@@ -56,24 +58,18 @@ from sixdof_perception.tracking import Tracker
 
 class PerceptionNode:
     def __init__(self) -> None:
-        path = rospy.get_param("~world_file", "")
-        if not path:
-            raise ValueError(f"parameter {rospy.resolve_name('~world_file')} is required")
-        with open(path, encoding="utf-8") as stream:
-            world = yaml.safe_load(stream)
-        self.supports = world_file.supports(world)
+        world = wait_for_world(rospy.get_param("~world", WORLD_PARAMETER))
+        self.supports = scenery.supports(world)
         if not self.supports:
-            raise ValueError(f"world file {path} has no tables: nothing to detect objects on")
-        self.scenery = world_file.static_boxes(world)
+            raise ValueError(f"the simulator's world '{world.name}' has no tables: nothing to detect objects on")
+        self.scenery = scenery.static_boxes(world)
         # Points on the scenery other than the tables (bin walls, fixtures) are masked out of the cloud.
-        tables = {str(t.get("name")) for t in world.get("tables") or []}
-        self.masks = [box.as_mask() for box in self.scenery if box.name not in tables]
+        self.masks = [box.as_mask() for box in self.scenery if not box.table]
         camera = rospy.get_param("~camera", "")
-        cameras = world_file.camera_names(world)
         if not camera:
-            if not cameras:
-                raise ValueError(f"world file {path} has no cameras and ~camera is not set")
-            camera = cameras[0]
+            if not world.cameras:
+                raise ValueError(f"the simulator's world '{world.name}' has no cameras and ~camera is not set")
+            camera = world.cameras[0]
         self.rate = number_param("~rate", 5.0, inclusive=False)
         forget_after = rospy.get_param("~forget_after", 5)
         self.tracker = Tracker(gate=number_param("~gate", 0.04, inclusive=False), forget_after=forget_after)

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Sort what the camera sees: pick every detected object (sixdof_perception's detected_objects) and place it in
-the bin of its colour (the world file's bins: section), re-detecting after each placement and printing each
-object's outcome. Objects are chosen and located from the camera only; the simulator's ground truth is read
-once at the end, to check that every object rests in the bin of its colour.
+the bin of its colour (the bins of the simulator's world, its ~world parameter), re-detecting after each
+placement and printing each object's outcome. Objects are chosen and located from the camera only; the
+simulator's ground truth is read once at the end, to check that every object rests in the bin of its colour.
 
-    rosrun sixdof_scripts sort_objects.py --world $(rospack find sixdof_sim)/worlds/sorting.yaml
+    rosrun sixdof_scripts sort_objects.py      (with the stack on a world with bins, e.g. sorting.yaml)
 
 Exit codes: 0 every object sorted (or nothing to sort), 1 an object could not be sorted (unreachable,
-dropped, no bin of its colour, ...) or the final check failed, 2 bad arguments or a missing node.
+dropped, no bin of its colour, ...) or the final check failed, 2 bad arguments, a missing node or a world
+without bins.
 """
 
 from __future__ import annotations
@@ -21,13 +22,12 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 import rospy
-import yaml
 from sixdof_commander import ArmDriver, SixdofCommanderError
 from sixdof_commander.arm_driver import pose_from_matrix
 from sixdof_commander.colors import color_class
 from sixdof_commander.grasping import grasp_tcp_pose, object_geometry, place_tcp_pose, raised, tip_pose
+from sixdof_commander.sim_world import WORLD_PARAMETER, Bin, SimWorldError, wait_for_world
 from sixdof_commander.transforms import matrix_from_pose
-from sixdof_commander.world_file import Bin, WorldFileError, bins
 
 from sixdof_msgs.msg import DetectedObject, DetectedObjectArray, ObjectStates
 
@@ -201,27 +201,30 @@ def ground_truth(driver: ArmDriver, world_bins: list[Bin], ns: str) -> list[dict
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--world", required=True, help="world file (YAML) with the bins: section")
     parser.add_argument("--home", default="home pose", help="named state to detect from (default: 'home pose')")
     parser.add_argument("--max-attempts", type=int, default=2, help="attempts per object before it is skipped")
     parser.add_argument("--settle", type=float, default=0.5, help="simulated seconds before a frame counts")
     parser.add_argument("--velocity-scaling", type=float, default=0.5, help="max velocity scaling in (0, 1]")
     parser.add_argument("--json", default="", help="also write the outcomes and the final check to this file")
     parser.add_argument("--ns", default="", help="namespace of the planner, simulator and perception nodes")
+    parser.add_argument("--world-wait", type=float, default=60.0, help="s to wait for the simulator's world")
     args = parser.parse_args(rospy.myargv(sys.argv)[1:])
     if args.max_attempts < 1:
         parser.error(f"--max-attempts must be >= 1, got {args.max_attempts}")
+    if not math.isfinite(args.world_wait) or args.world_wait <= 0.0:
+        parser.error(f"--world-wait must be > 0, got {args.world_wait}")
     if not math.isfinite(args.settle) or args.settle < 0.0:
         parser.error(f"--settle must be >= 0, got {args.settle}")
-    try:
-        with open(args.world, encoding="utf-8") as stream:
-            world_bins = bins(yaml.safe_load(stream))
-    except (OSError, yaml.YAMLError, WorldFileError) as err:
-        parser.error(f"--world: {err}")
-    if not world_bins:
-        parser.error(f"--world: {args.world} declares no bins")
-
     rospy.init_node("sort_objects", anonymous=True)
+    try:
+        world = wait_for_world(rospy.names.ns_join(args.ns, WORLD_PARAMETER), args.world_wait)
+    except SimWorldError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    if not world.bins:
+        print(f"error: the simulator's world '{world.name}' has no bins", file=sys.stderr)
+        return 2
+    world_bins = list(world.bins)
     start = time.monotonic()
     outcomes: list[Outcome] = []
     try:

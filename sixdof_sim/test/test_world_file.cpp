@@ -171,6 +171,8 @@ bins:
     EXPECT_EQ(wall.name.rfind("red_bin_wall_", 0), 0u) << wall.name;
     EXPECT_TRUE(wall.is_static);
     EXPECT_TRUE(wall.collision);
+    EXPECT_EQ(wall.bin, "red_bin");
+    EXPECT_FALSE(wall.table);
     EXPECT_DOUBLE_EQ(wall.color.r, 0.9);
     EXPECT_NEAR(wall.pose.translation().z(), 0.02, 1e-12);
     const Eigen::Vector3d half = wall.shape.box_size / 2;
@@ -182,6 +184,34 @@ bins:
   const ObjectSpec* x_min = find(spec, "red_bin_wall_x_min");
   ASSERT_NE(x_min, nullptr);
   EXPECT_TRUE(x_min->shape.box_size.isApprox(Eigen::Vector3d(0.01, 0.1, 0.04)));
+  ASSERT_EQ(spec.bins.size(), 1u);
+  EXPECT_EQ(spec.bins[0].name, "red_bin");
+  EXPECT_TRUE(spec.bins[0].position.isApprox(Eigen::Vector3d(0.3, 0.2, 0.0)));
+  EXPECT_TRUE(spec.bins[0].size.isApprox(Eigen::Vector2d(0.2, 0.1)));
+  EXPECT_DOUBLE_EQ(spec.bins[0].wall_height, 0.04);
+}
+
+// A bin without wall_height/wall_thickness gets the documented defaults (worlds/README.md#bins); tables are
+// marked as such.
+TEST(WorldFile, BinDefaultsAndTables) {
+  const WorldSpec spec = parseWorldYaml(R"(
+tables:
+  - {name: table, size: [1, 1, 0.1], position: [0.4, 0, -0.05]}
+objects:
+  - {name: cube, shape: box, size: [0.04, 0.04, 0.04], position: [0.4, 0, 0.02], mass: 0.1}
+bins:
+  - {name: b, color: [0.1, 0.2, 0.9], position: [0.3, -0.3, 0.0], size: [0.2, 0.2], yaw: 1.5}
+)",
+                                       "inline");
+  ASSERT_EQ(spec.bins.size(), 1u);
+  EXPECT_DOUBLE_EQ(spec.bins[0].wall_height, 0.03);
+  EXPECT_DOUBLE_EQ(spec.bins[0].wall_thickness, 0.01);
+  EXPECT_DOUBLE_EQ(spec.bins[0].yaw, 1.5);
+  EXPECT_DOUBLE_EQ(spec.bins[0].color.b, 0.9);
+  ASSERT_NE(find(spec, "table"), nullptr);
+  EXPECT_TRUE(find(spec, "table")->table);
+  EXPECT_FALSE(find(spec, "cube")->table);
+  EXPECT_TRUE(find(spec, "cube")->bin.empty());
 }
 
 TEST(WorldFile, SortingWorldHasABinPerColour) {
@@ -189,6 +219,7 @@ TEST(WorldFile, SortingWorldHasABinPerColour) {
   int walls = 0;
   for (const ObjectSpec& o : spec.objects) walls += o.name.find("_bin_wall_") != std::string::npos;
   EXPECT_EQ(walls, 12);
+  EXPECT_EQ(spec.bins.size(), 3u);
   ASSERT_EQ(spec.cameras.size(), 1u);
 }
 

@@ -16,6 +16,7 @@ from moveit_msgs.msg import PlanningSceneComponents
 from moveit_msgs.srv import GetPlanningScene, GetPlanningSceneRequest
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander.colors import color_class
+from sixdof_commander.sim_world import wait_for_world
 from std_msgs.msg import ColorRGBA
 
 from sixdof_msgs.msg import DetectedObjectArray, ObjectStates, SimObject
@@ -62,7 +63,6 @@ class PerceptionInTheStack(unittest.TestCase):
         rospy.init_node("test_perception_sort")
         rospy.wait_for_service("get_planning_scene", timeout=STARTUP_TIMEOUT)
         rospy.wait_for_service("sixdof_sim/get_object_state", timeout=STARTUP_TIMEOUT)
-        cls.world = rospy.get_param("world_file")
 
     def check_layout(self, truth: dict) -> list:
         """Three frames after now: each object found once near its pose with its colour; ids stable."""
@@ -137,9 +137,22 @@ class PerceptionInTheStack(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertIn("nothing to sort", result.stdout)
 
-    def sort(self) -> subprocess.CompletedProcess:
+    def test_bins_from_the_simulators_world(self):
+        """The bins come from the simulator's ~world parameter (defaults applied); without one, sort_objects.py
+        stops with exit code 2 naming the parameter."""
+        world = wait_for_world(timeout=5.0)
+        self.assertEqual(sorted(b.color for b in world.bins), ["blue", "green", "red"])
+        self.assertTrue(all(b.wall_height > 0.0 and b.wall_thickness > 0.0 for b in world.bins))
+        self.assertEqual(len([o for o in world.objects if o.bin]), 4 * len(world.bins))
+        self.assertTrue(any(o.table for o in world.objects))
+        self.assertTrue(world.cameras)
+        result = self.sort("--ns", "/nowhere", "--world-wait", "1")
+        self.assertEqual(result.returncode, 2, result.stdout + result.stderr)
+        self.assertIn("/nowhere/sixdof_sim/world: no such parameter", result.stderr)
+
+    def sort(self, *args: str) -> subprocess.CompletedProcess:
         result = subprocess.run(
-            ["rosrun", "sixdof_scripts", "sort_objects.py", "--world", self.world],
+            ["rosrun", "sixdof_scripts", "sort_objects.py", *args],
             capture_output=True,
             text=True,
             timeout=800,

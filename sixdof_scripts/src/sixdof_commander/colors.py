@@ -1,5 +1,5 @@
 """Colour classes from the hue: how sixdof_perception names what the camera sees and sort_objects.py matches
-objects to bins (sixdof_commander.world_file)."""
+objects to bins (sixdof_commander.sim_world)."""
 
 from __future__ import annotations
 

@@ -86,6 +86,8 @@ struct ObjectSpec {
   double friction = 0.8;                                   // Coulomb coefficient
   double restitution = 0.0;
   Color color;
+  bool table = false;  // declared under the world file's tables: (a support surface)
+  std::string bin;     // the bin this object is a wall of; empty: none
 };
 
 struct Twist {
@@ -125,11 +127,24 @@ struct CameraSpec {
 };
 
 // A whole world: what a world file describes (see worlds/README.md).
+// A bin of the world file's bins: section, its defaults applied. Its walls are objects of WorldSpec::objects
+// (ObjectSpec::bin names the bin).
+struct BinSpec {
+  std::string name;
+  Color color;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // centre of the bottom
+  double yaw = 0.0;                                    // rad, about z
+  Eigen::Vector2d size = Eigen::Vector2d::Zero();      // outer footprint
+  double wall_height = 0.03;
+  double wall_thickness = 0.01;
+};
+
 struct WorldSpec {
   std::string name;
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
   GroundPlane ground;
   std::vector<ObjectSpec> objects;  // tables are static boxes; markers have collision = false
+  std::vector<BinSpec> bins;
   std::vector<CameraSpec> cameras;
 };
 

@@ -21,6 +21,7 @@
 #include "gripper_action.h"
 #include "sixdof_sim/world_file.h"
 #include "trajectory_action.h"
+#include "world_parameter.h"
 
 namespace sixdof_sim {
 
@@ -114,6 +115,8 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
   world_options.package_search_roots = packageRoots();
   world_options.grasp_fix_enabled = false;
   world_ = std::make_unique<World>(urdf, spec, world_options);
+  // The world as loaded (defaults applied), for the Python nodes and scripts: they never parse the file.
+  pnh_.setParam("world", worldParameter(spec));
   // grasp_fix defaults to true in every launch file; a robot without the URDF block (no gripper, or one that
   // is not set up for it) simply runs without it.
   if (options_.grasp_fix && !world_->graspFixAvailable()) {

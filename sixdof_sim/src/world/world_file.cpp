@@ -17,6 +17,40 @@
 namespace sixdof_sim {
 namespace {
 
+// A bin's four static walls standing on the surface at position.z, their outer edges the footprint, named
+// <bin>_wall_{x_min,x_max,y_min,y_max}, in the bin's colour.
+std::vector<ObjectSpec> binWalls(const BinSpec& bin) {
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  frame.translation() = bin.position;
+  frame.linear() = Eigen::AngleAxisd(bin.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const double hx = bin.size.x() / 2.0, hy = bin.size.y() / 2.0;
+  const double t = bin.wall_thickness, h = bin.wall_height;
+  // x walls span the full y side; y walls fit between them.
+  const struct {
+    const char* suffix;
+    Eigen::Vector3d centre, extent;
+  } sides[] = {
+      {"x_min", {-hx + t / 2, 0, h / 2}, {t, bin.size.y(), h}},
+      {"x_max", {hx - t / 2, 0, h / 2}, {t, bin.size.y(), h}},
+      {"y_min", {0, -hy + t / 2, h / 2}, {bin.size.x() - 2 * t, t, h}},
+      {"y_max", {0, hy - t / 2, h / 2}, {bin.size.x() - 2 * t, t, h}},
+  };
+  std::vector<ObjectSpec> walls;
+  for (const auto& side : sides) {
+    ObjectSpec wall;
+    wall.name = bin.name + "_wall_" + side.suffix;
+    wall.shape.type = ShapeType::kBox;
+    wall.shape.box_size = side.extent;
+    wall.pose = frame * Eigen::Translation3d(side.centre);
+    wall.is_static = true;
+    wall.collision = true;
+    wall.color = bin.color;
+    wall.bin = bin.name;
+    walls.push_back(wall);
+  }
+  return walls;
+}
+
 class Parser {
  public:
   Parser(std::string source, std::string base_dir) : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
@@ -163,6 +197,7 @@ class Parser {
     spec.pose = pose(node, named);
     spec.is_static = table ? true : (node["static"] ? boolean(node["static"], named, "static") : false);
     spec.collision = table ? true : (node["collision"] ? boolean(node["collision"], named, "collision") : true);
+    spec.table = table;
     if (!spec.collision && !node["static"]) spec.is_static = true;  // markers do not fall through the table
     if (node["mass"]) {
       if (spec.is_static) fail(node["mass"], named, "'mass' does not apply to a static object");
@@ -219,9 +254,8 @@ class Parser {
     return spec;
   }
 
-  // A bin: an open box of four static walls standing on the surface at position.z, its outer edges the
-  // footprint. The walls are named <bin>_wall_{x_min,x_max,y_min,y_max} and take the bin's colour.
-  std::vector<ObjectSpec> bin(const YAML::Node& node, const std::string& context) const {
+  // A bin: an open box of four static walls (binWalls).
+  BinSpec bin(const YAML::Node& node, const std::string& context) const {
     if (!node.IsMap()) fail(node, context, "must be a mapping");
     if (!node["name"]) fail(node, context, "'name' is required");
     const std::string name = text(node["name"], context, "name");
@@ -234,8 +268,10 @@ class Parser {
     if (!node["color"]) fail(node, named, "'color' is required (it names the bin's colour class)");
     const Color color = this->color(node["color"], named);
     const double yaw = node["yaw"] ? number(node["yaw"], named, "yaw") : 0.0;
-    const double height = node["wall_height"] ? number(node["wall_height"], named, "wall_height") : 0.03;
-    const double thickness = node["wall_thickness"] ? number(node["wall_thickness"], named, "wall_thickness") : 0.01;
+    const double height =
+        node["wall_height"] ? number(node["wall_height"], named, "wall_height") : BinSpec().wall_height;
+    const double thickness =
+        node["wall_thickness"] ? number(node["wall_thickness"], named, "wall_thickness") : BinSpec().wall_thickness;
     if (!position.allFinite() || !std::isfinite(yaw)) fail(node, named, "'position' and 'yaw' must be finite");
     if (!(size[0] > 0.0 && size[1] > 0.0) || !std::isfinite(size[0]) || !std::isfinite(size[1])) {
       fail(node["size"], named, "'size' must be > 0 in x and y");
@@ -245,35 +281,15 @@ class Parser {
       fail(node["wall_thickness"] ? node["wall_thickness"] : node, named,
            "'wall_thickness' must be > 0 and less than half the smaller side of 'size'");
     }
-    Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
-    frame.translation() = position;
-    frame.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    std::vector<ObjectSpec> walls;
-    const double hx = size[0] / 2.0, hy = size[1] / 2.0;
-    // x walls span the full y side; y walls fit between them.
-    const struct {
-      const char* suffix;
-      Eigen::Vector3d centre, extent;
-    } sides[] = {
-        {"x_min", {-hx + thickness / 2, 0, height / 2}, {thickness, size[1], height}},
-        {"x_max", {hx - thickness / 2, 0, height / 2}, {thickness, size[1], height}},
-        {"y_min", {0, -hy + thickness / 2, height / 2}, {size[0] - 2 * thickness, thickness, height}},
-        {"y_max", {0, hy - thickness / 2, height / 2}, {size[0] - 2 * thickness, thickness, height}},
-    };
-    for (const auto& side : sides) {
-      ObjectSpec wall;
-      wall.name = name + "_wall_" + side.suffix;
-      wall.shape.type = ShapeType::kBox;
-      wall.shape.box_size = side.extent;
-      wall.pose = frame * Eigen::Translation3d(side.centre);
-      wall.is_static = true;
-      wall.collision = true;
-      wall.color = color;
-      const Result valid = validateObjectSpec(wall);
-      if (!valid.ok()) fail(node, named, valid.message);
-      walls.push_back(wall);
-    }
-    return walls;
+    BinSpec bin;
+    bin.name = name;
+    bin.color = color;
+    bin.position = position;
+    bin.yaw = yaw;
+    bin.size = Eigen::Vector2d(size[0], size[1]);
+    bin.wall_height = height;
+    bin.wall_thickness = thickness;
+    return bin;
   }
 
   WorldSpec world(const YAML::Node& root) const {
@@ -310,10 +326,14 @@ class Parser {
       if (item.IsMap() && item["name"] && item["name"].IsScalar() && !bin_names.insert(item["name"].Scalar()).second) {
         fail(item, context, "duplicate bin name '" + item["name"].Scalar() + "'");
       }
-      for (const ObjectSpec& wall : bin(item, context)) {
+      const BinSpec bin = this->bin(item, context);
+      for (const ObjectSpec& wall : binWalls(bin)) {
+        const Result valid = validateObjectSpec(wall);
+        if (!valid.ok()) fail(item, context + " (" + bin.name + ")", valid.message);
         if (!names.insert(wall.name).second) fail(item, context, "duplicate name '" + wall.name + "'");
         spec.objects.push_back(wall);
       }
+      spec.bins.push_back(bin);
     });
     std::set<std::string> camera_names;
     forEachItem(root, "cameras", [&](const YAML::Node& item, const std::string& context) {

@@ -1,0 +1,91 @@
+#include "world_parameter.h"
+
+#include <Eigen/Geometry>
+#include <string>
+
+namespace sixdof_sim {
+namespace {
+
+template <class Vector>
+XmlRpc::XmlRpcValue list(const Vector& values) {
+  XmlRpc::XmlRpcValue out;
+  out.setSize(static_cast<int>(values.size()));
+  for (int i = 0; i < static_cast<int>(values.size()); ++i) out[i] = static_cast<double>(values[i]);
+  return out;
+}
+
+XmlRpc::XmlRpcValue color(const Color& c) { return list(Eigen::Vector4d(c.r, c.g, c.b, c.a)); }
+
+XmlRpc::XmlRpcValue object(const ObjectSpec& spec) {
+  XmlRpc::XmlRpcValue out;
+  out["name"] = spec.name;
+  switch (spec.shape.type) {
+    case ShapeType::kBox:
+      out["shape"] = "box";
+      out["size"] = list(spec.shape.box_size);
+      break;
+    case ShapeType::kCylinder:
+      out["shape"] = "cylinder";
+      out["radius"] = spec.shape.radius;
+      out["length"] = spec.shape.length;
+      break;
+    case ShapeType::kSphere:
+      out["shape"] = "sphere";
+      out["radius"] = spec.shape.radius;
+      break;
+    case ShapeType::kMesh:
+      out["shape"] = "mesh";
+      out["mesh"] = spec.shape.mesh_resource;
+      out["scale"] = list(spec.shape.mesh_scale);
+      break;
+  }
+  const Eigen::Quaterniond q(spec.pose.linear());
+  out["position"] = list(spec.pose.translation());
+  out["orientation"] = list(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));
+  out["static"] = spec.is_static;
+  out["collision"] = spec.collision;
+  out["table"] = spec.table;
+  out["bin"] = spec.bin;
+  out["color"] = color(spec.color);
+  return out;
+}
+
+XmlRpc::XmlRpcValue bin(const BinSpec& spec) {
+  XmlRpc::XmlRpcValue out;
+  out["name"] = spec.name;
+  out["color"] = color(spec.color);
+  out["position"] = list(spec.position);
+  out["yaw"] = spec.yaw;
+  out["size"] = list(spec.size);
+  out["wall_height"] = spec.wall_height;
+  out["wall_thickness"] = spec.wall_thickness;
+  return out;
+}
+
+XmlRpc::XmlRpcValue camera(const CameraSpec& spec) {
+  XmlRpc::XmlRpcValue out;
+  out["name"] = spec.name;
+  out["parent_link"] = spec.parent_link;
+  return out;
+}
+
+template <class Spec, class Convert>
+XmlRpc::XmlRpcValue array(const std::vector<Spec>& specs, const Convert& convert) {
+  XmlRpc::XmlRpcValue out;
+  out.setSize(static_cast<int>(specs.size()));  // an empty list stays a list
+  for (int i = 0; i < static_cast<int>(specs.size()); ++i) out[i] = convert(specs[i]);
+  return out;
+}
+
+}  // namespace
+
+XmlRpc::XmlRpcValue worldParameter(const WorldSpec& world) {
+  XmlRpc::XmlRpcValue out;
+  out["name"] = world.name;
+  out["objects"] = array(world.objects, object);
+  out["bins"] = array(world.bins, bin);
+  out["cameras"] = array(world.cameras, camera);
+  return out;
+}
+
+}  // namespace sixdof_sim

@@ -15,7 +15,9 @@ void bindSetupAssistant(py::module_& m) {
       .value("ADJACENT", DisableReason::kAdjacent, "Joined by a joint (across links without geometry).")
       .value("DEFAULT", DisableReason::kDefault, "Colliding at the default state.")
       .value("ALWAYS", DisableReason::kAlways, "Colliding in more than always_fraction of the samples.")
-      .value("NEVER", DisableReason::kNever, "Colliding in none of the samples.");
+      .value("NEVER", DisableReason::kNever, "Colliding in none of the samples.")
+      .value("GRIPPER", DisableReason::kGripper,
+             "Two links of a gripper (an end effector's parent link and the links below it) colliding in some samples.");
 
   py::class_<CollisionMatrixOptions>(m, "CollisionMatrixOptions", "How the collision matrix is sampled.")
       .def(py::init([](std::size_t density, std::uint64_t seed, double always_fraction) {
@@ -38,7 +40,7 @@ void bindSetupAssistant(py::module_& m) {
       .def_readonly("reason", &ComputedPair::reason)
       .def_property_readonly(
           "reason_name", [](const ComputedPair& p) { return reasonName(p.reason); },
-          "The SRDF's reason: 'Adjacent', 'Default', 'Always' or 'Never'.")
+          "The SRDF's reason: 'Adjacent', 'Default', 'Always', 'Never' or 'Gripper'.")
       .def_readonly("colliding_samples", &ComputedPair::colliding_samples);
 
   py::class_<DisabledCollisions>(m, "DisabledCollisions", "The computed collision matrix and its counts.")

@@ -30,7 +30,8 @@ using LinkPair = std::pair<int, int>;  // link indices, first < second
 LinkPair orderedPair(int a, int b) { return a < b ? LinkPair(a, b) : LinkPair(b, a); }
 
 bool isComputedReason(const std::string& reason) {
-  return reason == "Adjacent" || reason == "Default" || reason == "Always" || reason == "Never";
+  return reason == "Adjacent" || reason == "Default" || reason == "Always" || reason == "Never" ||
+         reason == "Gripper";
 }
 
 int reasonRank(const std::string& reason) {
@@ -38,7 +39,8 @@ int reasonRank(const std::string& reason) {
   if (reason == "Default") return 1;
   if (reason == "Always") return 2;
   if (reason == "Never") return 3;
-  return 4;
+  if (reason == "Gripper") return 4;
+  return 5;
 }
 
 // The robot name of a URDF, so that a model can be built without an SRDF ("" when unreadable: the
@@ -50,6 +52,17 @@ std::string urdfRobotName(const std::string& urdf_xml) {
   return name ? name : "";
 }
 
+// The links of the model's grippers: every SRDF end effector's parent link and the links below it.
+std::set<int> gripperLinks(const RobotModel& model) {
+  std::set<int> found;
+  for (const auto& eef : model.endEffectors()) found.insert(model.linkIndex(eef.parent_link));
+  // Model order is topological: a link's parent comes before it.
+  for (size_t l = 1; l < model.links().size(); ++l) {
+    if (found.count(model.links()[l].parent_link)) found.insert(static_cast<int>(l));
+  }
+  return found;
+}
+
 std::string emptySrdf(const std::string& robot_name) {
   SrdfDocument document;
   document.robot_name = robot_name;
@@ -59,8 +72,8 @@ std::string emptySrdf(const std::string& robot_name) {
 }  // namespace
 
 std::string reasonName(DisableReason reason) {
-  static constexpr const char* kNames[] = {"Adjacent", "Default", "Always", "Never"};
-  return enumName<DisableReason::kNever>(reason, kNames, "");
+  static constexpr const char* kNames[] = {"Adjacent", "Default", "Always", "Never", "Gripper"};
+  return enumName<DisableReason::kGripper>(reason, kNames, "");
 }
 
 std::vector<std::pair<std::string, std::string>> adjacentLinkPairs(const RobotModel& model) {
@@ -172,6 +185,7 @@ DisabledCollisions computeDisabledCollisions(const RobotModelConstPtr& model,
     }
   }
   const double n = static_cast<double>(options.density);
+  std::vector<LinkPair> settled;  // collided in some samples, free in enough others: checked when planning
   StateSampler sampler(*model, options.seed);
   const size_t progress_step = std::max<size_t>(1, options.density / 20);
   for (size_t s = 0; s < options.density && !undecided.empty(); ++s) {
@@ -187,6 +201,7 @@ DisabledCollisions computeDisabledCollisions(const RobotModelConstPtr& model,
       const double free = done - static_cast<double>(hits);
       if (hits > 0 && n - free <= options.always_fraction * n) {
         scene.setAllowed(links[it->first].name, links[it->second].name, true);
+        settled.push_back(*it);
         it = undecided.erase(it);
       } else {
         ++it;
@@ -201,6 +216,14 @@ DisabledCollisions computeDisabledCollisions(const RobotModelConstPtr& model,
       decide(p.first, p.second, DisableReason::kNever, 0);
     } else if (static_cast<double>(hits) > options.always_fraction * n) {
       decide(p.first, p.second, DisableReason::kAlways, hits);
+    }
+  }
+
+  // Of the pairs left to be checked, those within a gripper: its joints alone move them relative to each other.
+  const std::set<int> gripper = gripperLinks(*model);
+  for (const auto& p : settled) {
+    if (gripper.count(p.first) && gripper.count(p.second)) {
+      decide(p.first, p.second, DisableReason::kGripper, collisions[p]);
     }
   }
 

@@ -94,6 +94,28 @@ const char* const kGeometrylessUrdf = R"(<?xml version="1.0"?>
     <limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
 </robot>)";
 
+// A palm turning on a base, with two fingers (the second mimics the first) that slide into each other over the
+// upper half of their range: their pair collides in about half of the samples.
+const char* const kPincerUrdf = R"(<?xml version="1.0"?>
+<robot name="pincer">
+  <link name="base_link"><collision><origin xyz="0 0 -1"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <link name="palm"><collision><geometry><box size="0.05 0.1 0.05"/></geometry></collision></link>
+  <link name="left_finger"><collision><geometry><box size="0.01 0.02 0.05"/></geometry></collision></link>
+  <link name="right_finger"><collision><geometry><box size="0.01 0.02 0.05"/></geometry></collision></link>
+  <joint name="turn" type="revolute"><parent link="base_link"/><child link="palm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
+  <joint name="left" type="prismatic"><parent link="palm"/><child link="left_finger"/><origin xyz="0 0.03 0.1"/>
+    <axis xyz="0 -1 0"/><limit lower="0" upper="0.04" velocity="1" effort="1"/></joint>
+  <joint name="right" type="prismatic"><parent link="palm"/><child link="right_finger"/><origin xyz="0 -0.03 0.1"/>
+    <axis xyz="0 1 0"/><limit lower="0" upper="0.04" velocity="1" effort="1"/><mimic joint="left"/></joint>
+</robot>)";
+const char* const kPincerSrdf = R"(<robot name="pincer">
+  <group name="arm"><joint name="turn"/></group>
+  <group name="gripper"><joint name="left"/><joint name="right"/></group>
+  <end_effector name="hand" parent_link="palm" group="gripper"/>
+</robot>)";
+
 SetupAssistantOptions options(std::size_t density, std::uint64_t seed) {
   SetupAssistantOptions o;
   o.collision.density = density;
@@ -174,6 +196,23 @@ TEST(SetupAssistant, DefaultAlwaysAndNeverOnAFixtureThatHasEach) {
       EXPECT_GT(p.colliding_samples, 950u);
     }
   }
+}
+
+TEST(SetupAssistant, GripperLinksThatCollideInSomeStatesAreDisabledAsGripper) {
+  CollisionMatrixOptions o;
+  o.density = 500;
+  const auto result = computeDisabledCollisions(model(kPincerUrdf, kPincerSrdf, PackageResolver()), o);
+  EXPECT_EQ(pairsWithReason(result, DisableReason::kGripper),
+            (std::set<NamePair>{unordered("left_finger", "right_finger")}));
+  const auto gripper = std::find_if(result.disabled.begin(), result.disabled.end(),
+                                    [](const ComputedPair& p) { return p.reason == DisableReason::kGripper; });
+  ASSERT_NE(gripper, result.disabled.end());
+  EXPECT_GT(gripper->colliding_samples, 0u);  // counted until the pair could no longer be Always
+  EXPECT_EQ(reasonName(DisableReason::kGripper), "Gripper");
+  // Without an end effector in the SRDF no link is a gripper's: the pair stays checked.
+  const auto plain = computeDisabledCollisions(model(kPincerUrdf, "<robot name=\"pincer\"/>", PackageResolver()), o);
+  EXPECT_TRUE(pairsWithReason(plain, DisableReason::kGripper).empty());
+  EXPECT_EQ(plain.disabled.size() + 1, result.disabled.size());
 }
 
 TEST(SetupAssistant, DefaultPairsOfTheArmCollideAtTheDefaultState) {

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     std::map<std::string, int> counts;
     for (const auto& pair : result.collisions.disabled) ++counts[sixdof_core::reasonName(pair.reason)];
     std::cout << "link pairs with geometry: " << result.collisions.link_pairs << "\n";
-    for (const char* reason : {"Adjacent", "Default", "Always", "Never"}) {
+    for (const char* reason : {"Adjacent", "Default", "Always", "Never", "Gripper"}) {
       std::cout << "  " << reason << ": " << counts[reason] << "\n";
     }
     std::cout << "  enabled (checked when planning): "

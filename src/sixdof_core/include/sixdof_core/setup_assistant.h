@@ -15,15 +15,20 @@
 
 namespace sixdof_core {
 
-// Why the setup assistant disables a link pair (MoveIt Setup Assistant's reasons).
+// Why the setup assistant disables a link pair (MoveIt Setup Assistant's reasons, and Gripper).
 enum class DisableReason {
   kAdjacent,  // joined by a joint, possibly across links without collision geometry
   kDefault,   // colliding at the default state
   kAlways,    // colliding in more than always_fraction of the random samples
   kNever,     // colliding in none of the random samples
+  // Two links of a gripper (an SRDF end effector's parent link and the links below it) that collide in some of
+  // the samples: only the gripper's joints move them relative to each other, which no arm motion changes, so a
+  // state where they touch (fingers closed on each other, a closing linkage modelled as a tree whose links meet)
+  // would leave every plan from it in collision.
+  kGripper,
 };
 
-// "Adjacent", "Default", "Always", "Never".
+// "Adjacent", "Default", "Always", "Never", "Gripper".
 std::string reasonName(DisableReason reason);
 
 struct CollisionMatrixOptions {
@@ -40,11 +45,13 @@ struct ComputedPair {
   std::string link1;  // the link that comes first in the model's (topological) link order
   std::string link2;
   DisableReason reason = DisableReason::kNever;
-  std::size_t colliding_samples = 0;  // for Always/Never: in how many samples the pair collided
+  // For Always/Never: in how many samples the pair collided; for Gripper: in how many until it could no longer be
+  // Always (a pair is not checked any more from then on).
+  std::size_t colliding_samples = 0;
 };
 
 struct DisabledCollisions {
-  // Sorted by reason (Adjacent, Default, Always, Never), then by the links' model order.
+  // Sorted by reason (Adjacent, Default, Always, Never, Gripper), then by the links' model order.
   std::vector<ComputedPair> disabled;
   std::size_t link_pairs = 0;    // pairs of links that both have collision geometry
   std::size_t samples = 0;       // random states drawn
@@ -95,7 +102,7 @@ struct SetupAssistantOutput {
 
 // Computes the disabled collision pairs of the URDF's robot and merges them into srdf_in_xml (empty: no
 // input SRDF). Hand-written parts of the input are kept; its disable_collisions entries with reason
-// Adjacent, Default, Always or Never are replaced by the computed set, entries with any other reason
+// Adjacent, Default, Always, Never or Gripper are replaced by the computed set, entries with any other reason
 // (e.g. User) are kept and win over a computed entry for the same pair. Throws RobotModelError or
 // SrdfError on bad input, std::invalid_argument on bad options.
 SetupAssistantOutput runSetupAssistant(const std::string& urdf_xml, const std::string& srdf_in_xml,

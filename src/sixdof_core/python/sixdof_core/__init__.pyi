@@ -1,6 +1,5 @@
-# Type stubs of the package sixdof_core (the public names of the extension module sixdof_core._sixdof_core, which
-# __init__.py re-exports). test/bindings/test_stubs.py checks them against the module: the same names, members and
-# parameter names. Docstrings are the module's own (help(sixdof_core.RobotModel)).
+# Type stubs of sixdof_core._sixdof_core's public names (re-exported by __init__.py); test/bindings/test_stubs.py
+# checks the same names, members and parameter names. Docstrings are the module's own (help(sixdof_core.RobotModel)).
 from collections.abc import Callable, Mapping, Sequence
 from typing import ClassVar, Final, Generic, TypeVar, overload
 
@@ -475,6 +474,7 @@ class DisableReason(_Enum):
     DEFAULT: ClassVar[DisableReason]
     ALWAYS: ClassVar[DisableReason]
     NEVER: ClassVar[DisableReason]
+    GRIPPER: ClassVar[DisableReason]
 
 class CollisionMatrixOptions:
     def __init__(self, density: int = 10000, seed: int = 0, always_fraction: float = 0.95) -> None: ...

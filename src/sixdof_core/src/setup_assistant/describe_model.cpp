@@ -101,7 +101,7 @@ std::string describeModel(const RobotModel& model, const DisabledCollisions* col
     out << "collisions: {link_pairs: " << collisions->link_pairs << ", samples: " << collisions->samples
         << ", pair_checks: " << collisions->pair_checks << ", Adjacent: " << counts["Adjacent"]
         << ", Default: " << counts["Default"] << ", Always: " << counts["Always"] << ", Never: " << counts["Never"]
-        << ", enabled: " << collisions->link_pairs - collisions->disabled.size() << "}\n";
+        << ", Gripper: " << counts["Gripper"] << ", enabled: " << collisions->link_pairs - collisions->disabled.size() << "}\n";
   }
   return out.str();
 }

@@ -9,6 +9,7 @@ import yaml
 from sixdof_description.core_model import joint_space_inertia
 from sixdof_description.formatting import HEADER, fmt
 from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, Robot
+from sixdof_description.urdf_writer import GRASP_FIX
 
 
 def _yaml(data: dict, note: str = "") -> str:
@@ -96,7 +97,8 @@ def render_controllers(robot: Robot) -> str:
 
 def render_setup_answers(robot: Robot) -> str:
     """The setup assistant's answers for this arm: with them, `setup_assistant --urdf urdf/sixdof.urdf` generates
-    the SRDF, kinematics, joint limits and controllers of this package (sixdof_core's test_sixdof_config.py)."""
+    the SRDF, kinematics, joint limits, controllers and grasping.yaml of this package (sixdof_core's
+    test_sixdof_config.py; generator.py writes grasping.yaml with the setup assistant's own code)."""
     d = robot.design
     arm_states = {name: {j: float(fmt(v)) for j, v in zip(ARM_JOINTS, q, strict=True)}
                   for name, q in robot.states.items()}
@@ -109,6 +111,8 @@ def render_setup_answers(robot: Robot) -> str:
         "named_states": {"arm": arm_states, "gripper": gripper_states},
         "acceleration_limits": {name: float(robot.joint_params[name]["acceleration"])
                                 for name in (*ARM_JOINTS, *GRIPPER_JOINTS)},
+        # The grasp fix the URDF's gazebo_grasp_fix block has, for config/grasping.yaml (the TCP is the link tcp).
+        "grasping": {"grasp_fix": dict(GRASP_FIX)},
     }
     return _yaml(data, "Answers for `rosrun sixdof_core setup_assistant --answers` (docs/your_own_arm.md).")
 

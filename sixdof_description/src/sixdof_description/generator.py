@@ -3,12 +3,16 @@
 Deterministic: the same design.yaml (and previous SRDF) always gives byte-identical files.
 
 The parts: robot_design.py (solids, joints), core_model.py (the arm as sixdof_core reads it: named states by IK, joint-
-space inertia), urdf_writer.py, srdf_writer.py, config_writer.py (YAML) and formatting.py.
+space inertia), urdf_writer.py, srdf_writer.py, config_writer.py (YAML) and formatting.py. config/grasping.yaml is the
+setup assistant's (sixdof_setup_assistant.generator.grasping_file) for the generated URDF, meshes and answers.
 """
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
+
+from sixdof_setup_assistant.generator import grasping_file
 
 from sixdof_description import cad
 from sixdof_description.config_writer import (
@@ -29,6 +33,7 @@ GENERATED_FILES = (
     "config/joint_limits.yaml",
     "config/controllers.yaml",
     "config/setup_answers.yaml",
+    "config/grasping.yaml",
     *[f"meshes/visual/{name}.stl" for name in LINKS],
     *[f"meshes/collision/{name}.stl" for name in LINKS],
 )
@@ -58,7 +63,21 @@ def generate_files(design_path: Path, previous_srdf: str | None) -> dict:
     for name in LINKS:
         files[f"meshes/visual/{name}.stl"] = stl_bytes(robot.links[name].visual)
         files[f"meshes/collision/{name}.stl"] = stl_bytes(robot.links[name].collision)
+    files["config/grasping.yaml"] = render_grasping(files)
     return files
+
+
+def render_grasping(files: dict) -> bytes:
+    """config/grasping.yaml as the setup assistant writes it for these files (the URDF, its meshes and the answers),
+    read from a copy of the package in a temporary folder so that the URDF's package:// meshes are these ones."""
+    with tempfile.TemporaryDirectory(prefix="sixdof_description.") as tmp:
+        package = Path(tmp) / "sixdof_description"
+        write_files(files, package)
+        (package / "package.xml").write_text('<package format="3"><name>sixdof_description</name></package>\n')
+        text = grasping_file(str(package / "urdf" / "sixdof.urdf"), str(package / "config" / "setup_answers.yaml"))
+    if text is None:
+        raise cad.DesignError("the setup assistant found no gripper in the generated URDF")
+    return text.encode()
 
 
 def write_files(files: dict, out_dir: Path) -> None:

@@ -7,20 +7,24 @@ from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, JOINT_LI
 
 PACKAGE = "sixdof_description"
 
-GRASP_FIX_BLOCK = """  <gazebo>
+# The paper's gazebo_grasp_fix settings: the URDF's plugin block and the setup assistant's answers (grasping.yaml).
+GRASP_FIX = {"palm_link": "link6", "gripper_links": ["finger1", "finger2"], "forces_angle_tolerance": 100,
+             "update_rate": 4, "grip_count_threshold": 4, "max_grip_count": 8, "release_tolerance": 0.005,
+             "disable_collisions_on_attach": False}
+
+_GRIPPER_LINKS = "".join(f"        <gripper_link>{link}</gripper_link>\n" for link in GRASP_FIX["gripper_links"])
+GRASP_FIX_BLOCK = f"""  <gazebo>
     <plugin name="gazebo_grasp_fix" filename="libgazebo_grasp_fix.so">
       <arm>
         <arm_name>arm</arm_name>
-        <palm_link>link6</palm_link>
-        <gripper_link>finger1</gripper_link>
-        <gripper_link>finger2</gripper_link>
-      </arm>
-      <forces_angle_tolerance>100</forces_angle_tolerance>
-      <update_rate>4</update_rate>
-      <grip_count_threshold>4</grip_count_threshold>
-      <max_grip_count>8</max_grip_count>
-      <release_tolerance>0.005</release_tolerance>
-      <disable_collisions_on_attach>false</disable_collisions_on_attach>
+        <palm_link>{GRASP_FIX["palm_link"]}</palm_link>
+{_GRIPPER_LINKS}      </arm>
+      <forces_angle_tolerance>{GRASP_FIX["forces_angle_tolerance"]}</forces_angle_tolerance>
+      <update_rate>{GRASP_FIX["update_rate"]}</update_rate>
+      <grip_count_threshold>{GRASP_FIX["grip_count_threshold"]}</grip_count_threshold>
+      <max_grip_count>{GRASP_FIX["max_grip_count"]}</max_grip_count>
+      <release_tolerance>{GRASP_FIX["release_tolerance"]}</release_tolerance>
+      <disable_collisions_on_attach>{str(GRASP_FIX["disable_collisions_on_attach"]).lower()}</disable_collisions_on_attach>
       <contact_topic>__default_topic__</contact_topic>
     </plugin>
   </gazebo>

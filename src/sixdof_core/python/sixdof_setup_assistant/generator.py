@@ -22,7 +22,7 @@ import yaml
 
 from . import grasping, templates
 from .answers import load_answers
-from .infer import complete_gripper_states, infer
+from .infer import Plan, complete_gripper_states, infer
 from .xacro_loader import load_description
 
 MANIFEST = ".setup_assistant.yaml"
@@ -95,6 +95,14 @@ class Options:
 
 
 @dataclass
+class Analysis:
+    model: dict[str, Any]  # the core's description of the input
+    plan: Plan
+    repairs: dict[str, Any]  # the core's repairs report
+    urdf: str  # path of the repaired URDF
+
+
+@dataclass
 class Result:
     path: str
     created: list[str] = field(default_factory=list)
@@ -143,17 +151,15 @@ def generate(options: Options) -> Result:
         shutil.rmtree(staging_root, ignore_errors=True)
 
 
-def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir: str, staging_root: str) -> Result:
-    work = os.path.join(staging_root, "work")
-    os.makedirs(work)
+def _analyze(urdf_text: str, answers: dict[str, Any], env: dict[str, str], work: str) -> Analysis:
+    """The core's description of the model, the choices for it and its repairs (inertias, the gripper's grasp
+    geometry and TCP frame), with the repaired URDF written into work."""
     urdf_in = os.path.join(work, "input.urdf")
     _write(urdf_in, urdf_text)
     model_path = os.path.join(work, "model.yaml")
-    env = core_environment(options.urdf)
     run_core(["--urdf", urdf_in, "--describe", model_path], echo=False, env=env)
     model = yaml.safe_load(_read(model_path))
     plan = infer(model, answers)
-    # The repairs: inertias of moving links without a usable one, the gripper's grasp geometry and its TCP frame.
     repaired_urdf = os.path.join(work, "repaired.urdf")
     repairs_path = os.path.join(work, "repairs.yaml")
     run_core(["--urdf", urdf_in, "--urdf-out", repaired_urdf, "--repairs", repairs_path,
@@ -161,8 +167,30 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
     repairs = yaml.safe_load(_read(repairs_path))
     if repairs.get("grasp"):
         complete_gripper_states(plan, repairs["grasp"])
-    urdf_text = _read(repaired_urdf)
-    core_urdf = repaired_urdf
+    return Analysis(model=model, plan=plan, repairs=repairs, urdf=repaired_urdf)
+
+
+def grasping_file(urdf: str, answers: str = "") -> str | None:
+    """The config/grasping.yaml `generate` writes for this description and answers file (None: no gripper), without
+    sampling the collision matrix: for a description package that keeps its own config (sixdof_description).
+    Raises what `generate` raises on bad input."""
+    loaded = load_answers(answers)
+    urdf_text = load_description(urdf, {})
+    with tempfile.TemporaryDirectory(prefix="setup_assistant.") as work:
+        analysis = _analyze(urdf_text, loaded, core_environment(urdf), work)
+    if not templates.has_grasping(analysis.plan):
+        return None
+    return grasping.grasping_yaml(analysis.plan, analysis.repairs, loaded)
+
+
+def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir: str, staging_root: str) -> Result:
+    work = os.path.join(staging_root, "work")
+    os.makedirs(work)
+    env = core_environment(options.urdf)
+    analysis = _analyze(urdf_text, answers, env, work)
+    model, plan, repairs = analysis.model, analysis.plan, analysis.repairs
+    urdf_text = _read(analysis.urdf)
+    core_urdf = analysis.urdf
     name = options.name or answers.get("name") or f"{model['robot'].lower()}_sixdof_config"
     if not PACKAGE_NAME.match(name):
         raise GenerationError(f"package name '{name}' is not a valid ROS package name (^[a-z][a-z0-9_]*$)")
@@ -224,7 +252,7 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         "README.md": templates.readme(name, plan, report, command)
         + grasping.readme_sections(plan, model, repairs, answers),
     }
-    if plan.gripper and repairs.get("grasp"):
+    if templates.has_grasping(plan):
         files["config/grasping.yaml"] = grasping.grasping_yaml(plan, repairs, answers)
     staged = os.path.join(staging_root, name)
     os.makedirs(staged)

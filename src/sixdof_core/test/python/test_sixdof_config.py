@@ -1,5 +1,6 @@
-"""Issue #10 6(a): sixdof_description's committed config is what the setup assistant generates for the arm
-with the answers its CAD generator writes (config/setup_answers.yaml)."""
+"""Issue #10 6(a), #21: sixdof_description's committed config (SRDF, kinematics, joint limits, controllers,
+grasping.yaml) is what the setup assistant generates for the arm with the answers its CAD generator writes
+(config/setup_answers.yaml)."""
 
 from __future__ import annotations
 
@@ -58,6 +59,14 @@ def test_controllers_are_the_generated_ones(package: Path) -> None:
         # The design adds PID gains from its masses (for effort-controlled hardware; the simulator's position
         # servos and move_group do not read them): everything else is the generator's.
         assert generated[name] == {k: v for k, v in controller.items() if k != "gains"}, name
+
+
+def test_grasping_is_the_generated_one(package: Path) -> None:
+    # With the URDF's gazebo_grasp_fix settings as answers (the paper's 100 deg, 4 Hz, 4 of 8).
+    assert (package / "config/grasping.yaml").read_text() == (CONFIG / "grasping.yaml").read_text()
+    fix = load(CONFIG / "grasping.yaml")["grasp_fix"]
+    assert (fix["forces_angle_tolerance"], fix["update_rate"], fix["grip_count_threshold"], fix["max_grip_count"]) == (
+        100, 4, 4, 8)
 
 
 def test_the_urdf_is_used_as_it_is(package: Path) -> None:

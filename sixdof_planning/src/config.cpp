@@ -214,6 +214,7 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   MoveGroupConfig config;
   config.urdf = requireString(nh, "robot_description");
   config.srdf = requireString(nh, "robot_description_semantic");
+  if (nh.hasParam("robot_description_grasping")) config.grasping_yaml = requireString(nh, "robot_description_grasping");
   loadKinematics(nh, &config);
   loadJointLimits(nh, &config);
   config.default_robot_padding =
@@ -288,6 +289,9 @@ void checkConfig(const sixdof_core::RobotModel& model, MoveGroupConfig* config) 
                           controller.name + "')");
       }
     }
+  }
+  if (!config->grasping_yaml.empty()) {
+    config->grasping = parseGraspingConfig(config->grasping_yaml, model, "parameter robot_description_grasping");
   }
 }
 

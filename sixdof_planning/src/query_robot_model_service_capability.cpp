@@ -70,6 +70,18 @@ sixdof_msgs::RobotModelEndEffector toMsg(const sixdof_core::EndEffector& eef) {
   return msg;
 }
 
+sixdof_msgs::RobotModelGroupState stateMsg(const std::string& group, const GripperState& state) {
+  return toMsg(sixdof_core::GroupState{state.name, group, state.positions});
+}
+
+geometry_msgs::Vector3 vectorMsg(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 msg;
+  msg.x = v.x();
+  msg.y = v.y();
+  msg.z = v.z();
+  return msg;
+}
+
 // Every item of `items` as its message, appended to `out` in the model's order.
 template <class Items, class Msg>
 void appendMsgs(const Items& items, std::vector<Msg>* out) {
@@ -102,6 +114,25 @@ shape_msgs::Mesh meshMsg(const sixdof_core::MeshData& mesh) {
   return msg;
 }
 }  // namespace
+
+sixdof_msgs::RobotModelGripper describeGripper(const GraspingConfig& grasping) {
+  sixdof_msgs::RobotModelGripper msg;
+  msg.group = grasping.group;
+  msg.end_effector = grasping.end_effector;
+  msg.tcp_frame = grasping.tcp_frame;
+  msg.parent_link = grasping.parent_link;
+  msg.tcp = eigenToPose(grasping.tcp);
+  msg.open = stateMsg(grasping.group, grasping.open);
+  msg.closed = stateMsg(grasping.group, grasping.closed);
+  msg.max_opening = grasping.max_opening;
+  msg.closed_width = grasping.closed_width;
+  msg.finger_reach = grasping.finger_reach;
+  msg.palm_depth = grasping.palm_depth;
+  msg.pad_links = grasping.pad_links;
+  msg.closing_direction = vectorMsg(grasping.closing_direction);
+  msg.approach_direction = vectorMsg(grasping.approach_direction);
+  return msg;
+}
 
 void describeRobotModel(const sixdof_core::RobotModel& model, sixdof_msgs::GetRobotModelResponse* response) {
   response->robot_name = model.name();
@@ -144,6 +175,7 @@ std::string describeCollisionGeometry(const sixdof_core::RobotModel& model,
 ErrorCode QueryRobotModelService::handle(const sixdof_msgs::GetRobotModelRequest& request,
                                     sixdof_msgs::GetRobotModelResponse& response) {
   describeRobotModel(*context_->model(), &response);
+  if (context_->config().grasping) response.grippers.push_back(describeGripper(*context_->config().grasping));
   ErrorCode code = makeSuccess(service_);
   if (request.include_collision_geometry) {
     const std::string error = describeCollisionGeometry(*context_->model(), &response.link_geometries);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -8,6 +9,8 @@
 #include <ros/node_handle.h>
 
 #include <sixdof_core/robot_model.h>
+
+#include "sixdof_planning/grasping_config.h"
 
 namespace sixdof_planning {
 
@@ -65,6 +68,10 @@ struct OccupancyMapConfig {
 struct MoveGroupConfig {
   std::string urdf;
   std::string srdf;
+  // robot_description_grasping: a config package's grasping.yaml text (empty: the parameter is not set), and what
+  // checkConfig reads from it (get_robot_model serves it).
+  std::string grasping_yaml;
+  std::optional<GraspingConfig> grasping;
   std::map<std::string, GroupKinematicsConfig> kinematics;  // by group
   std::map<std::string, JointLimitConfig> joint_limits;     // by active joint, every one filled
   std::vector<ControllerConfig> controllers;
@@ -97,8 +104,9 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
 
 // Cross-checks the configuration against the model (groups, joints, controllers). Fills joint limits the
 // YAML leaves out from the URDF (velocity) and throws ConfigError when an active joint ends up without a
-// velocity or acceleration limit, when a kinematics entry names an unknown group or solver, or a controller
-// an unknown joint or a joint already taken by another controller.
+// velocity or acceleration limit, when a kinematics entry names an unknown group or solver, a controller
+// an unknown joint or a joint already taken by another controller, or the grasping information does not fit the
+// model (parseGraspingConfig).
 void checkConfig(const sixdof_core::RobotModel& model, MoveGroupConfig* config);
 
 }  // namespace sixdof_planning

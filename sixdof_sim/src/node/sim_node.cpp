@@ -19,6 +19,7 @@
 #include "controller_params.h"
 #include "conversions.h"
 #include "gripper_action.h"
+#include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/world_file.h"
 #include "trajectory_action.h"
 #include "world_parameter.h"
@@ -113,14 +114,22 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
   WorldOptions world_options;
   world_options.time_step = options_.physics_step;
   world_options.package_search_roots = packageRoots();
+  // The grasp fix: the URDF's gazebo_grasp_fix block, else the grasp_fix of the config package's grasping.yaml
+  // (robot_description_grasping; the World lets the block win).
+  std::string grasping;
+  if (nh_.getParam("robot_description_grasping", grasping) && !grasping.empty()) {
+    world_options.grasp_fix_config =
+        parseGraspingYaml(grasping, "parameter " + nh_.resolveName("robot_description_grasping"));
+  }
   world_options.grasp_fix_enabled = false;
   world_ = std::make_unique<World>(urdf, spec, world_options);
   // The world as loaded (defaults applied), for the Python nodes and scripts: they never parse the file.
   pnh_.setParam("world", worldParameter(spec));
-  // grasp_fix defaults to true in every launch file; a robot without the URDF block (no gripper, or one that
-  // is not set up for it) simply runs without it.
+  // grasp_fix defaults to true in every launch file; a robot with neither (no gripper, or one that is not set up
+  // for it) simply runs without it.
   if (options_.grasp_fix && !world_->graspFixAvailable()) {
-    ROS_INFO_STREAM("[sixdof_sim] grasp fix off: the URDF has no <gazebo><plugin name=\"gazebo_grasp_fix\"> block");
+    ROS_INFO_STREAM("[sixdof_sim] grasp fix off: neither a <gazebo><plugin name=\"gazebo_grasp_fix\"> block in the "
+                    "URDF nor a grasp_fix in " << nh_.resolveName("robot_description_grasping"));
   } else if (options_.grasp_fix) {
     world_->setGraspFixEnabled(true);
   }

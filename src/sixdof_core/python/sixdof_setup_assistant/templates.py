@@ -25,7 +25,7 @@ def _number(value: float) -> str:
 def srdf_skeleton(plan: Plan) -> str:
     """The SRDF the inferred/answered plan asks for, before the core adds the collision matrix."""
     lines = ['<?xml version="1.0"?>', f"<!-- {HEADER}. Groups, states, end effector and virtual joint edited here",
-             "     are kept when it runs again; the Adjacent/Default/Always/Never pairs are recomputed. -->",
+             "     are kept when it runs again; the Adjacent/Default/Always/Never/Gripper pairs are recomputed. -->",
              f"<robot name={quoteattr(plan.robot)}>"]
     for group in (plan.arm, plan.gripper):
         if group is None:
@@ -160,10 +160,17 @@ install(DIRECTORY config launch urdf DESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINA
 """
 
 
+def has_grasping(plan: Plan) -> bool:
+    """Whether the package has a config/grasping.yaml: a gripper with an end effector (the core's grasp geometry)."""
+    return plan.gripper is not None and plan.end_effector is not None
+
+
 def _files(name: str, plan: Plan) -> dict[str, str]:
+    # grasping: "" loads no grasping information (the default would be the sixdof arm's).
     return {"urdf": f"$(find {name})/urdf/{plan.robot}.urdf", "srdf": f"$(find {name})/config/{plan.robot}.srdf",
             "kinematics": f"$(find {name})/config/kinematics.yaml",
             "joint_limits": f"$(find {name})/config/joint_limits.yaml",
+            "grasping": f"$(find {name})/config/grasping.yaml" if has_grasping(plan) else "",
             "controllers_file": f"$(find {name})/config/controllers.yaml"}
 
 
@@ -184,7 +191,8 @@ def demo_launch(name: str, plan: Plan) -> str:
        doc="simulated seconds per wall-clock second when not headless; 0 runs as fast as possible"/>
   <arg name="use_sim_time" default="true" doc="make the ROS graph follow the simulator's /clock"/>
   <arg name="grasp_fix" default="true"
-       doc="attach objects squeezed by both fingers to the palm (only a robot whose URDF has the grasp-fix block)"/>
+       doc="attach objects squeezed by both fingers to the palm (the gazebo_grasp_fix block of the URDF, else
+            the grasp_fix of grasping.yaml; without either it is off)"/>
 
   <include file="$(find sixdof_bringup)/launch/demo.launch">
 {passed}
@@ -419,7 +427,8 @@ Named states:
 {states}
 
 Self-collision matrix: {c['link_pairs']} link pairs, {c['samples']} samples: {c['Adjacent']} Adjacent,
-{c['Default']} Default, {c['Always']} Always, {c['Never']} Never disabled; {c['enabled']} checked when planning.
+{c['Default']} Default, {c['Always']} Always, {c['Never']} Never, {c['Gripper']} Gripper (links of the gripper that
+touch in some of its states) disabled; {c['enabled']} checked when planning.
 
 ## Editing and re-running
 

@@ -42,6 +42,13 @@ def test_every_file_is_written_and_parses(generated: dict[str, Path], robot: str
     assert set(args) == {"rviz", "headless", "world", "real_time_factor", "use_sim_time", "grasp_fix"}
     assert all(a.get("doc") for a in args.values())
     assert demo.find("include").get("file") == "$(find sixdof_bringup)/launch/demo.launch"
+    # The grasping information goes to move_group and the simulator; without a gripper none (not the default's).
+    has_gripper = bool(EXPECTED[robot][4])
+    assert (package / "config/grasping.yaml").is_file() == has_gripper
+    for launch in ("demo.launch", "move_group.launch"):
+        include = ET.parse(package / "launch" / launch).getroot().find("include")
+        passed = {a.get("name"): a.get("value") for a in include.findall("arg")}
+        assert passed["grasping"] == (f"$(find {package.name})/config/grasping.yaml" if has_gripper else ""), launch
     world = yaml.safe_load((package / "config/world.yaml").read_text())
     assert [t["name"] for t in world["tables"]] == ["table"] and "objects" not in world
     table = world["tables"][0]
@@ -81,7 +88,7 @@ def test_groups_solver_states_and_controllers_are_inferred(generated: dict[str, 
         assert "gripper" not in groups and "gripper_controller" not in listed
     assert (root.find("virtual_joint") is not None) == virtual
     reasons = {d.get("reason") for d in root.findall("disable_collisions")}
-    assert "Adjacent" in reasons and reasons <= {"Adjacent", "Default", "Always", "Never"}
+    assert "Adjacent" in reasons and reasons <= {"Adjacent", "Default", "Always", "Never", "Gripper"}
 
 
 def test_ur_like_joints_are_continuous_and_xacro_args_pass(tmp_path: Path) -> None:

@@ -33,14 +33,15 @@ fuzz:
 	scripts/fuzz.sh
 
 # Randomized pick and place on a headless stack: 100 seeded trials, failures classified (the "pick" section of
-# bench/results.md); ARGS go to bench/pick_bench.py (e.g. ARGS="--trials 20 --seed 7").
+# bench/results.md); CONFIG=<package name or folder>: a generated config package's robot instead of the sixdof arm
+# ("pick, <package>"); ARGS go to bench/pick_bench.py (e.g. ARGS="--trials 20 --seed 7").
 bench-pick: setup
-	scripts/bench_pick.sh $(ARGS)
+	scripts/bench_pick.sh $(if $(CONFIG),--config $(CONFIG)) $(ARGS)
 
 # Soak, not part of `make test`: 500 pick-and-place cycles with every node's RSS sampled; fails on any failed
-# cycle or a node growing by more than 5 MB (the "soak" section of bench/results.md).
+# cycle or a node growing by more than 5 MB (the "soak" section of bench/results.md); CONFIG as for bench-pick.
 soak: setup
-	scripts/bench_pick.sh --soak $(ARGS)
+	scripts/bench_pick.sh --soak $(if $(CONFIG),--config $(CONFIG)) $(ARGS)
 
 # Build cost of a fresh clone (cold, against the previous defaults); add ARGS=--apt for the Debian packages.
 bench-build: setup

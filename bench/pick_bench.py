@@ -7,13 +7,16 @@ position and yaw inside --region), waits until the planning scene has it, picks 
 (ArmDriver: grasp, lift, release_at, retreat) and puts it down at a random free target of the same region.
 A trial succeeds when the released object rests within --tolerance of the target and within --tilt of upright.
 Every failure is classified:
-  planning   a motion could not be planned (or executed) for a reason other than IK
-  ik         no inverse kinematics solution for a grasp, approach or place pose
-  grasp      the gripper closed but the object was not held when lifted
+  planning     a motion could not be planned (or executed)
+  unreachable  no top-down grasp or place at that spot (ArmDriver's UNREACHABLE: the object does not fit the
+               gripper, or the arm cannot reach the pose above it or descend straight to it)
+  grasp        the gripper closed but the object was not held when lifted
   slip       the object was held after lifting but was lost before it was released
   place      the object was released but came to rest off the target (or tilted)
   cleanup    the trial succeeded but the gripper or arm could not be brought back afterwards
-The object is deleted after each trial, so each trial starts from the same empty table.
+The object is deleted after each trial, so each trial starts from the same empty table. The robot is the running
+stack's (any config package: `scripts/bench_pick.sh --config PKG`): its arm, gripper and home state come from the
+package through move_group (ArmDriver).
 
 With --rss, every ROS node's resident set size is sampled after each trial (the soak): the report gives each
 node's growth from the end of the warm-up to the end, and the run fails when any grows by more than
@@ -41,6 +44,7 @@ import rospy
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import ArmDriver, SixdofCommanderError
+from sixdof_commander.arm_driver import UNREACHABLE
 from std_msgs.msg import ColorRGBA
 from std_srvs.srv import Empty
 
@@ -136,6 +140,7 @@ class Bench:
         self.get_state = rospy.ServiceProxy(f"{sim}/get_object_state", GetObjectState)
         self.reset_world = rospy.ServiceProxy(f"{sim}/reset_world", Empty)
         self.recoveries = 0
+        self.home = args.home or self.driver.home
 
     # The random layout -------------------------------------------------------------------------------
     def random_point(self) -> tuple[float, float]:
@@ -192,9 +197,8 @@ class Bench:
             time.sleep(0.05)
         return False
 
-    def classify(self, failure: str) -> str:
-        text = failure.lower()
-        return "ik" if "ik" in text.split() or "no_ik_solution" in text or "inverse kinematics" in text else "planning"
+    def classify(self) -> str:
+        return "unreachable" if self.driver.last_failure_kind == UNREACHABLE else "planning"
 
     def held(self) -> bool:
         return bool(self.get_state(OBJECT).attached_to)
@@ -212,17 +216,17 @@ class Bench:
         rest_z = self.half_height(obj.shape)
         try:
             if not driver.grasp(OBJECT):
-                trial.outcome, trial.detail = self.classify(driver.last_failure), driver.last_failure
+                trial.outcome, trial.detail = self.classify(), driver.last_failure
             elif not driver.lift():
-                trial.outcome, trial.detail = self.classify(driver.last_failure), driver.last_failure
+                trial.outcome, trial.detail = self.classify(), driver.last_failure
             elif not self.held():
                 trial.outcome, trial.detail = "grasp", "the object was not held after lifting"
             elif not driver.release_at([trial.target[0], trial.target[1], rest_z]):
                 lost = not self.held()
-                trial.outcome = "slip" if lost else self.classify(driver.last_failure)
+                trial.outcome = "slip" if lost else self.classify()
                 trial.detail = driver.last_failure
             elif not driver.retreat():
-                trial.outcome, trial.detail = self.classify(driver.last_failure), driver.last_failure
+                trial.outcome, trial.detail = self.classify(), driver.last_failure
         except SixdofCommanderError as err:
             trial.outcome, trial.detail = "planning", str(err)
         trial.sim_seconds = rospy.get_time() - sim_start
@@ -256,18 +260,17 @@ class Bench:
         driver = self.driver
         # The object goes first: whatever a failure left between the fingers is then gone.
         self.delete(OBJECT)  # unknown objects are refused: that is fine here
-        if driver._held is not None:  # a failure left the object in the hand
-            if OBJECT in driver.scene.get_attached_object_names():
-                driver.arm.detach_object(OBJECT)
-            driver._held = None
-            driver._object_in_tcp = None
+        # A failure may have left the object attached in the planning scene and in the driver's hand.
+        if OBJECT in driver.scene.get_attached_object_names():
+            driver.arm.detach_object(OBJECT)
+        driver.forget_held()
         if not self.wait_in_scene(False):
             raise SixdofCommanderError(f"'{OBJECT}' stayed in the planning scene after it was deleted")
         rospy.sleep(0.2)
         if not driver.gripper_open():
             raise SixdofCommanderError(f"cannot open the gripper after the trial: {driver.last_failure}")
-        if not driver.moveto_named(self.args.home):
-            raise SixdofCommanderError(f"cannot return to '{self.args.home}': {driver.last_failure}")
+        if not driver.moveto_named(self.home):
+            raise SixdofCommanderError(f"cannot return to '{self.home}': {driver.last_failure}")
 
 
 def median(values: list[float]) -> float:
@@ -282,17 +285,18 @@ def percentile(values: list[float], q: float) -> float:
 
 
 def report(
-    args: argparse.Namespace, trials: list[Trial], wall: float, rss: RssTracker | None, recoveries: int
+    args: argparse.Namespace, trials: list[Trial], wall: float, rss: RssTracker | None, recoveries: int, robot: str
 ) -> tuple[str, bool]:
     ok = [t for t in trials if t.outcome == "ok"]
     failures = Counter(t.outcome for t in trials if t.outcome != "ok")
     rate = 100.0 * len(ok) / len(trials) if trials else 0.0
-    title = "soak" if args.rss else "pick"
+    title = ("soak" if args.rss else "pick") + (f", {args.label}" if args.label else "")
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     lines = [
         f"## {title} (scripts/bench_pick.sh)",
         "",
-        f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}.",
+        f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}, robot '{robot}'"
+        + (f" (package {args.label})." if args.label else "."),
         f"{len(trials)} randomized pick-and-place trials, seed {args.seed}"
         + (f" (only trials {', '.join(map(str, args.only))} of the sequence)" if args.only else "")
         + ", headless (simulator as fast as possible),",
@@ -309,7 +313,7 @@ def report(
         if of_shape:
             good = sum(t.outcome == "ok" for t in of_shape)
             lines.append(f"| success, {shape} | {good}/{len(of_shape)} |")
-    for kind in ("planning", "ik", "grasp", "slip", "place", "cleanup"):
+    for kind in ("planning", "unreachable", "grasp", "slip", "place", "cleanup"):
         lines.append(f"| failures: {kind} | {failures.get(kind, 0)} |")
     lines.append(f"| world resets to recover (gripper or arm stuck after a trial) | {recoveries} |")
     errors = [t.error_mm for t in ok]
@@ -373,7 +377,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--min-separation", type=float, default=0.10, help="start to target, at least (m)")
     parser.add_argument("--tolerance", type=float, default=0.01, help="allowed place error (m, default: 0.01)")
     parser.add_argument("--tilt", type=float, default=10.0, help="allowed tilt from upright (deg, default: 10)")
-    parser.add_argument("--home", default="home pose", help="named state each trial returns to")
+    parser.add_argument("--home", help="named state each trial returns to (default: the arm group's first SRDF state)")
     parser.add_argument("--velocity-scaling", type=float, default=0.5, help="max velocity scaling in (0, 1]")
     parser.add_argument("--sim-ns", default="sixdof_sim", help="namespace of the simulator's services")
     parser.add_argument("--wait", type=float, default=30.0, help="wall seconds to wait for servers and the scene")
@@ -381,6 +385,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--warmup", type=int, default=20, help="trials before the RSS baseline (default: 20)")
     parser.add_argument("--max-growth-mb", type=float, default=5.0, help="allowed RSS growth per node (MB)")
     parser.add_argument("--report", help="write the markdown report here too")
+    parser.add_argument(
+        "--label", default="", help="the robot's config package, named in the report's title (scripts/bench_pick.sh)"
+    )
     args = parser.parse_args(argv)
     if args.only is not None:
         if any(n < 1 for n in args.only):
@@ -412,8 +419,8 @@ def main() -> int:
     rospy.init_node("pick_bench", anonymous=True)
     try:
         bench = Bench(args)
-        if not bench.driver.moveto_named(args.home):
-            print(f"error: cannot reach '{args.home}': {bench.driver.last_failure}", file=sys.stderr)
+        if not bench.driver.moveto_named(bench.home):
+            print(f"error: cannot reach '{bench.home}': {bench.driver.last_failure}", file=sys.stderr)
             return 2
         rss = RssTracker() if args.rss else None
         trials: list[Trial] = []
@@ -440,7 +447,8 @@ def main() -> int:
                 + f"  [{trial.wall_seconds:.1f} s wall]",
                 flush=True,
             )
-        text, passed = report(args, trials, time.monotonic() - start, rss, bench.recoveries)
+        robot = bench.driver.arm.robot_description.name
+        text, passed = report(args, trials, time.monotonic() - start, rss, bench.recoveries, robot)
     except (SixdofCommanderError, rospy.ROSException, rospy.ServiceException) as err:
         print(f"error: {err}", file=sys.stderr)
         return 2

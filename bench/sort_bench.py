@@ -221,7 +221,7 @@ class Bench:
             if time.monotonic() > end:
                 break
             self.clear()
-            self.driver.moveto_named(self.args.home)
+            self.driver.moveto_named(self.args.home or self.driver.home)
             for obj in self.layout(index):
                 response = self.spawn(obj)
                 if not response.success:
@@ -285,7 +285,7 @@ def main() -> int:
         help="where objects are spawned (m)",
     )
     parser.add_argument("--min-separation", type=float, default=0.09, help="between object centres (m)")
-    parser.add_argument("--home", default="home pose")
+    parser.add_argument("--home", help="named state of the arm (default: the arm group's first SRDF state)")
     parser.add_argument("--sort-timeout", type=float, default=900.0, help="wall seconds per sort_objects.py run")
     parser.add_argument("--report", default="", help="write the report section (markdown) to this file")
     parser.add_argument(

@@ -1,10 +1,15 @@
 #!/usr/bin/env python3
 """Pick a named object of the simulated world and place it at (x, y) on the table, through the paper's
-stages (home pose, pick pose, after pick pose, place pose, after place pose) with grasps computed from
-the object's pose. Every repetition is verified: the object must rest within --tolerance of the target.
-Odd repetitions carry the object to --place, even ones back to where it started.
+stages (home, pick pose, after pick pose, place pose, after place pose) with top-down grasps computed from
+the object's pose and the gripper's grasping information (the config package's, from move_group). Every
+repetition is verified: the object must rest within --tolerance of the target. Odd repetitions carry the
+object to --place, even ones back to where it started. The arm group, the gripper and the home state are the
+package's; nothing here names a robot.
 
     rosrun sixdof_scripts pick_place.py --object red_cube --place 0.40 0.20 --repetitions 2
+
+Exit codes: 0 every repetition placed the object, 1 a stage failed (an object the robot cannot grasp from the
+top at its spot, or place at the target, is "unreachable"), 2 bad arguments or a missing node or object.
 """
 
 import argparse
@@ -42,7 +47,7 @@ def pick_and_place(driver: ArmDriver, name: str, target: tuple[float, float], re
     ]
     for label, action in stages:
         if not timed(label, action):
-            print(f"  failure: {driver.last_failure}", file=sys.stderr)
+            print(f"  failure ({driver.last_failure_kind}): {driver.last_failure}", file=sys.stderr)
             return False
     return True
 
@@ -60,7 +65,9 @@ def main() -> int:
     )
     parser.add_argument("--repetitions", type=int, default=1, help="pick-and-place cycles (default: 1)")
     parser.add_argument("--tolerance", type=float, default=0.01, help="allowed final error, metres (default: 0.01)")
-    parser.add_argument("--home", default="home pose", help="named state to start each cycle from")
+    parser.add_argument(
+        "--home", help="named state of the arm to start each cycle from (default: the arm group's first SRDF state)"
+    )
     parser.add_argument("--velocity-scaling", type=float, default=0.5, help="max velocity scaling in (0, 1]")
     parser.add_argument("--ns", default="", help="namespace of the planner and simulator nodes")
     args = parser.parse_args(rospy.myargv(sys.argv)[1:])
@@ -74,6 +81,7 @@ def main() -> int:
         driver = ArmDriver(
             ns=args.ns, velocity_scaling=args.velocity_scaling, acceleration_scaling=args.velocity_scaling
         )
+        home = args.home or driver.home
         start = object_position(driver, args.object)
         targets = [tuple(args.place), start[:2]]
         succeeded = 0
@@ -82,7 +90,7 @@ def main() -> int:
             target = targets[i % 2]
             print(f"repetition {i + 1}/{args.repetitions}: '{args.object}' -> ({target[0]:.3f}, {target[1]:.3f})")
             cycle_start = time.monotonic()
-            if not pick_and_place(driver, args.object, target, start[2], args.home):
+            if not pick_and_place(driver, args.object, target, start[2], home):
                 break
             # Let the released object settle before measuring where it rests.
             rospy.sleep(0.5)
@@ -97,7 +105,7 @@ def main() -> int:
                 break
             succeeded += 1
         if succeeded == args.repetitions:
-            timed(args.home, lambda: driver.moveto_named(args.home))
+            timed(home, lambda: driver.moveto_named(home))
         print(
             f"{succeeded}/{args.repetitions} pick-and-place cycles succeeded in {time.monotonic() - total_start:.1f} s"
         )

@@ -139,8 +139,9 @@ class Sorter:
             # Fingers held back while the grasp fix still held the object: once it lets go they open further.
             rospy.sleep(0.5)
             opened = driver.gripper.open()
-        if 2.0 * opened.position < width + 0.002:
-            outcome.detail = f"the gripper opened to {2.0 * opened.position:.3f} m only, the object is {width:.3f} m"
+        opening = driver.gripper_opening(opened.position)
+        if opening < width + 0.002:
+            outcome.detail = f"the gripper opened to {opening:.3f} m only, the object is {width:.3f} m"
             self._drop(obj.id, outcome)
             outcome.result = "release_failed"
             return outcome
@@ -201,7 +202,9 @@ def ground_truth(driver: ArmDriver, world_bins: list[Bin], ns: str) -> list[dict
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--home", default="home pose", help="named state to detect from (default: 'home pose')")
+    parser.add_argument(
+        "--home", help="named state of the arm to detect from (default: the arm group's first SRDF state)"
+    )
     parser.add_argument("--max-attempts", type=int, default=2, help="attempts per object before it is skipped")
     parser.add_argument("--settle", type=float, default=0.5, help="simulated seconds before a frame counts")
     parser.add_argument("--velocity-scaling", type=float, default=0.5, help="max velocity scaling in (0, 1]")
@@ -231,10 +234,11 @@ def main() -> int:
         driver = ArmDriver(
             ns=args.ns, velocity_scaling=args.velocity_scaling, acceleration_scaling=args.velocity_scaling
         )
-        sorter = Sorter(driver, world_bins, args.home, args.ns, args.settle)
+        home = args.home or driver.home
+        sorter = Sorter(driver, world_bins, home, args.ns, args.settle)
         attempts: list[tuple[tuple[float, float, float], int]] = []  # where an attempt failed, and how often
-        if not driver.moveto_named(args.home):
-            print(f"error: cannot reach '{args.home}': {driver.last_failure}", file=sys.stderr)
+        if not driver.moveto_named(home):
+            print(f"error: cannot reach '{home}': {driver.last_failure}", file=sys.stderr)
             return 1
         first = True
         while not rospy.is_shutdown():
@@ -279,8 +283,8 @@ def main() -> int:
                 f"{outcome.bin or '-':<10s} {verdict}  ({outcome.seconds:.1f} s)",
                 flush=True,
             )
-            if not driver.moveto_named(args.home):
-                print(f"error: cannot return to '{args.home}': {driver.last_failure}", file=sys.stderr)
+            if not driver.moveto_named(home):
+                print(f"error: cannot return to '{home}': {driver.last_failure}", file=sys.stderr)
                 break
         # Skipped objects: detected, still out of the bins after all attempts.
         truth = ground_truth(driver, world_bins, args.ns)

@@ -136,7 +136,21 @@ def test_low_object_grasp_keeps_the_fingertips_above_the_support():
     assert tcp[2, 3] == pytest.approx(0.06 - spec.max_grasp_depth)
 
 
-def test_object_lower_than_the_fingertips_allow_is_refused():
+def test_fingers_reaching_far_beyond_the_tcp_grip_a_low_object_along_their_pads():
+    # Pads 27.5 mm on either side of the tcp: the tcp stays above a 3 cm cube, the pads cover it from 5 mm up.
+    spec = GraspSpec(tcp_in_tip=SPEC.tcp_in_tip, finger_axis=SPEC.finger_axis, max_width=0.08, reach=0.0275)
+    tcp, _ = grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.015), shape(SolidPrimitive.BOX, 0.03, 0.03, 0.03)), spec)
+    assert tcp[2, 3] == pytest.approx(0.0325)
+
+
+def test_a_tall_object_stays_clear_of_the_palm():
+    # The palm 2 cm behind the tcp: a 6 cm cube is held with its top 5 mm below the palm.
+    spec = GraspSpec(tcp_in_tip=SPEC.tcp_in_tip, finger_axis=SPEC.finger_axis, max_width=0.08, palm_depth=0.02)
+    tcp, _ = grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.03), shape(SolidPrimitive.BOX, 0.06, 0.06, 0.06)), spec)
+    assert tcp[2, 3] == pytest.approx(0.06 - 0.02 + spec.clearance)
+
+
+def test_object_too_low_to_grip_is_refused():
     spec = GraspSpec(tcp_in_tip=SPEC.tcp_in_tip, finger_axis=SPEC.finger_axis, max_width=0.08, reach=0.03)
     with pytest.raises(SixdofCommanderError, match="too low for a top-down grasp"):
-        grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.015), shape(SolidPrimitive.BOX, 0.03, 0.03, 0.03)), spec)
+        grasp_tcp_pose(object_geometry(at(0.3, 0.0, 0.004), shape(SolidPrimitive.BOX, 0.03, 0.03, 0.008)), spec)

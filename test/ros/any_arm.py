@@ -186,7 +186,7 @@ def test_gripper_works_or_names_what_is_missing(stack: Stack) -> None:
         driver = ArmDriver(group_name=stack.group, wait_for_servers=10.0)
         assert driver.gripper is None
         for method, args in ((driver.gripper_open, ()), (driver.gripper_close, ()), (driver.pick, ("box",))):
-            with pytest.raises(SixdofCommanderError, match=r"has no gripper: its SRDF has no group 'gripper'"):
+            with pytest.raises(SixdofCommanderError, match=r"has no gripper: move_group has no grasping information"):
                 method(*args)
         assert driver.moveto_named("home"), f"{stack.robot}: {driver.last_failure}"
         return
@@ -194,7 +194,7 @@ def test_gripper_works_or_names_what_is_missing(stack: Stack) -> None:
     for command, target in ((gripper.close, gripper.close_position), (gripper.open, gripper.open_position)):
         result = command()
         assert result.reached_goal, f"{stack.robot}: gripper stopped at {result.position}, goal {target}"
-    # ArmDriver's grasp geometry, the fingers' collision boxes from move_group's get_robot_model: the fixture's
+    # ArmDriver's grasp geometry, the package's grasping.yaml from move_group's get_robot_model: the fixture's
     # fingertips end exactly at the tcp (both 0.1 m below the hand), so they reach 0 beyond it.
     driver = ArmDriver(group_name=stack.group, wait_for_servers=STARTUP_TIMEOUT)
     assert driver.grasp_spec.reach == pytest.approx(0.0, abs=1e-9), f"{stack.robot}: {driver.grasp_spec}"

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
+from moveit_msgs.msg import MoveItErrorCodes
 
 from sixdof_msgs.srv import GetObjectState
 
@@ -19,6 +20,7 @@ from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .grasping import (
     GraspSpec,
+    grasp_spec,
     grasp_tcp_pose,
     object_geometry,
     place_tcp_pose,
@@ -26,11 +28,16 @@ from .grasping import (
     tip_pose,
 )
 from .gripper import Gripper
-from .gripper_reach import gripper_reach
 from .move_group import MoveGroup
+from .package_defaults import arm_group, find_gripper, home_state, link_in_link
 from .planning_scene import PlanningScene
-from .robot_model import resolve_group
 from .transforms import matrix_from_pose, quaternion_from_matrix
+
+# ArmDriver.last_failure_kind of a failed motion: no top-down grasp or place at that spot, or anything else.
+UNREACHABLE = "unreachable"
+FAILED = "failed"
+# gripper_close: a finger joint this close (a fraction of its open-to-closed travel) to the closed state holds nothing.
+CLOSED_ON_NOTHING = 0.025
 
 
 def rad(degrees: Sequence[float]) -> list[float]:
@@ -59,17 +66,23 @@ class ArmDriver:
     """Moves the arm and the gripper the way the paper's script does, and picks and places objects.
 
     Motions return True on success and False on planning/execution failure; `last_failure` then says
-    what failed. Misuse raises SixdofCommanderError.
+    what failed and `last_failure_kind` how: UNREACHABLE when there is no top-down grasp or place at that spot
+    (the object does not fit the gripper, or the arm cannot reach the poses above and at it), FAILED otherwise.
+    Misuse raises SixdofCommanderError.
 
-    The gripper is optional: when move_group's model has no group `gripper_group`, `gripper` is None, the arm
-    motions work and the gripper methods (gripper_open/close, grasp, pick, place, grasp_spec) raise
-    SixdofCommanderError naming the missing group.
+    Everything robot-specific comes from the config package through move_group's get_robot_model: the gripper's
+    TCP, open and closed states and widths (its grasping.yaml), the arm group (the one the gripper is the end
+    effector of; `group_name` overrides it) and the home state (`home`: the arm group's first SRDF state).
+
+    The gripper is optional: when move_group serves no grasping information (for `gripper_group`, or at all when
+    it is None), `gripper` is None, the arm motions work and the gripper methods (gripper_open/close, grasp,
+    pick, place, grasp_spec) raise SixdofCommanderError saying why.
     """
 
     def __init__(
         self,
-        group_name: str = "arm",
-        gripper_group: str = "gripper",
+        group_name: str | None = None,
+        gripper_group: str | None = None,
         ns: str = "",
         wait_for_servers: float = 5.0,
         velocity_scaling: float = 0.5,
@@ -91,20 +104,33 @@ class ArmDriver:
             rospy.init_node(node_name, anonymous=True)
         self._ns = ns
         self._wait = wait_for_servers
-        self.arm = MoveGroup(group_name, ns=ns, wait_for_servers=wait_for_servers)
+        waiter = ServerWaiter(wait_for_servers)
+        waiter.service(resolve(ns, "get_robot_model"))
+        waiter.check("ArmDriver")
+        urdf, srdf = query_robot_model(ns, timeout=wait_for_servers)
+        self.gripper_model, self._no_gripper = find_gripper(srdf, gripper_group)
+        self.arm = MoveGroup(
+            group_name or arm_group(srdf, self.gripper_model), ns=ns, wait_for_servers=wait_for_servers
+        )
         self.arm.set_max_velocity_scaling_factor(velocity)
         self.arm.set_max_acceleration_scaling_factor(acceleration)
-        groups = self.arm.semantic_description.groups
-        self._no_gripper = "" if gripper_group in groups else (
-            f"the robot has no gripper: its SRDF has no group '{gripper_group}' (groups: {sorted(groups)})"
-        )
+        self.home = home_state(srdf, self.arm.get_name())
         self.gripper: Gripper | None = None
-        if not self._no_gripper:
-            self.gripper = Gripper(ns=ns, group_name=gripper_group, wait_for_servers=wait_for_servers)
+        self._spec: GraspSpec | None = None
+        if self.gripper_model is not None:
+            g = self.gripper_model
+            self.gripper = Gripper(
+                ns=ns,
+                group_name=g.group,
+                wait_for_servers=wait_for_servers,
+                open_state=g.open_state,
+                close_state=g.closed_state,
+            )
+            self._spec = grasp_spec(g, link_in_link(urdf, self.arm.get_end_effector_link(), g.parent_link))
         self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
         self.cartesian_step = 0.005
         self.last_failure = ""
-        self._spec = self._grasp_spec(gripper_group) if self.gripper is not None else None
+        self.last_failure_kind = ""
         self._object_state = None
         self._held: _Held | None = None
         self._object_in_tcp: np.ndarray | None = None
@@ -113,41 +139,27 @@ class ArmDriver:
 
     @property
     def grasp_spec(self) -> GraspSpec:
-        """The gripper's grasp geometry (tcp in the tip link, finger axis, opening) read from the URDF/SRDF,
-        for callers that grasp objects located by other means than the simulator (e.g. a camera)."""
+        """The gripper's grasp geometry (tcp in the tip link, closing axis, opening, finger reach, palm depth) from
+        the package's grasping information, for callers that grasp objects located by other means than the
+        simulator (e.g. a camera)."""
         return self._require_gripper("grasp_spec")[1]
 
     def _require_gripper(self, what: str) -> tuple[Gripper, GraspSpec]:
-        """The gripper and its grasp geometry; SixdofCommanderError naming the missing group on a gripperless robot."""
+        """The gripper and its grasp geometry; SixdofCommanderError saying why there is none."""
         if self.gripper is None or self._spec is None:
             raise SixdofCommanderError(f"ArmDriver.{what}: {self._no_gripper}")
         return self.gripper, self._spec
 
-    def _grasp_spec(self, gripper_group: str) -> GraspSpec:
-        urdf, srdf = self.arm.robot_description, self.arm.semantic_description
-        tip = self.arm.get_end_effector_link()
-        gripper = resolve_group(urdf, srdf, gripper_group)
-        finger = gripper.joints[0]
-        # The grasp centre: a link named 'tcp' fixed below the tip (design.md); the tip itself otherwise.
-        tcp_in_tip = urdf.fixed_transform(tip, "tcp") if "tcp" in urdf.links else np.eye(4)
-        finger_frame = urdf.chain_transform(tip, finger.child)
-        axis = finger_frame[:3, :3] @ np.asarray(finger.axis, dtype=float)
-        # The fingertips' reach beyond the tcp, from the gripper's collision geometry in move_group's model.
-        geometry, _ = query_robot_model(self._ns, collision_geometry=True)
-        reach = gripper_reach(geometry, tip, tcp_in_tip)
-        return GraspSpec(
-            tcp_in_tip=tcp_in_tip, finger_axis=axis, max_width=2.0 * self.gripper.open_position, reach=reach
-        )
-
-    def _fail(self, what: str, error: CallError | None = None) -> bool:
+    def _fail(self, what: str, error: CallError | None = None, kind: str = FAILED) -> bool:
         self.last_failure = f"{what}: {error}" if error is not None else what
+        self.last_failure_kind = kind
         rospy.logerr(self.last_failure)
         return False
 
     # The paper's interface ---------------------------------------------------------------------------
     def moveto_xyzrpy(self, xyzrpy: Sequence[float]) -> bool:
-        """Plan and move the tip link (link6) to [x, y, z, roll, pitch, yaw] (metres, radians, fixed axes)
-        in the planning frame."""
+        """Plan and move the arm's tip link (the sixdof arm's link6) to [x, y, z, roll, pitch, yaw] (metres,
+        radians, fixed axes) in the planning frame."""
         if isinstance(xyzrpy, str) or not isinstance(xyzrpy, Sequence | np.ndarray) or len(xyzrpy) != 6:
             raise SixdofCommanderError(f"moveto_xyzrpy needs [x, y, z, roll, pitch, yaw] (6 numbers), got {xyzrpy!r}")
         values = list(xyzrpy)
@@ -180,23 +192,40 @@ class ArmDriver:
         return True
 
     def gripper_close(self) -> bool:
-        """Close the gripper; True when it stopped on something (did not close on empty air)."""
+        """Close the gripper; True when it stopped on something (did not close on empty air: its finger joint
+        ended within 2.5 % of its open-to-closed travel of the closed state, whichever way that runs)."""
         gripper = self._require_gripper("gripper_close")[0]
         result = gripper.close()
-        if result.position <= gripper.close_position + 0.001:
+        travel = abs(gripper.open_position - gripper.close_position)
+        if abs(result.position - gripper.close_position) <= CLOSED_ON_NOTHING * travel:
             return self._fail(f"gripper closed on nothing (position {result.position:.4f})")
         return True
 
+    def gripper_opening(self, position: float) -> float:
+        """The distance between the pads (m) at finger joint position `position`: the package's closed and open
+        widths, interpolated linearly between the two states (exact for prismatic fingers, an estimate for a
+        revolute linkage)."""
+        gripper = self._require_gripper("gripper_opening")[0]
+        g = self.gripper_model
+        assert g is not None
+        fraction = (position - gripper.close_position) / (gripper.open_position - gripper.close_position)
+        return g.closed_width + fraction * (g.max_opening - g.closed_width)
+
     # Cartesian moves ---------------------------------------------------------------------------------
-    def move_straight(self, tip_target: np.ndarray, what: str, avoid_collisions: bool) -> bool:
-        """Straight-line move of the tip link to a 4x4 pose; the whole path must be feasible."""
+    def move_straight(
+        self, tip_target: np.ndarray, what: str, avoid_collisions: bool, infeasible_kind: str = FAILED
+    ) -> bool:
+        """Straight-line move of the tip link to a 4x4 pose; the whole path must be feasible (a path that is not
+        fails as `infeasible_kind`)."""
         self.arm.set_start_state_to_current_state()
         trajectory, fraction = self.arm.compute_cartesian_path(
             [pose_from_matrix(tip_target)], self.cartesian_step, 0.0, avoid_collisions
         )
         if fraction < 1.0 - 1e-6:
             return self._fail(
-                f"{what}: Cartesian path only {max(fraction, 0.0) * 100:.0f}% feasible", self.arm.last_error
+                f"{what}: Cartesian path only {max(fraction, 0.0) * 100:.0f}% feasible",
+                self.arm.last_error,
+                infeasible_kind,
             )
         if not self.arm.execute(trajectory, wait=True):
             return self._fail(f"{what}: execution failed", self.arm.last_error)
@@ -258,10 +287,15 @@ class ArmDriver:
         if self._held is not None:
             raise SixdofCommanderError(f"already holding '{self._held.name}': place it first")
         state = self.get_object_state(object_name)
-        geometry = object_geometry(matrix_from_pose(state.object.pose), state.object.shape)
-        tcp, _ = grasp_tcp_pose(geometry, spec)
+        pose = matrix_from_pose(state.object.pose)
+        try:
+            geometry = object_geometry(pose, state.object.shape)
+            tcp, _ = grasp_tcp_pose(geometry, spec)
+        except SixdofCommanderError as err:
+            return self._fail(f"no top-down grasp of '{object_name}': {err}", kind=UNREACHABLE)
         grasp_tip = tip_pose(tcp, spec)
-        if not (self.gripper_open() and self._descend_to(grasp_tip, "approach") and self.gripper_close()):
+        where = f"'{object_name}' at ({pose[0, 3]:.3f}, {pose[1, 3]:.3f})"
+        if not (self.gripper_open() and self._descend_to(grasp_tip, "approach", where) and self.gripper_close()):
             return False
         self._wait_for_grasp_fix(object_name, attached=True)
         if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
@@ -282,12 +316,19 @@ class ArmDriver:
         self._object_in_tcp = np.linalg.inv(tcp) @ obj[:, 3]
         return True
 
-    def _descend_to(self, tip: np.ndarray, what: str) -> bool:
+    def _descend_to(self, tip: np.ndarray, what: str, where: str) -> bool:
         """Move the tip link the approach distance above `tip`, then straight down to it. Into contact: the
         fingers straddle the object (grasp) or the held object meets the surface (place), which MoveIt's pick and
-        place also allow."""
+        place also allow. No pose above `where` the arm can reach (no IK solution, or in collision), or a descent
+        that cannot go straight down, fails as UNREACHABLE."""
         above = pose_from_matrix(raised(tip, self.approach_distance))
-        return self.moveto_pose(above) and self.move_straight(tip, what, avoid_collisions=False)
+        if not self.moveto_pose(above):
+            if self.arm.last_error.val in (MoveItErrorCodes.NO_IK_SOLUTION, MoveItErrorCodes.GOAL_IN_COLLISION):
+                return self._fail(
+                    f"{what}: no top-down pose above {where} the arm can reach", self.arm.last_error, UNREACHABLE
+                )
+            return False
+        return self.move_straight(tip, f"{what}: straight down to {where}", False, UNREACHABLE)
 
     def pick(self, object_name: str) -> bool:
         """Grasp the simulator object from the top and lift it."""
@@ -302,13 +343,13 @@ class ArmDriver:
             raise SixdofCommanderError("place: lift() the object first (its position in the hand is unknown)")
         tcp = place_tcp_pose(target, self._object_in_tcp, spec.clearance)
         place_tip = tip_pose(tcp, spec)
-        if not (self._descend_to(place_tip, "place descent") and self.gripper_open()):
+        where = f"({target[0]:.3f}, {target[1]:.3f})"
+        if not (self._descend_to(place_tip, "place descent", where) and self.gripper_open()):
             return False
         self._wait_for_grasp_fix(held.name, attached=False)
         if held.name in self.scene.get_attached_object_names() and not self._scene_attach(held.name, False):
             return False
-        self._held = None
-        self._object_in_tcp = None
+        self.forget_held()
         return True
 
     def retreat(self) -> bool:
@@ -321,6 +362,11 @@ class ArmDriver:
         """Put the held object down with its centre at [x, y, z] ([x, y]: resting on the table at z = 0)
         and retreat."""
         return self.release_at(position) and self.retreat()
+
+    def forget_held(self) -> None:
+        """Forget the held object without placing it (it was deleted or lost): the next grasp starts afresh."""
+        self._held = None
+        self._object_in_tcp = None
 
     def _require_held(self, what: str) -> _Held:
         if self._held is None:

@@ -1,7 +1,8 @@
 """Top-down grasp geometry: where the tool goes to pick an object and to put it down.
 
-Pure functions on numpy transforms (4x4, world frame); the robot-specific offsets (link6 -> tcp, the
-fingers' closing axis, the maximum opening) are passed in, read from the URDF/SRDF by the caller.
+Pure functions on numpy transforms (4x4, world frame); the gripper's geometry (its TCP in the arm's tip link, the
+closing axis, opening, finger reach and palm depth) is passed in as a GraspSpec, which the caller builds from the
+config package's grasping information (move_group's get_robot_model: `grasp_spec`).
 """
 
 from __future__ import annotations
@@ -13,15 +14,19 @@ import numpy as np
 from shape_msgs.msg import SolidPrimitive
 
 from .exceptions import SixdofCommanderError
+from .robot_model import GripperModel
 from .transforms import homogeneous, matrix_from_quaternion, matrix_from_rpy
 
 
 @dataclass(frozen=True)
 class GraspSpec:
-    """What a grasp needs from the robot. tcp_in_tip: 4x4 pose of the grasp centre in the arm's tip link;
-    finger_axis: the fingers' closing direction in the tip link; max_width: widest graspable object;
-    reach: how far the gripper extends beyond the tcp along the tool axis (its fingertips), which must stay
-    `clearance` above the surface the object stands on."""
+    """What a grasp needs from the robot. tcp_in_tip: 4x4 pose of the grasp frame (TCP: z along the approach, at the
+    pads' centre depth) in the arm's tip link; finger_axis: the fingers' closing direction in the TCP frame;
+    max_width: widest graspable object (the opening between the pads); reach: how far the fingers extend beyond the
+    tcp along its z axis, which must stay `clearance` above the surface the object stands on; palm_depth: how far an
+    object between the pads may reach back from the tcp before the palm (its top stays `clearance` below it);
+    max_grasp_depth: how far below its top a tall object is held; min_grip: how far down the object's side from
+    its top the fingers must reach."""
 
     tcp_in_tip: np.ndarray
     finger_axis: np.ndarray
@@ -29,7 +34,21 @@ class GraspSpec:
     clearance: float = 0.005
     max_grasp_depth: float = 0.03
     reach: float = 0.0
-    min_grasp_depth: float = 0.005
+    palm_depth: float = math.inf
+    min_grip: float = 0.005
+
+
+def grasp_spec(gripper: GripperModel, parent_in_tip: np.ndarray) -> GraspSpec:
+    """The GraspSpec of a gripper's grasping information; parent_in_tip: its parent link in the arm's tip link."""
+    tcp_in_tip = parent_in_tip @ gripper.tcp
+    closing = gripper.tcp[:3, :3].T @ gripper.closing_direction
+    return GraspSpec(
+        tcp_in_tip=tcp_in_tip,
+        finger_axis=closing / np.linalg.norm(closing),
+        max_width=gripper.max_opening,
+        reach=gripper.finger_reach,
+        palm_depth=gripper.palm_depth,
+    )
 
 
 @dataclass(frozen=True)
@@ -127,19 +146,26 @@ def grasp_yaw(geometry: ObjectGeometry, spec: GraspSpec) -> tuple[float, float]:
 
 
 def grasp_tcp_pose(geometry: ObjectGeometry, spec: GraspSpec) -> tuple[np.ndarray, float]:
-    """(tcp pose, width squeezed): the tool's grasp centre inside the object's top part, tool z down, no
-    deeper than keeps the fingertips `clearance` above the object's bottom (the surface it stands on)."""
+    """(tcp pose, width squeezed): tool z down, the tcp (the pads' centre) at the object's middle height but no deeper
+    than max_grasp_depth below its top, high enough for the fingertips to stay `clearance` above the object's bottom
+    (the surface it stands on) and for the object's top to stay `clearance` below the palm."""
     yaw, width = grasp_yaw(geometry, spec)
     centre = geometry.pose[:3, 3]
-    top = centre[2] + geometry.height / 2.0
-    depth = min(geometry.height / 2.0, spec.max_grasp_depth, geometry.height - spec.reach - spec.clearance)
-    if depth < spec.min_grasp_depth:
+    bottom, top = centre[2] - geometry.height / 2.0, centre[2] + geometry.height / 2.0
+    z = max(
+        centre[2],
+        top - spec.max_grasp_depth,
+        bottom + spec.reach + spec.clearance,
+        top - spec.palm_depth + spec.clearance,
+    )
+    grip = top - max(bottom, z - spec.reach)  # how far down the object's side the fingers reach
+    if grip < spec.min_grip:
         raise SixdofCommanderError(
             f"object height {geometry.height:.3f} m is too low for a top-down grasp: the fingers reach "
             f"{spec.reach:.3f} m beyond the tcp and must stay {spec.clearance:.3f} m above the support, leaving "
-            f"{max(depth, 0.0) * 1000:.1f} mm of grip (at least {spec.min_grasp_depth * 1000:.1f} mm needed)"
+            f"{max(grip, 0.0) * 1000:.1f} mm of grip (at least {spec.min_grip * 1000:.1f} mm needed)"
         )
-    return homogeneous([centre[0], centre[1], top - depth], top_down_rotation(yaw)), width
+    return homogeneous([centre[0], centre[1], z], top_down_rotation(yaw)), width
 
 
 def tip_pose(tcp_pose: np.ndarray, spec: GraspSpec) -> np.ndarray:

@@ -14,8 +14,9 @@ from .robot_model import resolve_group
 
 
 class Gripper:
-    """A parallel gripper. Positions are finger openings (each finger's distance from the centre, metres)
-    of the group's actuated joint; open()/close() use the SRDF states 'open' and 'close' of the group."""
+    """A gripper with one actuated joint (the others mimic it): positions are that joint's (metres for prismatic
+    fingers, radians for revolute ones); open()/close() go to the SRDF states `open_state` and `close_state` of the
+    group, whichever way closing moves the joint."""
 
     def __init__(
         self,
@@ -24,6 +25,8 @@ class Gripper:
         action_name: str = "gripper_controller/gripper_cmd",
         wait_for_servers: float = 5.0,
         result_timeout: float = 60.0,
+        open_state: str = "open",
+        close_state: str = "close",
     ) -> None:
         """result_timeout: wall-clock seconds a command waits for its result (0: no limit); then, or as soon as
         the action server is lost (its node died), the goal is canceled and SixdofCommanderError raised."""
@@ -53,12 +56,12 @@ class Gripper:
         self._group = group
         self.last_status_text = ""
         self._positions = {}
-        for state in ("open", "close"):
+        for key, state in (("open", open_state), ("close", close_state)):
             if state not in group.named_states or self._joint.name not in group.named_states[state]:
                 raise SixdofCommanderError(
                     f"the SRDF has no state '{state}' of group '{group_name}' with joint '{self._joint.name}'"
                 )
-            self._positions[state] = group.named_states[state][self._joint.name]
+            self._positions[key] = group.named_states[state][self._joint.name]
 
     @property
     def joint_name(self) -> str:
@@ -67,20 +70,20 @@ class Gripper:
 
     @property
     def open_position(self) -> float:
-        """Finger position of the SRDF state 'open'."""
+        """The finger joint's position in the open state."""
         return self._positions["open"]
 
     @property
     def close_position(self) -> float:
-        """Finger position of the SRDF state 'close'."""
+        """The finger joint's position in the closed state."""
         return self._positions["close"]
 
     def open(self, max_effort: float = 0.0) -> GripperCommandResult:
-        """Move the fingers to the 'open' state; the action result."""
+        """Move the fingers to the open state; the action result."""
         return self.set_position(self.open_position, max_effort)
 
     def close(self, max_effort: float = 0.0) -> GripperCommandResult:
-        """Close the fingers towards the 'close' state (they stall on a grasped object); the action result."""
+        """Close the fingers towards the closed state (they stall on a grasped object); the action result."""
         return self.set_position(self.close_position, max_effort)
 
     def set_position(self, position: float, max_effort: float = 0.0) -> GripperCommandResult:

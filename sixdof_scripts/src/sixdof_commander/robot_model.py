@@ -8,9 +8,10 @@ node ask move_group too (sixdof_commander.scene_node), and the unit tests that r
 models with a reader of their own (sixdof_scripts/test/offline_model.py).
 
 Only what the commander needs: which joints a group moves (in order), their limits, the group's tip and
-end-effector links, the named states, fixed offsets between links (link6 -> tcp) and, when asked for
+end-effector links, the named states, fixed offsets between links, the gripper's grasping information (its TCP,
+open and closed states, widths: the package's grasping.yaml as move_group read it) and, when asked for
 (`query_robot_model(..., collision_geometry=True)`), the links' collision shapes as move_group has them (the
-gripper's reach, the perception node's self filter): no Python code reads geometry from robot_description.
+perception node's self filter): no Python code reads geometry from robot_description.
 """
 
 from __future__ import annotations
@@ -162,15 +163,39 @@ class EndEffector:
     parent_group: str
 
 
+@dataclass(frozen=True, eq=False)
+class GripperModel:
+    """A gripper's grasping information (sixdof_msgs/RobotModelGripper: the config package's grasping.yaml as
+    move_group read it). The TCP and the directions are in parent_link's frame; states name actuated joints only."""
+
+    group: str
+    end_effector: str
+    tcp_frame: str
+    parent_link: str
+    tcp: np.ndarray  # 4x4: z along the approach, y along the closing direction
+    open_state: str
+    open_positions: dict[str, float]
+    closed_state: str
+    closed_positions: dict[str, float]
+    max_opening: float  # m between the pads when open
+    closed_width: float
+    finger_reach: float  # m the fingers reach beyond the TCP along the approach
+    palm_depth: float  # m an object between the pads may reach back from the TCP (inf: no palm across them)
+    pad_links: tuple[str, ...]
+    closing_direction: np.ndarray  # unit
+    approach_direction: np.ndarray  # unit
+
+
 @dataclass(frozen=True)
 class SemanticDescription:
-    """The SRDF: groups, named states per group, end effectors."""
+    """The SRDF: groups, named states per group, end effectors; and the grippers' grasping information."""
 
     name: str
     groups: dict[str, GroupSpec]
     group_states: dict[str, dict[str, dict[str, float]]] = field(default_factory=dict)
     end_effectors: tuple[EndEffector, ...] = ()
     virtual_joint_parent: str | None = None
+    grippers: tuple[GripperModel, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -243,6 +268,36 @@ def geometry_points(geometry: Any) -> np.ndarray:
     return np.vstack(points) if points else np.zeros((0, 3))
 
 
+def _state(msg: Any) -> dict[str, float]:
+    return dict(zip(msg.joint_names, msg.positions, strict=True))
+
+
+def _vector(msg: Any) -> np.ndarray:
+    return np.array([msg.x, msg.y, msg.z], dtype=float)
+
+
+def gripper_from_msg(msg: Any) -> GripperModel:
+    """The GripperModel of a sixdof_msgs/RobotModelGripper."""
+    return GripperModel(
+        group=msg.group,
+        end_effector=msg.end_effector,
+        tcp_frame=msg.tcp_frame,
+        parent_link=msg.parent_link,
+        tcp=matrix_from_pose(msg.tcp),
+        open_state=msg.open.name,
+        open_positions=_state(msg.open),
+        closed_state=msg.closed.name,
+        closed_positions=_state(msg.closed),
+        max_opening=msg.max_opening,
+        closed_width=msg.closed_width,
+        finger_reach=msg.finger_reach,
+        palm_depth=msg.palm_depth,
+        pad_links=tuple(msg.pad_links),
+        closing_direction=_vector(msg.closing_direction),
+        approach_direction=_vector(msg.approach_direction),
+    )
+
+
 def model_from_response(response: object, collision: bool = False) -> tuple[RobotDescription, SemanticDescription]:
     """The robot model of a sixdof_msgs/GetRobotModel response (move_group's get_robot_model); its collision
     geometry when the request included it (`collision` is None otherwise)."""
@@ -296,6 +351,7 @@ def model_from_response(response: object, collision: bool = False) -> tuple[Robo
             for e in response.end_effectors
         ),
         virtual_joint_parent=response.planning_frame if response.planning_frame != response.root_link else None,
+        grippers=tuple(gripper_from_msg(g) for g in response.grippers),
     )
     return urdf, srdf
 

@@ -1,5 +1,6 @@
-"""The gripper's reach beyond the tcp, from the collision geometry of move_group's model (built here as the
-get_robot_model response's sixdof_msgs/RobotModelLinkGeometry messages)."""
+"""The points that bound a link's collision shapes, from the collision geometry of move_group's model (built here
+as the get_robot_model response's sixdof_msgs/RobotModelLinkGeometry messages): what the perception node's self
+filter is made of."""
 
 import dataclasses
 
@@ -9,14 +10,12 @@ from geometry_msgs.msg import Point, Pose
 from offline_model import parse_urdf
 from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from sixdof_commander import SixdofCommanderError
-from sixdof_commander.gripper_reach import gripper_reach
 from sixdof_commander.robot_model import geometry_points, primitive_points
-from sixdof_commander.transforms import homogeneous, quaternion_from_rpy
+from sixdof_commander.transforms import quaternion_from_rpy
 
 from sixdof_msgs.msg import RobotModelLinkGeometry
 
-# A tip link and one finger 0.06 m long whose joint is 0.06 m along the tip's z axis (the finger spans 0.06 to
-# 0.12); tcp 0.08 along the tip's z axis: the fingertip reaches 0.12 - 0.08 = 0.04 beyond the tcp.
+# A tip link, one finger below it and a frame without geometry.
 URDF = """<robot name="hand">
   <link name="tip"/><link name="finger"/><link name="tcp"/>
   <joint name="finger_joint" type="prismatic">
@@ -39,43 +38,20 @@ def primitive(kind: int, *dimensions: float) -> SolidPrimitive:
     return SolidPrimitive(type=kind, dimensions=list(dimensions))
 
 
-# The tip: a cylinder at its origin; the finger: a box from 0 to 0.06 along z (its centre at 0.03).
-GEOMETRY = {
-    "tip": RobotModelLinkGeometry(
-        link_name="tip", primitives=[primitive(SolidPrimitive.CYLINDER, 0.01, 0.03)], primitive_poses=[pose()]
-    ),
-    "finger": RobotModelLinkGeometry(
-        link_name="finger",
-        primitives=[primitive(SolidPrimitive.BOX, 0.01, 0.02, 0.06)],
-        primitive_poses=[pose((0.0, 0.0, 0.03))],
-    ),
-}
+# The finger: a box from 0 to 0.06 along z (its centre at 0.03).
+FINGER = RobotModelLinkGeometry(
+    link_name="finger",
+    primitives=[primitive(SolidPrimitive.BOX, 0.01, 0.02, 0.06)],
+    primitive_poses=[pose((0.0, 0.0, 0.03))],
+)
 
 
-def hand(geometry=GEOMETRY):
-    return dataclasses.replace(parse_urdf(URDF), collision=geometry)
-
-
-def test_reach_is_the_fingertip_beyond_the_tcp():
-    tcp_in_tip = homogeneous([0.0, 0.0, 0.08], np.eye(3))
-    assert gripper_reach(hand(), "tip", tcp_in_tip) == pytest.approx(0.04)
-
-
-def test_reach_counts_mesh_vertices_at_their_pose():
-    # A mesh 0.07 down the finger link (itself 0.06 down the tip), its vertices 0.05 along its z axis: upright it
-    # reaches 0.06 + 0.07 + 0.05 = 0.18 along the tip's z axis, turned over (roll pi) only 0.13.
-    mesh = Mesh(
-        vertices=[Point(0.0, 0.0, 0.0), Point(0.0, 0.0, 0.05), Point(0.01, 0.0, 0.0)],
-        triangles=[MeshTriangle(vertex_indices=[0, 1, 2])],
-    )
-    tcp_in_tip = homogeneous([0.0, 0.0, 0.08], np.eye(3))
-    for rpy, tip_z in (((0.0, 0.0, 0.0), 0.18), ((np.pi, 0.0, 0.0), 0.13)):
-        finger = RobotModelLinkGeometry(link_name="finger", meshes=[mesh], mesh_poses=[pose((0.0, 0.0, 0.07), rpy)])
-        assert gripper_reach(hand({"finger": finger}), "tip", tcp_in_tip) == pytest.approx(tip_z - 0.08)
+def hand(geometry=None):
+    return dataclasses.replace(parse_urdf(URDF), collision={"finger": FINGER} if geometry is None else geometry)
 
 
 def test_geometry_points_bound_every_primitive_in_the_link_frame():
-    points = geometry_points(GEOMETRY["finger"])
+    points = geometry_points(FINGER)
     np.testing.assert_allclose(points.min(axis=0), [-0.005, -0.01, 0.0], atol=1e-12)
     np.testing.assert_allclose(points.max(axis=0), [0.005, 0.01, 0.06], atol=1e-12)
     # A cylinder (height 0.4, radius 0.1) turned onto the x axis spans x by its height.
@@ -90,6 +66,19 @@ def test_geometry_points_bound_every_primitive_in_the_link_frame():
     assert geometry_points(RobotModelLinkGeometry(link_name="empty")).shape == (0, 3)
 
 
+def test_mesh_vertices_count_at_their_pose():
+    # A mesh 0.07 along the link's z axis, its vertices up to 0.05 along its own: upright they reach 0.12, turned
+    # over (roll pi) 0.02.
+    mesh = Mesh(
+        vertices=[Point(0.0, 0.0, 0.0), Point(0.0, 0.0, 0.05), Point(0.01, 0.0, 0.0)],
+        triangles=[MeshTriangle(vertex_indices=[0, 1, 2])],
+    )
+    for rpy, (low, high) in (((0.0, 0.0, 0.0), (0.07, 0.12)), ((np.pi, 0.0, 0.0), (0.02, 0.07))):
+        finger = RobotModelLinkGeometry(link_name="finger", meshes=[mesh], mesh_poses=[pose((0.0, 0.0, 0.07), rpy)])
+        z = hand({"finger": finger}).collision_points("finger")[:, 2]
+        assert (z.min(), z.max()) == pytest.approx((low, high))
+
+
 def test_links_without_geometry_have_no_points_and_unknown_links_are_named():
     assert hand().collision_points("tcp").shape == (0, 3)
     with pytest.raises(SixdofCommanderError, match="link 'nope'"):
@@ -98,7 +87,7 @@ def test_links_without_geometry_have_no_points_and_unknown_links_are_named():
 
 def test_a_model_queried_without_geometry_says_so():
     with pytest.raises(SixdofCommanderError, match="collision_geometry=True"):
-        gripper_reach(parse_urdf(URDF), "tip", np.eye(4))
+        parse_urdf(URDF).collision_points("finger")
 
 
 def test_bad_primitives_are_named():

@@ -10,9 +10,7 @@ from __future__ import annotations
 
 import os
 import re
-import shutil
 import subprocess
-import tempfile
 import threading
 import time
 from collections.abc import Iterator
@@ -21,10 +19,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import rosgraph
 import rospy
 from e2e import STARTUP_TIMEOUT, settled_joint_state
-from generated import generate_package, start_master, stop
+from generated import generate_package, launch_demo, session_workspace, stop, stop_demo
 from geometry_msgs.msg import PoseStamped
 from moveit_msgs.msg import RobotState
 from moveit_msgs.srv import GetPositionFK, GetStateValidity
@@ -57,18 +54,7 @@ GL_READY = "OpenGL device:"
 
 @pytest.fixture(scope="session")
 def workspace(request: pytest.FixtureRequest) -> Iterator[Path]:
-    """A temporary workspace on ROS_PACKAGE_PATH (with the fixture robots' package) and a ROS master of this test's
-    own, which every robot's stack uses in turn; this process's node follows its simulated clock."""
-    root = Path(tempfile.mkdtemp(prefix="any_arm_"))
-    core = start_master(root)
-    rosgraph.Master("/any_arm").setParam("/use_sim_time", True)
-    rospy.init_node("any_arm_test", disable_signals=True)
-    yield root
-    stop(core)
-    if request.session.testsfailed:
-        print(f"any_arm: logs of the failed run kept in {root}")
-    else:
-        shutil.rmtree(root, ignore_errors=True)
+    yield from session_workspace(request, "any_arm")
 
 
 @dataclass
@@ -96,25 +82,8 @@ def stack(request: pytest.FixtureRequest, workspace: Path) -> Iterator[Stack]:
     robot = request.param
     description, has_gripper = ROBOTS[robot]
     name, package = generate_package(robot, description, workspace)
-    with open(workspace / f"{robot}_demo.log", "w") as log:
-        launch = subprocess.Popen(
-            ["roslaunch", name, "demo.launch", "headless:=true"],
-            stdout=log,
-            stderr=subprocess.STDOUT,
-            start_new_session=True,
-        )
+    launch = launch_demo(name, robot, workspace, ("compute_fk", "check_state_validity", "sixdof_sim/get_object_state"))
     try:
-        deadline = time.monotonic() + STARTUP_TIMEOUT
-        for service in ("compute_fk", "check_state_validity", "sixdof_sim/get_object_state"):
-            while True:
-                assert launch.poll() is None, f"{name} demo.launch ended (see {workspace / f'{robot}_demo.log'})"
-                assert time.monotonic() < deadline, f"no service '{service}' from {name} demo.launch"
-                try:
-                    rospy.wait_for_service(service, timeout=1.0)
-                    break
-                except rospy.ROSException:
-                    pass
-        rospy.wait_for_message("joint_states", JointState, timeout=STARTUP_TIMEOUT)
         group, tip = chain_group(rospy.get_param("robot_description_semantic"))
         urdf = URDF.from_xml_string(rospy.get_param("robot_description"))
         limits = {}
@@ -125,12 +94,7 @@ def stack(request: pytest.FixtureRequest, workspace: Path) -> Iterator[Stack]:
                 limits[joint.name] = (-np.pi, np.pi)
         yield Stack(robot, workspace, package, has_gripper, group, tip, urdf.get_root(), limits)
     finally:
-        stop(launch)
-        # The next robot's stack starts from an empty parameter server (roscore's own parameters aside).
-        master = rosgraph.Master("/any_arm")
-        kept = {"run_id", "rosversion", "rosdistro", "use_sim_time"}
-        for top in {key.split("/")[1] for key in master.getParamNames()} - kept:
-            master.deleteParam("/" + top)
+        stop_demo(launch, "any_arm")
 
 
 def fk(link: str, names: list[str], positions: list[float]) -> PoseStamped:

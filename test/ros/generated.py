@@ -1,18 +1,24 @@
-"""What the tests of generated config packages share (any_arm.py, external_driver.py): a ROS master of the test's
-own, a temporary workspace on ROS_PACKAGE_PATH, a fixture robot's package written by the setup assistant, and
-stopping launched process groups."""
+"""What the tests of generated config packages share (any_arm.py, any_gripper.py, external_driver.py): a ROS master
+of the test's own, a temporary workspace on ROS_PACKAGE_PATH, a fixture robot's package written by the setup
+assistant, its demo.launch run headless until its services answer, and stopping launched process groups."""
 
 from __future__ import annotations
 
 import os
+import shutil
 import signal
 import socket
 import subprocess
+import tempfile
 import time
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
+import pytest
 import rosgraph
+import rospy
 from e2e import STARTUP_TIMEOUT
+from sensor_msgs.msg import JointState
 
 REPO = Path(__file__).resolve().parents[2]
 FIXTURES = REPO / "test" / "robots"
@@ -55,18 +61,72 @@ def start_master(root: Path) -> subprocess.Popen:
     return core
 
 
-def generate_package(robot: str, description: str, workspace: Path) -> tuple[str, Path]:
-    """The setup assistant's config package of the fixture robot `robot` (description: its file in test/robots)
-    written into workspace: (package name, its folder)."""
-    generated = subprocess.run(
-        ["rosrun", "sixdof_core", "setup_assistant", "--urdf", str(FIXTURES / description), "--package-out",
-         str(workspace)],
-        capture_output=True,
-        text=True,
-        timeout=STARTUP_TIMEOUT,
-    )
-    assert generated.returncode == 0, f"setup_assistant failed on {description}: {generated.stderr}"
+def generate_package(robot: str, description: str, workspace: Path, xacro_args: str = "") -> tuple[str, Path]:
+    """The setup assistant's config package of the fixture robot `robot` (description: its file in test/robots,
+    expanded with xacro_args) written into workspace without answers: (package name `<robot>_sixdof_config`, its
+    folder)."""
     name = f"{robot}_sixdof_config"
+    command = ["rosrun", "sixdof_core", "setup_assistant", "--urdf", str(FIXTURES / description), "--package-out",
+               str(workspace), "--name", name]
+    if xacro_args:
+        command += ["--xacro-args", xacro_args]
+    generated = subprocess.run(command, capture_output=True, text=True, timeout=STARTUP_TIMEOUT)
+    assert generated.returncode == 0, f"setup_assistant failed on {description}: {generated.stderr}"
     package = workspace / name
     assert (package / "launch" / "demo.launch").is_file(), generated.stdout
     return name, package
+
+
+def session_workspace(request: pytest.FixtureRequest, test: str) -> Iterator[Path]:
+    """For a session fixture: a temporary workspace on ROS_PACKAGE_PATH (with the fixture robots' package) and a ROS
+    master of the test's own, which every robot's stack uses in turn; this process's node `<test>_test` follows its
+    simulated clock. The workspace (with the logs) is kept when a test failed."""
+    root = Path(tempfile.mkdtemp(prefix=f"{test}_"))
+    core = start_master(root)
+    rosgraph.Master(f"/{test}").setParam("/use_sim_time", True)
+    rospy.init_node(f"{test}_test", disable_signals=True)
+    yield root
+    stop(core)
+    if request.session.testsfailed:
+        print(f"{test}: logs of the failed run kept in {root}")
+    else:
+        shutil.rmtree(root, ignore_errors=True)
+
+
+def launch_demo(name: str, robot: str, workspace: Path, services: Sequence[str]) -> subprocess.Popen:
+    """The package `name`'s demo.launch headless (its output in workspace/<robot>_demo.log), once `services` answer
+    and joint_states come; the launch is stopped if they do not within STARTUP_TIMEOUT."""
+    log_path = workspace / f"{robot}_demo.log"
+    with open(log_path, "w") as log:
+        launch = subprocess.Popen(
+            ["roslaunch", name, "demo.launch", "headless:=true"],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
+    try:
+        deadline = time.monotonic() + STARTUP_TIMEOUT
+        for service in services:
+            while True:
+                assert launch.poll() is None, f"{name} demo.launch ended (see {log_path})"
+                assert time.monotonic() < deadline, f"no service '{service}' from {name} demo.launch"
+                try:
+                    rospy.wait_for_service(service, timeout=1.0)
+                    break
+                except rospy.ROSException:
+                    pass
+        rospy.wait_for_message("joint_states", JointState, timeout=STARTUP_TIMEOUT)
+    except BaseException:
+        stop(launch)
+        raise
+    return launch
+
+
+def stop_demo(launch: subprocess.Popen, test: str) -> None:
+    """Stops a launch_demo stack; the next robot's stack starts from an empty parameter server (roscore's own
+    parameters aside)."""
+    stop(launch)
+    master = rosgraph.Master(f"/{test}")
+    kept = {"run_id", "rosversion", "rosdistro", "use_sim_time"}
+    for top in {key.split("/")[1] for key in master.getParamNames()} - kept:
+        master.deleteParam("/" + top)

@@ -247,6 +247,8 @@ MoveGroupConfig loadConfig(const ros::NodeHandle& nh, const ros::NodeHandle& pri
       !private_nh.getParam("simplify_solutions", config.simplify_solutions)) {
     throw ConfigError("parameter " + fullName(private_nh, "simplify_solutions") + " is not a bool");
   }
+  config.trajectory_sample_period =
+      positiveParam(private_nh, "trajectory_sample_period", config.trajectory_sample_period, false);
   loadOccupancyMap(private_nh, &config.occupancy_map);
   return config;
 }

@@ -358,7 +358,8 @@ ErrorCode MotionPlanner::planRequest(const moveit_msgs::MotionPlanRequest& reque
   if (!isSuccess(code)) return code;
   sixdof_core::Trajectory trajectory;
   const auto& joints = model.findGroup(request.group_name)->active_joints;
-  code = context_->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, source, &trajectory);
+  code = context_->timeParameterize(joints, result.path, scaling.velocity, scaling.acceleration, source, &trajectory,
+                                    config.trajectory_sample_period);
   if (!isSuccess(code)) return code;
   response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();

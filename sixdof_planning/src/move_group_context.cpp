@@ -299,7 +299,7 @@ ErrorCode MoveGroupContext::linkInTip(const std::string& group, const std::strin
 ErrorCode MoveGroupContext::timeParameterize(const std::vector<std::string>& joints,
                                              const std::vector<Eigen::VectorXd>& path, double velocity_scaling,
                                              double acceleration_scaling, const std::string& source,
-                                             sixdof_core::Trajectory* trajectory) const {
+                                             sixdof_core::Trajectory* trajectory, double sample_period) const {
   sixdof_core::TimeParameterizationOptions options;
   for (const auto& joint : joints) {
     const auto& limits = config_.joint_limits.at(joint);
@@ -308,6 +308,7 @@ ErrorCode MoveGroupContext::timeParameterize(const std::vector<std::string>& joi
   }
   options.velocity_scaling = velocity_scaling;
   options.acceleration_scaling = acceleration_scaling;
+  options.sample_period = sample_period;
   std::vector<std::vector<double>> waypoints;
   for (const auto& q : path) waypoints.emplace_back(q.data(), q.data() + q.size());
   const auto result = sixdof_core::computeTimeOptimalTrajectory(joints, waypoints, options);

@@ -119,6 +119,10 @@ class ConfigErrorsTest(unittest.TestCase):
         self.assert_refused(
             dict(self.good, **{"move_group/simplify_solutions": "yes"}), "simplify_solutions", "is not a bool"
         )
+        for value, fragment in ((0.0, "must be > 0"), ("often", "is not a number")):
+            self.assert_refused(
+                dict(self.good, **{"move_group/trajectory_sample_period": value}), "trajectory_sample_period", fragment
+            )
 
     def test_bad_occupancy_map_sensors(self) -> None:
         """The occupancy map monitor's parameters (sensor_manager.launch.xml, sensors_3d.yaml)."""

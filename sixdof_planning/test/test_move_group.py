@@ -84,6 +84,11 @@ class MoveGroupTest(MoveGroupTestCase):
         times = [p.time_from_start.to_sec() for p in trajectory.points]
         self.assertEqual(times[0], 0.0)
         self.assertTrue(all(b > a for a, b in itertools.pairwise(times)), "times must increase strictly")
+        # Points every ~trajectory_sample_period (the last one at the end, sooner).
+        period = rospy.get_param("/move_group/trajectory_sample_period", 0.1)
+        for a, b in itertools.pairwise(times[:-1]):
+            self.assertAlmostEqual(b - a, period, delta=1e-6)
+        self.assertLessEqual(times[-1] - times[-2], period + 1e-6)
         for point in trajectory.points:
             self.assertEqual(len(point.velocities), len(ARM))
             for name, velocity in zip(trajectory.joint_names, point.velocities, strict=True):

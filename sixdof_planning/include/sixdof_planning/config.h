@@ -96,6 +96,10 @@ struct MoveGroupConfig {
   // joint space's maximum extent, in (0, 1].
   double longest_valid_segment_fraction = 0.005;
   bool simplify_solutions = true;  // ~simplify_solutions: OMPL path simplification of every plan
+  // ~trajectory_sample_period (MoveIt's resample_dt of its time-optimal parameterization adapter): s between the
+  // points of planned trajectories (plan_kinematic_path, the move_group action), > 0. Controllers interpolate
+  // between them with quintic splines of the points' positions, velocities and accelerations.
+  double trajectory_sample_period = 0.1;
   OccupancyMapConfig occupancy_map;
 };
 

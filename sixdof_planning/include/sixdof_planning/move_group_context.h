@@ -11,6 +11,7 @@
 
 #include <sixdof_core/ik_solver.h>
 #include <sixdof_core/robot_model.h>
+#include <sixdof_core/time_parameterization.h>
 #include <sixdof_core/trajectory.h>
 #include <moveit_msgs/PlanningScene.h>
 #include <moveit_msgs/RobotState.h>
@@ -75,10 +76,13 @@ class MoveGroupContext {
   ErrorCode linkInTip(const std::string& group, const std::string& link, const std::string& source,
                       Eigen::Isometry3d* link_in_tip) const;
 
-  // Time-optimal parameterization of a joint path under the configured limits and the scaling factors.
+  // Time-optimal parameterization of a joint path under the configured limits and the scaling factors, sampled
+  // every sample_period s (plans: ~trajectory_sample_period; Cartesian paths and retime_trajectory keep the core's
+  // dense default, several points per Cartesian step, so that the straight line is followed between them).
   ErrorCode timeParameterize(const std::vector<std::string>& joints, const std::vector<Eigen::VectorXd>& path,
                              double velocity_scaling, double acceleration_scaling, const std::string& source,
-                             sixdof_core::Trajectory* trajectory) const;
+                             sixdof_core::Trajectory* trajectory,
+                             double sample_period = sixdof_core::TimeParameterizationOptions().sample_period) const;
 
   void publishDisplayTrajectory(const sixdof_core::RobotState& start, const trajectory_msgs::JointTrajectory& path);
   // The scene's markers and the whole scene on move_group/monitored_planning_scene, after each change.

@@ -93,8 +93,56 @@ def query_robot_model(
 SERVICE_TIMEOUT = 30.0
 
 
-def call_service(proxy: rospy.ServiceProxy, request: object, timeout: float) -> object:
-    """proxy(request), given up after `timeout` wall-clock seconds with rospy.ROSException naming the service.
+class PersistentService:
+    """A client of a service without side effects (a query: planning, IK, FK, ...) that keeps its connection to the
+    server between calls (rospy's persistent ServiceProxy), so that a call costs no master lookup and no new
+    connection.
+
+    A call on a kept connection that breaks (the server restarted or died since the last call) is made once more
+    on a new connection, which is why the service must have no side effects; a failure on a new connection raises
+    as rospy's ServiceProxy does. Calls from several threads at once are served one at a time on the kept
+    connection, the others on connections of their own (as rospy's non-persistent proxies).
+    """
+
+    def __init__(self, name: str, service_class: type) -> None:
+        self.resolved_name = rospy.resolve_name(name)
+        self._service_class = service_class
+        self._busy = threading.Lock()
+        self._proxy: rospy.ServiceProxy | None = None
+
+    def __call__(self, request: object) -> object:
+        if not self._busy.acquire(blocking=False):
+            return rospy.ServiceProxy(self.resolved_name, self._service_class)(request)
+        try:
+            proxy = self._proxy
+            if proxy is not None:
+                try:
+                    return proxy(request)
+                except (rospy.ServiceException, rospy.ROSException):
+                    proxy.close()
+                    if self._proxy is not proxy:  # reset() while waiting: the caller gave up on this call
+                        raise
+            self._proxy = rospy.ServiceProxy(self.resolved_name, self._service_class, persistent=True)
+            proxy = self._proxy
+            try:
+                return proxy(request)
+            except (rospy.ServiceException, rospy.ROSException):
+                proxy.close()
+                self._proxy = None
+                raise
+        finally:
+            self._busy.release()
+
+    def reset(self) -> None:
+        """Closes the kept connection (a call waiting on it fails); the next call opens a new one."""
+        proxy, self._proxy = self._proxy, None
+        if proxy is not None:
+            proxy.close()
+
+
+def call_service(proxy: rospy.ServiceProxy | PersistentService, request: object, timeout: float) -> object:
+    """proxy(request), given up after `timeout` wall-clock seconds with rospy.ROSException naming the service (a
+    PersistentService's connection is then closed: the next call opens a new one).
 
     rospy's service calls have no timeout: a node that accepted the connection and then stopped answering
     would block the caller forever. (A node that died answers at once: the connection is refused or closed,
@@ -113,6 +161,8 @@ def call_service(proxy: rospy.ServiceProxy, request: object, timeout: float) -> 
 
     threading.Thread(target=run, daemon=True).start()
     if not done.wait(timeout):
+        if isinstance(proxy, PersistentService):
+            proxy.reset()
         raise rospy.ROSException(f"service '{proxy.resolved_name}' gave no answer within {timeout:g} s")
     if "error" in outcome:
         raise outcome["error"]

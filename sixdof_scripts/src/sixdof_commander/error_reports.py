@@ -16,7 +16,7 @@ from moveit_msgs.msg import MoveItErrorCodes
 
 from sixdof_msgs.msg import ErrorReport
 
-from ._ros import SERVICE_TIMEOUT, call_service, resolve
+from ._ros import SERVICE_TIMEOUT, PersistentService, call_service, resolve
 
 # MoveItErrorCodes' constants by value: Python's one table of code names (C++'s: sixdof_msgs/error_code_names.h).
 ERROR_NAMES = {
@@ -132,7 +132,7 @@ class ErrorReports:
 
     def call(
         self,
-        proxy: rospy.ServiceProxy,
+        proxy: rospy.ServiceProxy | PersistentService,
         request: object,
         timeout: float = SERVICE_TIMEOUT,
         code: Callable[[object], int] = lambda response: response.error_code.val,

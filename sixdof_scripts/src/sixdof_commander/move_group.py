@@ -32,6 +32,7 @@ from ._ros import (
     SERVICE_TIMEOUT,
     ActionClient,
     JointStateMonitor,
+    PersistentService,
     ServerWaiter,
     load_robot_model,
     require_node,
@@ -109,11 +110,11 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
         self._reports = ErrorReports(ns)
         self._support_surface = ""
 
-        self._plan_service = rospy.ServiceProxy(resolve(ns, "plan_kinematic_path"), GetMotionPlan)
-        self._fk_service = rospy.ServiceProxy(resolve(ns, "compute_fk"), GetPositionFK)
-        self._ik_service = rospy.ServiceProxy(resolve(ns, "compute_ik"), GetPositionIK)
-        self._cartesian_service = rospy.ServiceProxy(resolve(ns, "compute_cartesian_path"), GetCartesianPath)
-        self._retime_service = rospy.ServiceProxy(resolve(ns, "retime_trajectory"), RetimeTrajectory)
+        self._plan_service = PersistentService(resolve(ns, "plan_kinematic_path"), GetMotionPlan)
+        self._fk_service = PersistentService(resolve(ns, "compute_fk"), GetPositionFK)
+        self._ik_service = PersistentService(resolve(ns, "compute_ik"), GetPositionIK)
+        self._cartesian_service = PersistentService(resolve(ns, "compute_cartesian_path"), GetCartesianPath)
+        self._retime_service = PersistentService(resolve(ns, "retime_trajectory"), RetimeTrajectory)
         self._joint_states = JointStateMonitor(resolve(ns, "joint_states"))
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
         self._rng = np.random.default_rng()

@@ -4,10 +4,9 @@ MoveGroupCommander methods sixdof does not offer."""
 from __future__ import annotations
 
 import numpy as np
-import rospy
 from moveit_msgs.msg import Constraints
 
-from ._ros import ActionClient, JointStateMonitor
+from ._ros import ActionClient, JointStateMonitor, PersistentService
 from .error_reports import CallError, ErrorReports
 from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .goals import GoalBuilder
@@ -30,11 +29,11 @@ class MoveGroupBase:
     _support_surface: str
     _move_action: ActionClient
     _execute_action: ActionClient
-    _plan_service: rospy.ServiceProxy
-    _fk_service: rospy.ServiceProxy
-    _ik_service: rospy.ServiceProxy
-    _cartesian_service: rospy.ServiceProxy
-    _retime_service: rospy.ServiceProxy
+    _plan_service: PersistentService
+    _fk_service: PersistentService
+    _ik_service: PersistentService
+    _cartesian_service: PersistentService
+    _retime_service: PersistentService
     _joint_states: JointStateMonitor
     _scene: PlanningScene
     _rng: np.random.Generator

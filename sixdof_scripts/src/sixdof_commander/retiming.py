@@ -12,7 +12,7 @@ from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.srv import RetimeTrajectoryRequest
 
-from ._ros import SERVICE_TIMEOUT, call_service, resolve
+from ._ros import SERVICE_TIMEOUT, PersistentService, call_service, resolve
 from .error_reports import SUCCESS, CallError
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
@@ -23,7 +23,7 @@ RETIME_ALGORITHMS = ("iterative_time_parameterization", "time_optimal_trajectory
 
 
 def retime_time_optimal(
-    service: rospy.ServiceProxy, trajectory: RobotTrajectory, velocity: float, acceleration: float
+    service: PersistentService, trajectory: RobotTrajectory, velocity: float, acceleration: float
 ) -> tuple[RobotTrajectory | None, CallError]:
     """The trajectory's path timed by move_group's retime_trajectory (its time-optimal parameterization, the one
     every plan gets) at these scaling factors: (trajectory, SUCCESS), or (None, the failure in words)."""

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest: go(), plan(), execute() and the gripper return (False with an error code, or SixdofCommanderError)
-when the node serving them is killed mid-request, instead of waiting forever (issue 13, item 3).
+when the node serving them is killed mid-request, instead of waiting forever (issue 13, item 3); the kept
+connection of a PersistentService is replaced when its server restarted.
 
 The server is a stand-in of our own (stand_in_move_group.py) that never answers, started per case and killed by
 pid with SIGKILL once the request is in flight. Bounds are hang guards (the call returned at all), not speed."""
@@ -19,8 +20,10 @@ import rostest
 from moveit_msgs.msg import MoveItErrorCodes, RobotTrajectory
 from moveit_msgs.srv import GetPositionFK
 from sixdof_commander import Gripper, MoveGroup, SixdofCommanderError
-from sixdof_commander._ros import call_service
+from sixdof_commander._ros import PersistentService, call_service
 from trajectory_msgs.msg import JointTrajectoryPoint
+
+from sixdof_msgs.srv import GetRobotModel, GetRobotModelRequest
 
 STAND_IN = Path(__file__).resolve().parent / "stand_in_move_group.py"
 HANG_GUARD = 60.0
@@ -123,6 +126,25 @@ class CommanderServerDeath(unittest.TestCase):
                 call_service(proxy, GetPositionFK._request_class(), 0.5)
         finally:
             stand_in.kill()
+
+    def test_a_kept_connection_is_replaced_after_the_server_restarted(self):
+        # PersistentService keeps its connection between calls; a server that died and came back gets a new one.
+        service = PersistentService("get_robot_model", GetRobotModel)
+        request = GetRobotModelRequest()
+        for _ in range(2):
+            stand_in = StandIn()
+            try:
+                # rospy's wait connects to the registered server: a killed one's registration is not taken for it.
+                rospy.wait_for_service("get_robot_model", timeout=HANG_GUARD)
+                answers = [service(request) for _ in range(2)]
+                self.assertTrue(all(a.error_code.val == MoveItErrorCodes.SUCCESS for a in answers))
+                # Calls from two threads at once are both answered.
+                threads = [in_thread(lambda: service(request)) for _ in range(2)]
+                for thread, outcome in threads:
+                    thread.join(HANG_GUARD)
+                    self.assertEqual(outcome["value"].error_code.val, MoveItErrorCodes.SUCCESS, outcome)
+            finally:
+                stand_in.kill()
 
     def test_gripper_raises_naming_the_lost_server(self):
         _, outcome = self.run_and_kill(

@@ -2,13 +2,13 @@
 
 #include <atomic>
 #include <cstddef>
-#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "sixdof_control/controller_host.h"
 #include "sixdof_control/hardware_interface.h"
 #include "sixdof_control/joint_limits.h"
 #include "sixdof_control/period_statistics.h"
@@ -49,28 +49,6 @@ enum class LoopState {
   kEstop,  // e-stop engaged: holding, goals refused
   kFault,  // a hardware fault: holding where possible, goals refused until clearFault()
 };
-
-// How a goal ended. result: kSuccessful when it succeeded, else the error code and a message naming the cause
-// (a tolerance, a limit, the fault, the e-stop, a cancel or a preempting goal).
-struct GoalOutcome {
-  std::string controller;
-  sixdof_core::GoalState state = sixdof_core::GoalState::kIdle;  // kSucceeded, kAborted or kCanceled
-  sixdof_core::TrajectoryResult result;
-};
-// Called once per accepted goal, on the thread that ended it (the loop's, or the caller of cancel, setGoal or
-// setEstop), without the loop's lock held.
-using GoalCallback = std::function<void(const GoalOutcome&)>;
-
-// How a gripper goal ended (GripperCommand's result): kSucceeded (reached, or stalled with allow_stalling), kAborted
-// or kCanceled, and why.
-struct GripperOutcome {
-  std::string controller;
-  sixdof_core::GoalState state = sixdof_core::GoalState::kIdle;
-  std::string message;
-  bool reached_goal = false;
-  bool stalled = false;
-};
-using GripperCallback = std::function<void(const GripperOutcome&)>;
 
 struct LoopStatus {
   LoopState state = LoopState::kStopped;

@@ -13,24 +13,20 @@
 #include <string>
 #include <vector>
 
-#include "joint_driver.h"
 #include "sixdof_sim/camera.h"
 
 namespace sixdof_sim {
 
-// A JointDriver only for its per-step hook: it renders before the physics step, when the world shows the
-// step's start time `now`, and commands no joint.
-class CameraPublisher : public JointDriver {
+// The node calls update() before each physics step, when the world shows the step's start time `now`. A world
+// reset needs nothing: the node's clock never goes back, so the schedule stays valid.
+class CameraPublisher {
  public:
   // Throws WorldError naming the camera and key on a bad camera (see CameraRenderer).
   CameraPublisher(const ros::NodeHandle& nh, const World& world, const WorldSpec& spec,
                   tf2_ros::StaticTransformBroadcaster& static_tf);
-  ~CameraPublisher() override;
+  ~CameraPublisher();
 
-  void update(double now) override;
-  void release() override {}
-  void reset() override {}  // the node's clock never goes back, so the schedule stays valid
-  void publishFeedback(const ros::Time&) override {}
+  void update(double now);
 
  private:
   struct Camera {

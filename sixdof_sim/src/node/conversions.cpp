@@ -134,21 +134,4 @@ bool fromMsg(const sixdof_msgs::SimObject& msg, ObjectSpec* spec, std::string* e
   return true;
 }
 
-TrajectoryGoal fromMsg(const control_msgs::FollowJointTrajectoryGoal& msg) {
-  TrajectoryGoal goal;
-  goal.joint_names = msg.trajectory.joint_names;
-  for (const trajectory_msgs::JointTrajectoryPoint& p : msg.trajectory.points) {
-    goal.points.push_back({p.positions, p.velocities, p.accelerations, p.time_from_start.toSec()});
-  }
-  for (const control_msgs::JointTolerance& t : msg.path_tolerance) {
-    goal.path_tolerance.push_back({t.name, t.position, t.velocity, t.acceleration});
-  }
-  for (const control_msgs::JointTolerance& t : msg.goal_tolerance) {
-    goal.goal_tolerance.push_back({t.name, t.position, t.velocity, t.acceleration});
-  }
-  goal.goal_time_tolerance = msg.goal_time_tolerance.toSec();
-  goal.start_time = msg.trajectory.header.stamp.toSec();
-  return goal;
-}
-
 }  // namespace sixdof_sim

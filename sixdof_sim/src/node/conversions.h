@@ -3,12 +3,10 @@
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Twist.h>
-#include <control_msgs/FollowJointTrajectoryGoal.h>
 #include <sixdof_msgs/SimObject.h>
 
 #include <string>
 
-#include "sixdof_sim/controllers.h"
 #include "sixdof_sim/world_types.h"
 
 namespace sixdof_sim {
@@ -23,7 +21,5 @@ bool fromMsg(const geometry_msgs::Twist& msg, Twist* twist, std::string* error);
 // SolidPrimitive BOX [x y z], SPHERE [r], CYLINDER [height radius], or mesh_resource (mesh_scale all zero
 // means 1). An all-zero color (the message default) means the World's default color.
 bool fromMsg(const sixdof_msgs::SimObject& msg, ObjectSpec* spec, std::string* error);
-
-TrajectoryGoal fromMsg(const control_msgs::FollowJointTrajectoryGoal& msg);
 
 }  // namespace sixdof_sim

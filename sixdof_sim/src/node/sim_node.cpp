@@ -15,13 +15,10 @@
 #include <stdexcept>
 #include <thread>
 
-#include "camera_publisher.h"
-#include "controller_params.h"
 #include "conversions.h"
-#include "gripper_action.h"
+#include "sixdof_control/controller_params.h"
 #include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/world_file.h"
-#include "trajectory_action.h"
 #include "world_parameter.h"
 
 namespace sixdof_sim {
@@ -49,39 +46,15 @@ void readParam(const ros::NodeHandle& pnh, const std::string& key, T* value) {
   }
 }
 
-std::string controllerSummary(const SimNodeOptions& o) {
-  std::string text;
-  for (const std::string& name : o.controllers) {
-    text += (text.empty() ? "" : ", ") + name + (name == o.gripper_command_controller ? " (+gripper_cmd)" : "");
-  }
-  if (!o.gripper_command_controller.empty() &&
-      std::find(o.controllers.begin(), o.controllers.end(), o.gripper_command_controller) == o.controllers.end()) {
-    text += ", " + o.gripper_command_controller + " (gripper_cmd only)";
-  }
-  return text.empty() ? "none" : text;
-}
-
 }  // namespace
 
-SimNodeOptions SimNode::readOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
+SimNodeOptions SimNode::readOptions(const ros::NodeHandle& pnh) {
   SimNodeOptions o;
   readParam(pnh, "world_file", &o.world_file);
   readParam(pnh, "physics_step", &o.physics_step);
   readParam(pnh, "real_time_factor", &o.real_time_factor);
   readParam(pnh, "grasp_fix", &o.grasp_fix);
   readParam(pnh, "publish_rate", &o.publish_rate);
-  // The controllers config says which controllers exist (controller_list), so any robot's config package
-  // runs as it is: no gripper is required.
-  if (pnh.hasParam("controllers")) {
-    readParam(pnh, "controllers", &o.controllers);
-  } else {
-    o.controllers = readControllerList(nh);
-  }
-  if (pnh.hasParam("gripper_command_controller")) {
-    readParam(pnh, "gripper_command_controller", &o.gripper_command_controller);
-  } else {
-    o.gripper_command_controller = defaultGripperCommandController(nh, o.controllers);
-  }
   if (!(o.physics_step > 0.0) || !std::isfinite(o.physics_step)) {
     throw std::runtime_error("~physics_step must be > 0 (seconds)");
   }
@@ -94,7 +67,7 @@ SimNodeOptions SimNode::readOptions(const ros::NodeHandle& nh, const ros::NodeHa
   return o;
 }
 
-SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), options_(readOptions(nh, pnh)) {
+SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), options_(readOptions(pnh)) {
   // A simulator restarted under the same master (roslaunch respawn) continues the clock of the one before it
   // instead of starting again at 0: every node would otherwise see time jump back, and actionlib servers
   // (e.g. move_group's) cancel goals stamped before the last goal they saw.
@@ -144,24 +117,15 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
     static_tf_broadcaster_.sendTransform(world_to_root);
   }
 
-  const auto clock = [this] { return now(); };
-  for (const std::string& name : options_.controllers) {
-    drivers_.push_back(std::make_unique<TrajectoryActionHandler>(
-        ros::NodeHandle(nh_, name), readTrajectoryControllerConfig(nh_, name, world_->joints()), *world_, arbiter_,
-        clock, readStatePublishRate(nh_, name)));
-  }
-  if (!options_.gripper_command_controller.empty()) {
-    const std::string& name = options_.gripper_command_controller;
-    drivers_.push_back(std::make_unique<GripperActionHandler>(
-        ros::NodeHandle(nh_, name), readGripperControllerConfig(nh_, name, world_->joints()), *world_, arbiter_,
-        clock));
-  }
-  drivers_.push_back(
-      std::make_unique<CameraPublisher>(nh_, *world_, spec, static_tf_broadcaster_));
+  // The controllers config says which controllers exist (controller_list), so any robot's config package runs as
+  // it is: no gripper is required.
+  const sixdof_control::ControllerSetup setup = sixdof_control::readControllerSetup(nh_, pnh_, robotJoints(*world_));
+  controllers_ = std::make_unique<SimControllers>(setup, *world_, [this] { return now(); });
+  actions_ = std::make_unique<sixdof_control::ControllerActions>(nh_, setup, *controllers_);
+  cameras_ = std::make_unique<CameraPublisher>(nh_, *world_, spec, static_tf_broadcaster_);
   world_->setPreStepCallback([this](double sim_time) {
-    for (const std::unique_ptr<JointDriver>& d : drivers_) {
-      d->update(clock_offset_ + sim_time);
-    }
+    controllers_->update(clock_offset_ + sim_time);
+    cameras_->update(clock_offset_ + sim_time);
   });
 
   const ros::NodeHandle sim_nh(nh_, "sixdof_sim");
@@ -187,7 +151,7 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
                                   << " objects, step " << options_.physics_step << " s, real-time factor "
                                   << options_.real_time_factor << ", grasp fix "
                                   << (world_->graspFixEnabled() ? "on" : "off") << ", controllers "
-                                  << controllerSummary(options_));
+                                  << sixdof_control::controllerSummary(setup));
 }
 
 SimNode::~SimNode() = default;
@@ -250,9 +214,7 @@ void SimNode::stepOnce() {
   }
   if (now() + 1e-9 >= next_publish_) {
     next_publish_ = now() + 1.0 / options_.publish_rate;
-    for (const std::unique_ptr<JointDriver>& d : drivers_) {
-      d->publishFeedback(stamp);
-    }
+    actions_->publish(stamp);
   }
   publishClock(false);
 }
@@ -298,9 +260,7 @@ void SimNode::publishState() {
 void SimNode::reset() {
   clock_offset_ += world_->simTime();
   world_->reset();
-  for (const std::unique_ptr<JointDriver>& d : drivers_) {
-    d->reset();
-  }
+  controllers_->reset();
   next_publish_ = now();
   next_state_ = now();
   pace_wall_ = std::chrono::steady_clock::now();

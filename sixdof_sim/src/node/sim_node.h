@@ -1,6 +1,7 @@
 #pragma once
 // The sixdof_sim node: runs the Bullet World at a fixed step paced to a real-time factor, drives it with
-// the trajectory/gripper controllers and publishes its state. Single-threaded: ROS callbacks run between
+// the trajectory/gripper controllers (sim_controllers.h, served by sixdof_control's controller_actions.h) and
+// publishes its state. Single-threaded: ROS callbacks run between
 // physics steps, so the World is never touched concurrently.
 
 #include <ros/node_handle.h>
@@ -14,9 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "joint_driver.h"
+#include "camera_publisher.h"
 #include "object_services.h"
+#include "sim_controllers.h"
 #include "sim_services.h"
+#include "sixdof_control/controller_actions.h"
 #include "sixdof_sim/world.h"
 
 namespace sixdof_sim {
@@ -29,11 +32,6 @@ struct SimNodeOptions {
   // Hz of simulated time: joint_states, object_states, tf (at most this many per wall-clock second too), action
   // feedback.
   double publish_rate = 100.0;
-  // FollowJointTrajectory controllers (~controllers; default: the names in controller_list).
-  std::vector<std::string> controllers;
-  // Also serves <name>/gripper_cmd; empty: none (~gripper_command_controller; default:
-  // defaultGripperCommandController).
-  std::string gripper_command_controller;
 };
 
 class SimNode {
@@ -44,7 +42,7 @@ class SimNode {
   void run();
 
  private:
-  static SimNodeOptions readOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+  static SimNodeOptions readOptions(const ros::NodeHandle& pnh);
   double now() const { return clock_offset_ + world_->simTime(); }
   void stepOnce();
   void publishState();
@@ -72,8 +70,11 @@ class SimNode {
   std::chrono::steady_clock::time_point pace_wall_;
   double pace_sim_ = 0.0;
 
-  JointArbiter arbiter_;
-  std::vector<std::unique_ptr<JointDriver>> drivers_;
+  // The controllers (sixdof_control's readControllerSetup: controller_list, ~controllers,
+  // ~gripper_command_controller), their ROS interface, and the cameras, which render before each physics step.
+  std::unique_ptr<SimControllers> controllers_;
+  std::unique_ptr<sixdof_control::ControllerActions> actions_;
+  std::unique_ptr<CameraPublisher> cameras_;
   std::unique_ptr<ObjectServices> object_services_;
   std::unique_ptr<SimControlServices> control_services_;
   ros::Publisher clock_pub_, joint_state_pub_, object_state_pub_, grasp_event_pub_;

@@ -144,8 +144,13 @@ void ControlLoop::abortAll(GoalState state, TrajectoryErrorCode code, const std:
 }
 
 void ControlLoop::holdAll(const std::vector<double>& positions) {
-  for (Controller& c : controllers_) c.controller.hold(pick(positions, c.joints));
+  // A goal accepted since the hold was asked for (between a release and the next read) keeps running: it started
+  // from the positions of the last read.
+  for (Controller& c : controllers_) {
+    if (!c.controller.active()) c.controller.hold(pick(positions, c.joints));
+  }
   for (Gripper& g : grippers_) {
+    if (g.controller.active()) continue;
     g.controller.hold(positions[g.joint]);
     g.command = positions[g.joint];
   }

@@ -132,16 +132,15 @@ void ControlLoop::stop() {
 
 void ControlLoop::spawn() {
   if (running_.exchange(true)) return;
+  using Clock = std::chrono::steady_clock;
+  origin_ = Clock::now() - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(status().time));
   thread_ = std::thread([this] {
-    using Clock = std::chrono::steady_clock;
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
-    const auto origin =
-        Clock::now() - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(status().time));
     auto next = Clock::now();
     while (running_) {
       next += period;
       std::this_thread::sleep_until(next);
-      cycle(std::chrono::duration<double>(Clock::now() - origin).count());
+      cycle(std::chrono::duration<double>(Clock::now() - origin_).count());
       // A cycle late by more than a period does not start a burst of catch-up cycles.
       if (Clock::now() > next + period) next = Clock::now();
     }

@@ -1,5 +1,6 @@
 // ControlLoop's goals, e-stop and queries (the calls other threads make).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -280,6 +281,20 @@ LoopStatus ControlLoop::status() const {
 PeriodSummary ControlLoop::statistics() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return statistics_.summary();
+}
+
+double ControlLoop::now() const {
+  if (running_) return std::chrono::duration<double>(std::chrono::steady_clock::now() - origin_).count();
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_.time;
+}
+
+bool ControlLoop::commands(const std::string& controller) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int index = controllerIndex(controller);
+  return index >= 0 && std::any_of(controllers_[static_cast<std::size_t>(index)].joints.begin(),
+                                   controllers_[static_cast<std::size_t>(index)].joints.end(),
+                                   [&](std::size_t j) { return commander_[j] == index; });
 }
 
 std::optional<TrajectorySample> ControlLoop::sample(const std::string& controller, double time) const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <mutex>
 #include <optional>
@@ -112,6 +113,11 @@ class ControlLoop {
 
   LoopStatus status() const;
   PeriodSummary statistics() const;
+  // The loop's clock now (s): while spawn()'s thread runs, the steady clock counted from start()'s `now`; else the
+  // last cycle's time.
+  double now() const;
+  // Whether the controller commands (some of) its joints now: not when a gripper's goal has taken them.
+  bool commands(const std::string& controller) const;
   // The controller's commanded trajectory at `time` (query_state); nullopt for an unknown controller or before
   // start().
   std::optional<sixdof_core::TrajectorySample> sample(const std::string& controller, double time) const;
@@ -157,6 +163,7 @@ class ControlLoop {
   PeriodStatistics statistics_;
 
   std::atomic<bool> running_{false};
+  std::chrono::steady_clock::time_point origin_;  // of the loop's clock while spawned
   std::thread thread_;
 };
 

@@ -37,7 +37,7 @@ HardwareResult number(const YAML::Node& params, const std::string& key, double m
 HardwareResult MockHardware::init(const std::vector<std::string>& joints, const YAML::Node& params) {
   static const std::set<std::string> kKeys = {"time_constant",      "position_noise",   "seed",
                                               "initial_positions",  "response_timeout", "unresponsive_joint",
-                                              "unresponsive_after", "lost_after"};
+                                              "unresponsive_after", "lost_after",       "fault_clock"};
   joints_ = joints;
   const std::size_t n = joints.size();
   q_.assign(n, 0.0);
@@ -59,6 +59,13 @@ HardwareResult MockHardware::init(const std::vector<std::string>& joints, const 
     double seed = 0.0;
     if (!(r = number(params, "seed", 0.0, seed)).ok()) return r;
     rng_.seed(static_cast<unsigned>(seed));
+    if (const YAML::Node clock = params["fault_clock"]) {
+      const std::string value = clock.as<std::string>();
+      if (value != "first_read" && value != "first_motion") {
+        return invalid("fault_clock must be first_read or first_motion, got '" + value + "'");
+      }
+      faults_from_motion_ = value == "first_motion";
+    }
     if (params["unresponsive_joint"]) {
       const std::string name = params["unresponsive_joint"].as<std::string>();
       const auto it = std::find(joints_.begin(), joints_.end(), name);
@@ -78,6 +85,7 @@ HardwareResult MockHardware::init(const std::vector<std::string>& joints, const 
     }
   }
   command_ = q_;
+  initial_ = q_;
   return {};
 }
 
@@ -89,20 +97,23 @@ HardwareResult MockHardware::start() {
 void MockHardware::stop() { started_ = false; }
 
 HardwareResult MockHardware::lost(double time) const {
-  if (lost_after_ >= 0.0 && first_read_done_ && time - first_read_ >= lost_after_) {
-    return HardwareResult::failure(HardwareStatus::kDeviceLost, "mock: the device disappeared");
+  if (lost_after_ >= 0.0 && fault_clock_started_ && time - fault_origin_ >= lost_after_) {
+    std::string joints;
+    for (const std::string& j : joints_) joints += (joints.empty() ? "" : ", ") + j;
+    return HardwareResult::failure(HardwareStatus::kDeviceLost, "mock: the device of joints " + joints +
+                                                                    " disappeared");
   }
   return {};
 }
 
 HardwareResult MockHardware::read(double time, double period, std::vector<double>& positions,
                                   std::vector<double>& velocities) {
-  if (!first_read_done_) {
-    first_read_done_ = true;
-    first_read_ = time;
+  if (!fault_clock_started_ && !faults_from_motion_) {
+    fault_clock_started_ = true;
+    fault_origin_ = time;
   }
   if (HardwareResult r = lost(time); !r.ok()) return r;
-  if (unresponsive_ >= 0 && time - first_read_ >= unresponsive_after_) {
+  if (unresponsive_ >= 0 && fault_clock_started_ && time - fault_origin_ >= unresponsive_after_) {
     std::this_thread::sleep_for(std::chrono::duration<double>(response_timeout_));
     std::ostringstream s;
     s << "mock: joint '" << joints_[static_cast<std::size_t>(unresponsive_)] << "' did not answer within "
@@ -124,7 +135,17 @@ HardwareResult MockHardware::read(double time, double period, std::vector<double
 
 HardwareResult MockHardware::write(double time, double, const std::vector<double>& positions) {
   if (HardwareResult r = lost(time); !r.ok()) return r;
-  if (started_) command_ = positions;
+  if (!started_) return {};
+  command_ = positions;
+  if (!fault_clock_started_) {
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      if (std::abs(positions[i] - initial_[i]) > 1e-6) {
+        fault_clock_started_ = true;
+        fault_origin_ = time;
+        break;
+      }
+    }
+  }
   return {};
 }
 

@@ -15,10 +15,12 @@ namespace sixdof_control {
 //   seed: integer (0): of the noise
 //   initial_positions: {<joint>: value} (0 for joints not named)
 //   response_timeout: s, > 0 (0.02): how long a read waits for an unresponsive joint
-//   unresponsive_joint, unresponsive_after: that joint stops answering that many seconds after the first read
-//     (reads then fail with kTimeout naming it)
-//   lost_after: s: the device disappears that many seconds after the first read (reads and writes fail with
-//     kDeviceLost)
+//   unresponsive_joint, unresponsive_after: that joint stops answering that many seconds after the fault clock's
+//     start (reads then fail with kTimeout naming it)
+//   lost_after: s: the device disappears that many seconds after the fault clock's start (reads and writes fail
+//     with kDeviceLost naming its joints)
+//   fault_clock: first_read (default): the faults' seconds count from the first read; first_motion: from the first
+//     command away from the initial positions (a fault in the middle of the first motion, whenever it comes)
 class MockHardware : public HardwareInterface {
  public:
   HardwareResult init(const std::vector<std::string>& joints, const YAML::Node& params) override;
@@ -40,9 +42,11 @@ class MockHardware : public HardwareInterface {
   int unresponsive_ = -1;  // joint index
   double unresponsive_after_ = 0.0;
   double lost_after_ = -1.0;  // < 0: never
+  std::vector<double> initial_;
   bool started_ = false;
-  bool first_read_done_ = false;
-  double first_read_ = 0.0;
+  bool faults_from_motion_ = false;
+  bool fault_clock_started_ = false;
+  double fault_origin_ = 0.0;
   std::mt19937 rng_;
 };
 

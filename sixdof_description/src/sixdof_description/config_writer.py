@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import yaml
+from sixdof_setup_assistant.real_robot import hardware_yaml
 
 from sixdof_description.core_model import joint_space_inertia
 from sixdof_description.formatting import HEADER, fmt
@@ -93,6 +94,15 @@ def render_controllers(robot: Robot) -> str:
         ],
     }
     return _yaml(data, CONTROLLERS_NOTE)
+
+
+def render_hardware(robot: Robot) -> str:
+    """sixdof_control's hardware.yaml: the setup assistant's, for the joints the controllers command (the arm and
+    the first finger; the second finger mimics it)."""
+    actuated = (*ARM_JOINTS, GRIPPER_JOINTS[0])
+    joints = [{"name": j.name, "type": j.joint_type, "bounded": True, "lower": j.lower, "upper": j.upper}
+              for j in robot.joints if j.name in actuated]
+    return hardware_yaml(joints, f"# {HEADER}")
 
 
 def render_setup_answers(robot: Robot) -> str:

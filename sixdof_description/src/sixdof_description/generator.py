@@ -17,6 +17,7 @@ from sixdof_setup_assistant.generator import grasping_file
 from sixdof_description import cad
 from sixdof_description.config_writer import (
     render_controllers,
+    render_hardware,
     render_joint_limits,
     render_kinematics,
     render_setup_answers,
@@ -32,6 +33,7 @@ GENERATED_FILES = (
     "config/kinematics.yaml",
     "config/joint_limits.yaml",
     "config/controllers.yaml",
+    "config/hardware.yaml",
     "config/setup_answers.yaml",
     "config/grasping.yaml",
     *[f"meshes/visual/{name}.stl" for name in LINKS],
@@ -58,6 +60,7 @@ def generate_files(design_path: Path, previous_srdf: str | None) -> dict:
         "config/kinematics.yaml": render_kinematics(robot).encode(),
         "config/joint_limits.yaml": render_joint_limits(robot).encode(),
         "config/controllers.yaml": render_controllers(robot).encode(),
+        "config/hardware.yaml": render_hardware(robot).encode(),
         "config/setup_answers.yaml": render_setup_answers(robot).encode(),
     }
     for name in LINKS:

@@ -20,7 +20,7 @@ from typing import Any
 
 import yaml
 
-from . import grasping, templates
+from . import grasping, real_robot, templates
 from .answers import load_answers
 from .infer import Plan, complete_gripper_states, infer
 from .xacro_loader import load_description
@@ -249,6 +249,11 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         "config/motion_planning.rviz": templates.rviz_config(plan, report),
         "launch/demo.launch": templates.demo_launch(name, plan),
         "launch/move_group.launch": templates.move_group_launch(name, plan),
+        "launch/real.launch": real_robot.real_launch(name, plan.robot, templates.launch_files(name, plan),
+                                                     templates.HEADER),
+        "config/hardware.yaml": real_robot.hardware_yaml(
+            real_robot.hardware_joints([j for g in (plan.arm, plan.gripper) if g for j in g.joints], report["joints"]),
+            f"# {templates.HEADER}."),
         "README.md": templates.readme(name, plan, report, command)
         + grasping.readme_sections(plan, model, repairs, answers),
     }

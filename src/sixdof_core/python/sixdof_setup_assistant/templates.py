@@ -132,12 +132,13 @@ def package_xml(name: str, plan: Plan) -> str:
   <name>{name}</name>
   <version>0.1.0</version>
   <description>sixdof config of the robot {plan.robot}: URDF, SRDF, kinematics, joint limits, controllers, a world
-    and launch files for the simulator, move_group and rviz. {HEADER}.</description>
+    and launch files for the simulator, the real robot, move_group and rviz. {HEADER}.</description>
   <maintainer email="user@example.org">user</maintainer>
   <license>BSD-3-Clause</license>
 
   <buildtool_depend>catkin</buildtool_depend>
   <exec_depend>sixdof_bringup</exec_depend>
+  <exec_depend>sixdof_control</exec_depend>
   <exec_depend>sixdof_description</exec_depend>
   <exec_depend>sixdof_planning</exec_depend>
   <exec_depend>sixdof_sim</exec_depend>
@@ -165,8 +166,9 @@ def has_grasping(plan: Plan) -> bool:
     return plan.gripper is not None and plan.end_effector is not None
 
 
-def _files(name: str, plan: Plan) -> dict[str, str]:
-    # grasping: "" loads no grasping information (the default would be the sixdof arm's).
+def launch_files(name: str, plan: Plan) -> dict[str, str]:
+    """The robot's files as the launch files' args (sixdof_bringup's demo.launch and real.launch take them);
+    grasping "" loads no grasping information (the default would be the sixdof arm's)."""
     return {"urdf": f"$(find {name})/urdf/{plan.robot}.urdf", "srdf": f"$(find {name})/config/{plan.robot}.srdf",
             "kinematics": f"$(find {name})/config/kinematics.yaml",
             "joint_limits": f"$(find {name})/config/joint_limits.yaml",
@@ -175,7 +177,7 @@ def _files(name: str, plan: Plan) -> dict[str, str]:
 
 
 def demo_launch(name: str, plan: Plan) -> str:
-    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in _files(name, plan).items())
+    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in launch_files(name, plan).items())
     return f"""<?xml version="1.0"?>
 <!-- {HEADER}.
      The whole stack for {plan.robot}: sixdof_bringup's demo.launch with this package's files (simulator,
@@ -209,7 +211,7 @@ def demo_launch(name: str, plan: Plan) -> str:
 
 
 def move_group_launch(name: str, plan: Plan) -> str:
-    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in _files(name, plan).items())
+    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in launch_files(name, plan).items())
     return f"""<?xml version="1.0"?>
 <!-- {HEADER}.
      move_group alone for {plan.robot} (e.g. with real hardware that serves controller_list's
@@ -404,6 +406,11 @@ Run it (after adding this folder's parent to `ROS_PACKAGE_PATH`, or building it 
 
     roslaunch {name} demo.launch                    # simulator, move_group, rviz with the Motion Planning panel
     roslaunch {name} demo.launch headless:=true     # no rviz, simulation as fast as possible
+    roslaunch {name} real.launch driver:=mock       # the real robot's launch, on simulated hardware
+
+The real robot: `real.launch driver:=none` (its own driver serves the controllers), `driver:=dynamixel
+port:=/dev/ttyUSB0` (sixdof_control on Dynamixel servos: set the ids and calibration in `config/hardware.yaml`
+first), or `driver:=<package>/<class>` (a hardware plugin of your own); see sixdof's docs/real_robot.md.
 
 ## What was generated
 
@@ -419,6 +426,8 @@ Run it (after adding this folder's parent to `ROS_PACKAGE_PATH`, or building it 
 | `config/motion_planning.rviz` | rviz with the Motion Planning panel (and the TCP's axes) |
 | `launch/demo.launch` | the whole stack (sixdof_bringup's demo.launch with these files) |
 | `launch/move_group.launch` | move_group alone |
+| `launch/real.launch` | the real robot: move_group, rviz and a driver (`driver:=none`, `mock`, `dynamixel`, a plugin) |
+| `config/hardware.yaml` | sixdof_control's control loop settings and a block per hardware plugin (mock, dynamixel) |
 
 Groups:
 {groups}

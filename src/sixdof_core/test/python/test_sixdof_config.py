@@ -69,5 +69,9 @@ def test_grasping_is_the_generated_one(package: Path) -> None:
         100, 4, 4, 8)
 
 
+def test_hardware_is_the_generated_one(package: Path) -> None:
+    assert load(package / "config/hardware.yaml") == load(CONFIG / "hardware.yaml")
+
+
 def test_the_urdf_is_used_as_it_is(package: Path) -> None:
     assert (package / "urdf/sixdof.urdf").read_text() == FIXTURES["sixdof"].read_text()

@@ -10,10 +10,8 @@ named state; the driver's joint_states end at the goals. Private ROS master, wal
 from __future__ import annotations
 
 import shutil
-import subprocess
 import sys
 import tempfile
-import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,7 +22,7 @@ import rosgraph
 import rospy
 import yaml
 from e2e import STARTUP_TIMEOUT
-from generated import generate_package, start_master, stop
+from generated import generate_package, start, start_master, stop, wait_for_move_group
 from moveit_msgs.msg import MoveItErrorCodes
 from sensor_msgs.msg import JointState
 
@@ -36,12 +34,6 @@ TOLERANCE = 1e-3  # rad: the driver follows the trajectory exactly; this covers 
 @dataclass
 class Robot:
     controllers: dict[str, list[str]]  # the package's controller_list: name -> joints
-
-
-def start(command: list[str], log: Path) -> subprocess.Popen:
-    """command in a process group of its own, its output into log."""
-    with open(log, "w") as out:
-        return subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
 
 
 @pytest.fixture(scope="module")
@@ -86,14 +78,7 @@ def assert_at(names: list[str], goal: list[float]) -> None:
 
 
 def test_move_group_drives_a_control_msgs_driver(robot: Robot) -> None:
-    deadline = time.monotonic() + STARTUP_TIMEOUT
-    while True:  # move_group serves the robot model once it is up
-        try:
-            model = moveit_commander.RobotCommander()
-            break
-        except moveit_commander.MoveItCommanderException:
-            assert time.monotonic() < deadline, "move_group of the generated package did not come up"
-            time.sleep(1.0)
+    model = wait_for_move_group()
     group = max(model.get_group_names(), key=lambda g: len(model.get_active_joint_names(g)))
     commander = moveit_commander.MoveGroupCommander(group, wait_for_servers=STARTUP_TIMEOUT)
     # move_group's controller actions are control_msgs', and only the drivers publish joint_states.

@@ -1,6 +1,7 @@
-"""What the tests of generated config packages share (any_arm.py, any_gripper.py, external_driver.py): a ROS master
-of the test's own, a temporary workspace on ROS_PACKAGE_PATH, a fixture robot's package written by the setup
-assistant, its demo.launch run headless until its services answer, and stopping launched process groups."""
+"""What the tests of generated config packages share (any_arm.py, any_gripper.py, external_driver.py,
+real_launch.py): a ROS master of the test's own, processes started in groups of their own, a temporary
+workspace on ROS_PACKAGE_PATH, a fixture robot's package written by the setup assistant, its demo.launch
+run headless until its services answer, and stopping launched process groups."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
+import moveit_commander
 import pytest
 import rosgraph
 import rospy
@@ -42,6 +44,12 @@ def stop(process: subprocess.Popen, timeout: float = 60.0) -> None:
         process.wait()
 
 
+def start(command: list[str], log: Path) -> subprocess.Popen:
+    """command in a process group of its own, its output into log."""
+    with open(log, "w") as out:
+        return subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
+
+
 def start_master(root: Path) -> subprocess.Popen:
     """A roscore on a free port for this process and its children (ROS_MASTER_URI), with root (and the fixture
     robots' package) on ROS_PACKAGE_PATH and the logs under root; returns once the master answers."""
@@ -59,6 +67,17 @@ def start_master(root: Path) -> subprocess.Popen:
         assert time.monotonic() < deadline, "the ROS master did not come up"
         time.sleep(0.2)
     return core
+
+
+def wait_for_move_group() -> moveit_commander.RobotCommander:
+    """A RobotCommander once move_group serves the robot model (it may still be starting)."""
+    deadline = time.monotonic() + STARTUP_TIMEOUT
+    while True:
+        try:
+            return moveit_commander.RobotCommander()
+        except moveit_commander.MoveItCommanderException:
+            assert time.monotonic() < deadline, "move_group did not come up"
+            time.sleep(1.0)
 
 
 def generate_package(robot: str, description: str, workspace: Path, xacro_args: str = "") -> tuple[str, Path]:

@@ -1,9 +1,12 @@
-"""Two hosts: the robot host (ROS master, simulator, move_group: sixdof_bringup robot_host.launch) in one network
-namespace, the operator host (a moveit_commander script, multihost_client.py) in another, joined by a veth pair
-with addresses of their own (ROS_IP and ROS_MASTER_URI use only those). In the middle of a motion the link goes
-down for 5 s: go() must fail cleanly (False with COMMUNICATION_FAILURE, not hang) and, once the link is back, the
-next motion must work. The namespaces, the veth pair and every process are created and removed here; root is
-needed (ip netns).
+"""Two hosts in two network namespaces joined by a veth pair with addresses of their own (ROS_IP and ROS_MASTER_URI
+use only those):
+- the robot host (ROS master, simulator, move_group: sixdof_bringup robot_host.launch) and the operator host (a
+  moveit_commander script, multihost_client.py). In the middle of a motion the link goes down for 5 s: go() must
+  fail cleanly (False with COMMUNICATION_FAILURE, not hang) and, once the link is back, the next motion must work.
+- a real robot's two machines: the driver (sixdof_control on the mock plugin, driver.launch) on the robot host,
+  move_group (real.launch driver:=none, with the ROS master) and the commander script on the other: the script's
+  motions execute through the driver across the link.
+The namespaces, the veth pair and every process are created and removed here; root is needed (ip netns).
 
     sudo -E python -m pytest test/ros/multihost.py
 """
@@ -113,7 +116,7 @@ def stop(process: subprocess.Popen) -> None:
             process.wait()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def robot_host(hosts: Hosts) -> Iterator[subprocess.Popen]:
     """The robot host's part of the demo (master, simulator in real time, move_group, scene mirror), no rviz."""
     with open(hosts.log_dir / "robot_host.out", "w") as log:
@@ -147,12 +150,12 @@ def next_line(lines: queue.Queue, timeout: float, what: str, log: Path) -> str:
             return line
 
 
-def test_link_drop_mid_motion_fails_cleanly_and_the_next_motion_works(hosts: Hosts, robot_host: subprocess.Popen):
-    log = hosts.log_dir / "operator_host.err"
+def commander_script(hosts: Hosts, env: dict[str, str], log: Path) -> tuple[subprocess.Popen, queue.Queue]:
+    """multihost_client.py on the operator host: the process and a queue of its output lines."""
     with open(log, "w") as err:
         client = subprocess.Popen(
             ["ip", "netns", "exec", hosts.operator_ns, "python3", str(HERE / "multihost_client.py")],
-            env=hosts.env(hosts.operator_ip),
+            env=env,
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             stderr=err,
@@ -161,6 +164,12 @@ def test_link_drop_mid_motion_fails_cleanly_and_the_next_motion_works(hosts: Hos
         )
     lines: queue.Queue = queue.Queue()
     threading.Thread(target=read_lines, args=(client.stdout, lines), daemon=True).start()
+    return client, lines
+
+
+def test_link_drop_mid_motion_fails_cleanly_and_the_next_motion_works(hosts: Hosts, robot_host: subprocess.Popen):
+    log = hosts.log_dir / "operator_host.err"
+    client, lines = commander_script(hosts, hosts.env(hosts.operator_ip), log)
     try:
         assert next_line(lines, STARTUP_TIMEOUT, "MOVING", log) == "MOVING"
         assert robot_host.poll() is None, "the robot host's launch ended"
@@ -183,3 +192,45 @@ def test_link_drop_mid_motion_fails_cleanly_and_the_next_motion_works(hosts: Hos
         assert second["ok"], f"the motion after the link returned failed: {second}"
     finally:
         stop(client)
+
+
+def test_driver_on_the_robot_host_move_group_on_the_other(hosts: Hosts):
+    operator = hosts.env(hosts.operator_ip)
+    operator["ROS_MASTER_URI"] = f"http://{hosts.operator_ip}:11311"
+    robot = dict(operator, ROS_IP=hosts.robot_ip)
+    processes = []
+    try:
+        with open(hosts.log_dir / "planning_host.out", "w") as log:
+            processes.append(subprocess.Popen(
+                ["ip", "netns", "exec", hosts.operator_ns, "roslaunch", "-p", "11311", "sixdof_bringup", "real.launch",
+                 "rviz:=false"],
+                env=operator, stdout=log, stderr=subprocess.STDOUT, start_new_session=True,
+            ))
+        # The driver reads the robot description the planning host's launch puts on the parameter server.
+        deadline = time.monotonic() + STARTUP_TIMEOUT
+        while subprocess.run(["ip", "netns", "exec", hosts.robot_ns, "rosparam", "get", "/robot_description"],
+                             env=robot, capture_output=True, timeout=30).returncode != 0:
+            assert time.monotonic() < deadline, "the planning host's launch did not load the robot description"
+            time.sleep(1.0)
+        share = Path(subprocess.run(["rospack", "find", "sixdof_description"], capture_output=True, text=True,
+                                    check=True).stdout.strip())
+        with open(hosts.log_dir / "driver_host.out", "w") as log:
+            processes.append(subprocess.Popen(
+                ["ip", "netns", "exec", hosts.robot_ns, "roslaunch", "sixdof_control", "driver.launch", "plugin:=mock",
+                 f"hardware_file:={share / 'config' / 'hardware.yaml'}",
+                 f"controllers_file:={share / 'config' / 'controllers.yaml'}"],
+                env=robot, stdout=log, stderr=subprocess.STDOUT, start_new_session=True,
+            ))
+        log = hosts.log_dir / "operator_script.err"
+        client, lines = commander_script(hosts, operator, log)
+        processes.append(client)
+        assert next_line(lines, STARTUP_TIMEOUT, "MOVING", log) == "MOVING"
+        first = json.loads(next_line(lines, MOTION_BOUND, "result of the first motion", log))
+        client.stdin.write("again\n")
+        client.stdin.flush()
+        second = json.loads(next_line(lines, MOTION_BOUND, "result of the second motion", log))
+        print(f"multihost: motions through the driver on the other host: {first}, {second}")
+        assert first["ok"] and second["ok"], (first, second)
+    finally:
+        for process in reversed(processes):
+            stop(process)

@@ -12,7 +12,7 @@ from conftest import FIXTURES, ROBOTS, run, srdf
 
 FILES = ["package.xml", "CMakeLists.txt", "README.md", "config/kinematics.yaml", "config/joint_limits.yaml",
          "config/controllers.yaml", "config/world.yaml", "config/motion_planning.rviz", "launch/demo.launch",
-         "launch/move_group.launch", ".setup_assistant.yaml"]
+         "launch/move_group.launch", "launch/real.launch", "config/hardware.yaml", ".setup_assistant.yaml"]
 
 # robot -> (arm chain base, tip, arm joint count, solver, gripper joints, virtual joint)
 EXPECTED = {
@@ -55,6 +55,30 @@ def test_every_file_is_written_and_parses(generated: dict[str, Path], robot: str
     assert table["position"][2] + table["size"][2] / 2 == pytest.approx(0.0)  # top face under the root frame
     rviz = yaml.safe_load((package / "config/motion_planning.rviz").read_text())
     assert any(p["Class"] == "sixdof_rviz/MotionPlanningPanel" for p in rviz["Panels"])
+
+
+@pytest.mark.parametrize("robot", list(FIXTURES))
+def test_the_real_robot_launch_and_hardware_config(generated: dict[str, Path], robot: str) -> None:
+    package = generated[robot]
+    real = ET.parse(package / "launch/real.launch").getroot()
+    args = {a.get("name"): a for a in real.findall("arg")}
+    assert set(args) == {"driver", "port", "rviz", "hardware_file"}
+    assert all(a.get("doc") for a in args.values()) and args["driver"].get("default") == "none"
+    include = real.find("include")
+    assert include.get("file") == "$(find sixdof_bringup)/launch/real.launch"
+    passed = {a.get("name") for a in include.findall("arg")}
+    assert {"urdf", "srdf", "controllers_file", "hardware_file", "driver", "port", "rviz"} <= passed
+    # The hardware gets the controllers' joints less the mimic ones, each with a servo id of its own.
+    controllers = yaml.safe_load((package / "config/controllers.yaml").read_text())
+    commanded = {j for c in controllers["controller_list"] for j in c["joints"]}
+    urdf = ET.parse(package / f"urdf/{robot}.urdf").getroot()
+    mimics = {j.get("name") for j in urdf.findall("joint") if j.find("mimic") is not None}
+    hardware = yaml.safe_load((package / "config/hardware.yaml").read_text())
+    servos = hardware["dynamixel"]["joints"]
+    assert set(servos) == commanded - mimics
+    assert sorted(s["id"] for s in servos.values()) == list(range(1, len(servos) + 1))
+    assert set(hardware["mock"]["initial_positions"]) == set(servos)
+    assert hardware["rate"] == 100
 
 
 @pytest.mark.parametrize("robot", list(FIXTURES))

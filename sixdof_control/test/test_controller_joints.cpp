@@ -31,8 +31,7 @@ TEST(ControllerJoints, MapsMimicJointsToTheirMasters) {
   EXPECT_EQ(joints.actuated(), std::vector<std::string>{"finger1"});
   EXPECT_TRUE(joints.hasMimics());
   EXPECT_EQ(joints.checkMimics(goal({"finger1", "finger2"}, {0.01, 0.03})), "");
-  EXPECT_NE(joints.checkMimics(goal({"finger1", "finger2"}, {0.01, 0.02})).find("mimics 'finger1'"),
-            std::string::npos);
+  EXPECT_NE(joints.checkMimics(goal({"finger1", "finger2"}, {0.01, 0.02})).find("mimics 'finger1'"), std::string::npos);
   // A goal that leaves a joint out passes the mimic check (the controller refuses it) but cannot be mapped.
   EXPECT_EQ(joints.checkMimics(goal({"finger1"}, {0.01})), "");
   TrajectoryGoal actuated;

@@ -72,10 +72,7 @@ bool endNow(const std::shared_ptr<Goal>& goal, const Outcome& outcome, std::mute
 
 TrajectoryActionServer::TrajectoryActionServer(ros::NodeHandle nh, const TrajectoryControllerSetup& setup,
                                                ControllerHost& host)
-    : name_(setup.config.name),
-      joints_(setup.joints),
-      host_(host),
-      server_(nh, "follow_joint_trajectory", false) {
+    : name_(setup.config.name), joints_(setup.joints), host_(host), server_(nh, "follow_joint_trajectory", false) {
   if (setup.state_publish_rate > 0.0) {
     state_period_ = 1.0 / setup.state_publish_rate;
     state_pub_ = nh.advertise<control_msgs::JointTrajectoryControllerState>("state", 1);
@@ -251,8 +248,8 @@ ControllerActions::ControllerActions(const ros::NodeHandle& nh, const Controller
     trajectory_.push_back(std::make_unique<TrajectoryActionServer>(ros::NodeHandle(nh, c.config.name), c, host));
   }
   if (setup.gripper) {
-    gripper_ = std::make_unique<GripperActionServer>(ros::NodeHandle(nh, setup.gripper->name), setup.gripper->name,
-                                                     host);
+    gripper_ =
+        std::make_unique<GripperActionServer>(ros::NodeHandle(nh, setup.gripper->name), setup.gripper->name, host);
   }
 }
 

@@ -96,8 +96,7 @@ TrajectoryResult ControllerJoints::actuatedGoal(const TrajectoryGoal& goal, Traj
     if (it == goal.joint_names.end()) {
       return TrajectoryResult::failure(TrajectoryErrorCode::kInvalidJoints,
                                        "joint '" + joints_[m.joint] + "' of controller '" + controller_ +
-                                           "' is missing from joint_names (all of " + list(joints_) +
-                                           " are required)");
+                                           "' is missing from joint_names (all of " + list(joints_) + " are required)");
     }
     drop.push_back(static_cast<std::size_t>(it - goal.joint_names.begin()));
   }
@@ -112,7 +111,9 @@ TrajectoryResult ControllerJoints::actuatedGoal(const TrajectoryGoal& goal, Traj
       if (values->size() != n && !(values != &in.positions && values->empty())) {
         std::ostringstream s;
         s << "point " << p << " has " << values->size() << " "
-          << (values == &in.positions ? "positions" : values == &in.velocities ? "velocities" : "accelerations")
+          << (values == &in.positions    ? "positions"
+              : values == &in.velocities ? "velocities"
+                                         : "accelerations")
           << " for " << n << " joints";
         return TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, s.str());
       }
@@ -126,8 +127,7 @@ TrajectoryResult ControllerJoints::actuatedGoal(const TrajectoryGoal& goal, Traj
   const auto actuated_only = [&](std::vector<sixdof_core::JointToleranceOverride>& tolerances) {
     tolerances.erase(std::remove_if(tolerances.begin(), tolerances.end(),
                                     [&](const sixdof_core::JointToleranceOverride& t) {
-                                      return std::find(actuated_.begin(), actuated_.end(), t.name) ==
-                                                 actuated_.end() &&
+                                      return std::find(actuated_.begin(), actuated_.end(), t.name) == actuated_.end() &&
                                              std::find(joints_.begin(), joints_.end(), t.name) != joints_.end();
                                     }),
                      tolerances.end());

@@ -125,7 +125,8 @@ GripperControllerConfig readGripperControllerConfig(const ros::NodeHandle& nh, c
                                                     const std::vector<RobotJoint>& robot) {
   const std::string who = "controller '" + nh.resolveName(name) + "'";
   std::vector<std::string> joints;
-  if (!nh.getParam(name + "/joints", joints)) throw std::runtime_error(who + ": 'joints' must be a list of joint names");
+  if (!nh.getParam(name + "/joints", joints))
+    throw std::runtime_error(who + ": 'joints' must be a list of joint names");
   GripperControllerConfig c;
   c.name = name;
   for (const std::string& j : joints) {

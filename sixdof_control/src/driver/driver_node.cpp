@@ -21,9 +21,16 @@ namespace sixdof_control {
 namespace {
 
 // The driver's own private parameters; any other private parameter must be a plugin's block (a dictionary).
-const std::set<std::string> kSettings = {"plugin",           "rate",       "start_tolerance",   "read_timeout",
-                                         "velocity_tolerance", "statistics_window", "realtime_priority",
-                                         "publish_rate",     "controllers", "gripper_command_controller"};
+const std::set<std::string> kSettings = {"plugin",
+                                         "rate",
+                                         "start_tolerance",
+                                         "read_timeout",
+                                         "velocity_tolerance",
+                                         "statistics_window",
+                                         "realtime_priority",
+                                         "publish_rate",
+                                         "controllers",
+                                         "gripper_command_controller"};
 
 void checkPrivateParameters(const ros::NodeHandle& pnh) {
   XmlRpc::XmlRpcValue all;
@@ -41,7 +48,8 @@ template <class T>
 T read(const ros::NodeHandle& pnh, const std::string& key, T fallback) {
   if (!pnh.hasParam(key)) return fallback;
   T value{};
-  if (!pnh.getParam(key, value)) throw std::runtime_error("parameter '" + pnh.resolveName(key) + "' has the wrong type");
+  if (!pnh.getParam(key, value))
+    throw std::runtime_error("parameter '" + pnh.resolveName(key) + "' has the wrong type");
   return value;
 }
 
@@ -71,7 +79,8 @@ std::vector<RobotJoint> robotJoints(const sixdof_core::RobotModel& model) {
 // The actuated joints the controllers command, in the model's order.
 std::vector<std::string> hardwareJoints(const ControllerSetup& setup, const std::vector<RobotJoint>& robot) {
   std::set<std::string> used;
-  for (const TrajectoryControllerSetup& c : setup.trajectory) used.insert(c.joints.actuated().begin(), c.joints.actuated().end());
+  for (const TrajectoryControllerSetup& c : setup.trajectory)
+    used.insert(c.joints.actuated().begin(), c.joints.actuated().end());
   if (setup.gripper) used.insert(setup.gripper->joint);
   std::vector<std::string> joints;
   for (const RobotJoint& j : robot) {
@@ -87,8 +96,8 @@ std::vector<PublishedJoint> publishedJoints(const std::vector<std::string>& hard
     const std::string& source = j.mimic_of.empty() ? j.name : j.mimic_of;
     const auto it = std::find(hardware.begin(), hardware.end(), source);
     if (it == hardware.end()) continue;
-    out.push_back({j.name, static_cast<std::size_t>(it - hardware.begin()), j.mimic_of.empty() ? 1.0 : j.mimic_multiplier,
-                   j.mimic_of.empty() ? 0.0 : j.mimic_offset});
+    out.push_back({j.name, static_cast<std::size_t>(it - hardware.begin()),
+                   j.mimic_of.empty() ? 1.0 : j.mimic_multiplier, j.mimic_of.empty() ? 0.0 : j.mimic_offset});
   }
   return out;
 }
@@ -159,9 +168,8 @@ DriverNode::DriverNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
   estop_service_ = pnh_.advertiseService("estop", &DriverNode::estop, this);
   clear_fault_service_ = pnh_.advertiseService("clear_fault", &DriverNode::clearFault, this);
-  publish_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / publish_rate), [this](const ros::WallTimerEvent&) {
-    publish();
-  });
+  publish_timer_ =
+      nh_.createWallTimer(ros::WallDuration(1.0 / publish_rate), [this](const ros::WallTimerEvent&) { publish(); });
   diagnostics_timer_ =
       nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { publishDiagnostics(); });
   std::string names;
@@ -238,7 +246,7 @@ bool DriverNode::estop(std_srvs::SetBool::Request& request, std_srvs::SetBool::R
   loop_->setEstop(request.data);
   response.success = true;
   response.message = request.data ? "e-stop engaged: motion stopped, goals are refused until it is released"
-                                   : "e-stop released: holding where the joints are, goals are accepted";
+                                  : "e-stop released: holding where the joints are, goals are accepted";
   ROS_WARN_STREAM("[sixdof_control] " << response.message);
   return true;
 }

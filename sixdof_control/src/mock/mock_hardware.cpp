@@ -100,8 +100,8 @@ HardwareResult MockHardware::lost(double time) const {
   if (lost_after_ >= 0.0 && fault_clock_started_ && time - fault_origin_ >= lost_after_) {
     std::string joints;
     for (const std::string& j : joints_) joints += (joints.empty() ? "" : ", ") + j;
-    return HardwareResult::failure(HardwareStatus::kDeviceLost, "mock: the device of joints " + joints +
-                                                                    " disappeared");
+    return HardwareResult::failure(HardwareStatus::kDeviceLost,
+                                   "mock: the device of joints " + joints + " disappeared");
   }
   return {};
 }

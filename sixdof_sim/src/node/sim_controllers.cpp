@@ -13,8 +13,8 @@ using sixdof_control::GripperOutcome;
 std::vector<sixdof_control::RobotJoint> robotJoints(const World& world) {
   std::vector<sixdof_control::RobotJoint> joints;
   for (const JointInfo& j : world.joints()) {
-    joints.push_back({j.name, j.bounded, j.lower, j.upper, j.max_effort, j.mimic_of, j.mimic_multiplier,
-                      j.mimic_offset});
+    joints.push_back(
+        {j.name, j.bounded, j.lower, j.upper, j.max_effort, j.mimic_of, j.mimic_multiplier, j.mimic_offset});
   }
   return joints;
 }
@@ -205,8 +205,7 @@ void SimControllers::update(double now) {
     t.last = t.controller.update(now, q, v);
     const std::vector<std::string>& joints = t.controller.joints();
     for (std::size_t k = 0; k < joints.size(); ++k) {
-      if (std::find(t.commanded.begin(), t.commanded.end(), joints[k]) == t.commanded.end() ||
-          !owns(self, joints[k])) {
+      if (std::find(t.commanded.begin(), t.commanded.end(), joints[k]) == t.commanded.end() || !owns(self, joints[k])) {
         continue;
       }
       const Result r = world_.setPositionTarget(joints[k], t.last->desired.position[k], t.last->desired.velocity[k]);

@@ -46,9 +46,9 @@ class SimControllers : public sixdof_control::ControllerHost {
  private:
   struct Trajectory {
     TrajectoryController controller;
-    std::vector<int> world_index;         // per controller joint
-    std::vector<std::string> commanded;   // non-mimic joints: the World drives the mimics
-    sixdof_control::GoalCallback done;    // of the active goal
+    std::vector<int> world_index;        // per controller joint
+    std::vector<std::string> commanded;  // non-mimic joints: the World drives the mimics
+    sixdof_control::GoalCallback done;   // of the active goal
     std::optional<TrajectoryUpdate> last;
   };
   struct Gripper {

@@ -4,7 +4,8 @@
 # bench/results.md (kept in the repo; the README quotes it); then plots the scaling curves into bench/scaling_*.png
 # (scripts/plot_scaling.py).
 #   scripts/bench.sh                     all benchmarks
-#   scripts/bench.sh ik_bench bindings   only the named ones ("bindings": the bindings' section alone)
+#   scripts/bench.sh ik_bench bindings   only the named ones ("bindings": the bindings' section alone); their sections
+#                                        are replaced, every other section of bench/results.md stays
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
@@ -22,7 +23,20 @@ fi
   echo "no benchmark executables found under install/lib (build first)" >&2
   exit 1
 }
-if [ ${#benches[@]} -gt 0 ]; then
+if [ ${#benches[@]} -gt 0 ] && [ $# -gt 0 ]; then
+  # Named benchmarks: only their sections are replaced (or added), each saying when it ran; the others stay.
+  for b in "${benches[@]}"; do
+    {
+      echo "## $(basename "$b") ($(basename "$(dirname "$b")"))"
+      echo
+      echo "Run $(date -u '+%Y-%m-%d %H:%M UTC') on $(nproc) cores at commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown) (\`scripts/bench.sh $(basename "$b")\`)."
+      echo
+      "$b"
+    } | tee "$out.section"
+    python3 scripts/results_section.py "$out" "$out.section"
+    rm -f "$out.section"
+  done
+elif [ ${#benches[@]} -gt 0 ]; then
   {
     echo "# Benchmark results"
     echo

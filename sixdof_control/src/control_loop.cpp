@@ -163,10 +163,12 @@ void ControlLoop::cycle(double now) {
   const auto cycle_start = std::chrono::steady_clock::now();
   const std::size_t n = config_.joints.size();
   double period = 1.0 / config_.rate;
+  std::size_t clears = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (status_.state == LoopState::kStopped) return;
     if (now > status_.time) period = now - status_.time;
+    clears = clears_;
   }
   std::vector<double> positions(n, 0.0), velocities(n, 0.0);
   HardwareResult read = hardware_.read(now, period, positions, velocities);
@@ -181,7 +183,11 @@ void ControlLoop::cycle(double now) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status_.time = now;
-    if (!read.ok()) {
+    // A read begun before a clearFault() that failed: the cleared fault's; this cycle holds, the next read decides.
+    const bool stale = !read.ok() && clears != clears_;
+    if (stale) {
+      status_.commands = hold_;
+    } else if (!read.ok()) {
       enterFault(read.message, done);
     } else {
       if (!hardware_.hasVelocities()) {
@@ -197,7 +203,7 @@ void ControlLoop::cycle(double now) {
     }
     if (status_.state == LoopState::kFault) {
       status_.commands = hold_;
-    } else {
+    } else if (!stale) {
       updateControllers(now, period, done);
       checkLimits(done);
     }

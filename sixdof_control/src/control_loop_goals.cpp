@@ -271,6 +271,7 @@ void ControlLoop::clearFault() {
   status_.state = estop_ ? LoopState::kEstop : LoopState::kRunning;
   status_.fault.clear();
   rehold_ = true;
+  ++clears_;
 }
 
 LoopStatus ControlLoop::status() const {

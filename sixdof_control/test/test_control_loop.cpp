@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include "sixdof_control/hardware_loader.h"
 #include "test_helpers.h"
@@ -146,6 +148,60 @@ TEST_F(ControlLoopTest, ALostDeviceAbortsTheGoalWithinASecondAndRefusesGoals) {
   loop->setEstop(true);
   loop->clearFault();
   EXPECT_EQ(loop->status().state, LoopState::kEstop);
+}
+
+// The mock, whose reads fail while `gone`; `during_read` runs inside the next read, as another thread's call would
+// while a read is in flight.
+class FailingReads : public HardwareInterface {
+ public:
+  explicit FailingReads(HardwareInterface& mock) : mock_(mock) {}
+  HardwareResult init(const std::vector<std::string>& joints, const YAML::Node& params) override {
+    return mock_.init(joints, params);
+  }
+  HardwareResult start() override { return mock_.start(); }
+  void stop() override { mock_.stop(); }
+  bool hasVelocities() const override { return mock_.hasVelocities(); }
+  HardwareResult read(double time, double period, std::vector<double>& positions,
+                      std::vector<double>& velocities) override {
+    const bool failing = gone;
+    if (during_read) std::exchange(during_read, nullptr)();
+    if (failing) return HardwareResult::failure(HardwareStatus::kTimeout, "joint3 did not answer");
+    return mock_.read(time, period, positions, velocities);
+  }
+  HardwareResult write(double time, double period, const std::vector<double>& positions) override {
+    return mock_.write(time, period, positions);
+  }
+  bool gone = false;
+  std::function<void()> during_read;
+
+ private:
+  HardwareInterface& mock_;
+};
+
+TEST_F(ControlLoopTest, AReadInFlightWhenTheFaultIsClearedDoesNotFaultAgain) {
+  loop.reset();
+  FailingReads device(*hardware);
+  ControlLoop faulty(armLoopConfig(), device);
+  ASSERT_TRUE(faulty.start(now).ok());
+  device.gone = true;
+  faulty.cycle(now += kPeriod);
+  ASSERT_EQ(faulty.status().state, LoopState::kFault);
+  // The device comes back and the fault is cleared while a read begun before fails.
+  device.during_read = [&] {
+    device.gone = false;
+    faulty.clearFault();
+  };
+  faulty.cycle(now += kPeriod);
+  EXPECT_EQ(faulty.status().state, LoopState::kRunning) << faulty.status().fault;
+  faulty.cycle(now += kPeriod);
+  EXPECT_EQ(faulty.status().state, LoopState::kRunning) << faulty.status().fault;
+  EXPECT_TRUE(faulty.setGoal("arm_controller", armGoal({{kZero, 0.0}, {kTarget, 1.0}}), record()).ok());
+  // A read begun after the clear that fails is a fault again.
+  device.gone = true;
+  faulty.cycle(now += kPeriod);
+  EXPECT_EQ(faulty.status().state, LoopState::kFault);
+  ASSERT_TRUE(outcome);
+  EXPECT_EQ(outcome->state, GoalState::kAborted);
 }
 
 TEST_F(ControlLoopTest, AJointThatStopsAnsweringAbortsNamingIt) {

@@ -158,6 +158,9 @@ class ControlLoop {
   LoopStatus status_;
   bool estop_ = false;   // engaged, whatever the state (a fault cleared during an e-stop leaves it kEstop)
   bool rehold_ = false;  // hold wherever the joints are at the next good read (after clearFault, e-stop release)
+  // clearFault() calls so far: a read that fails after a clear that came while it was in flight is the cleared
+  // fault's (the device was still gone when it began), not a new one.
+  std::size_t clears_ = 0;
   std::vector<double> previous_positions_;
   std::vector<double> hold_;  // what a fault writes
   PeriodStatistics statistics_;

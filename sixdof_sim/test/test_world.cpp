@@ -248,10 +248,70 @@ TEST_F(WorldTest, MarkersDoNotCollide) {
   ObjectState probe;
   ASSERT_TRUE(world.objectState("probe", &probe).ok());
   EXPECT_NEAR(probe.spec.pose.translation().z(), 0.01, 1.5e-3);
+  bool on_table = false;
   for (const Contact& c : world.contacts()) {
     EXPECT_NE(c.body_a, "place_marker");
     EXPECT_NE(c.body_b, "place_marker");
+    on_table = on_table || (c.body_a == "table" && c.body_b == "probe") || (c.body_a == "probe" && c.body_b == "table");
   }
+  EXPECT_TRUE(on_table);
+}
+
+// Objects at rest sleep (exactly still, no solver work) and wake when what they rest on goes away.
+TEST_F(WorldTest, RestingObjectsSleepAndWakeWhenDisturbed) {
+  ObjectSpec bottom;
+  bottom.name = "bottom";
+  bottom.shape.box_size = Eigen::Vector3d::Constant(0.04);
+  bottom.pose.translation() = Eigen::Vector3d(0.3, 0.4, 0.02);
+  ObjectSpec top = bottom;
+  top.name = "top";
+  top.pose.translation().z() = 0.06;
+  ASSERT_TRUE(world.spawnObject(bottom).ok());
+  ASSERT_TRUE(world.spawnObject(top).ok());
+  world.step(3000);  // asleep after 2 s at rest
+  for (const std::string& name : world.objectNames()) {
+    ObjectState state;
+    ASSERT_TRUE(world.objectState(name, &state).ok());
+    EXPECT_EQ(state.twist.linear, Eigen::Vector3d::Zero()) << name;
+    EXPECT_EQ(state.twist.angular, Eigen::Vector3d::Zero()) << name;
+  }
+  ASSERT_TRUE(world.deleteObject("bottom").ok());
+  world.step(500);
+  ObjectState state;
+  ASSERT_TRUE(world.objectState("top", &state).ok());
+  EXPECT_NEAR(state.spec.pose.translation().z(), 0.02, 1.5e-3);  // fell onto the table
+}
+
+// The ground plane holds what falls off the table (its broadphase bounds end at its surface).
+TEST_F(WorldTest, ObjectsOffTheTableLandOnTheGround) {
+  ObjectSpec cube;
+  cube.name = "falling";
+  cube.shape.box_size = Eigen::Vector3d::Constant(0.04);
+  cube.pose.translation() = Eigen::Vector3d(1.0, 0.9, 0.3);
+  ASSERT_TRUE(world.spawnObject(cube).ok());
+  world.step(1500);
+  ObjectState state;
+  ASSERT_TRUE(world.objectState("falling", &state).ok());
+  EXPECT_NEAR(state.spec.pose.translation().z(), -0.75 + 0.02, 1.5e-3);
+}
+
+// The broadphase has room for a fixed number of bodies: beyond it a spawn is refused, naming the bound.
+TEST_F(WorldTest, SpawningBeyondTheBroadphaseIsRefused) {
+  ObjectSpec block;
+  block.shape.box_size = Eigen::Vector3d::Constant(0.01);
+  block.is_static = true;
+  Result r;
+  int spawned = 0;
+  for (; spawned < 5000 && r.ok(); ++spawned) {
+    block.name = "block_" + std::to_string(spawned);
+    block.pose.translation() = Eigen::Vector3d(0.02 * (spawned % 100), 2.0 + 0.02 * (spawned / 100), 0.5);
+    r = world.spawnObject(block);
+  }
+  EXPECT_EQ(r.status, Status::kInvalidArgument);
+  EXPECT_NE(r.message.find("at most 4096 bodies"), std::string::npos) << r.message;
+  EXPECT_FALSE(world.hasObject(block.name));
+  EXPECT_GT(spawned, 4000);
+  world.step(10);
 }
 
 // Same inputs -> bit-identical states, across instances and across reset().

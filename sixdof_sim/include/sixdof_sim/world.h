@@ -129,7 +129,7 @@ class World {
   std::vector<std::string> attachedObjects() const;
 
   // ---- inspection ----
-  std::vector<Contact> contacts() const;  // contact points of the last step
+  std::vector<Contact> contacts() const;  // contact points of the last step (of bodies still in the world)
   WorldState state() const;
 
  private:

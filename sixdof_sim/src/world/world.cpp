@@ -29,6 +29,7 @@ void World::Impl::destroy() {
   }
   grasp_constraint.reset();
   robot_constraints.clear();
+  gears.clear();
   for (JointRuntime& j : joints) j.friction.reset();
   objects.clear();
   ground.reset();
@@ -44,12 +45,20 @@ void World::Impl::destroy() {
 }
 
 void World::Impl::refreshKinematics() {
-  multibody->forwardKinematics(scratch_rot, scratch_pos);
   multibody->updateCollisionObjectWorldTransforms(scratch_rot, scratch_pos);
-  body_world.resize(bodies.size());
-  for (size_t b = 0; b < bodies.size(); ++b) {
-    body_world[b] = btTransform(scratch_rot[b].inverse(), scratch_pos[b]);
+  body_world_current = false;
+}
+
+const btTransform& World::Impl::bodyWorld(int body) const {
+  if (!body_world_current) {
+    multibody->forwardKinematics(scratch_rot, scratch_pos);
+    body_world.resize(bodies.size());
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      body_world[b] = btTransform(scratch_rot[b].inverse(), scratch_pos[b]);
+    }
+    body_world_current = true;
   }
+  return body_world[body];
 }
 
 void World::Impl::applyCommands() {
@@ -166,14 +175,17 @@ World::~World() { impl_->destroy(); }
 
 void World::step(std::uint64_t n) {
   Impl& d = *impl_;
-  std::vector<GraspContact> grasp_contacts;
   for (std::uint64_t i = 0; i < n; ++i) {
     if (d.pre_step) d.pre_step(simTime());
     d.applyCommands();
-    // maxSubSteps = 0: exactly one internal step of time_step (no accumulator, no interpolation).
+    // maxSubSteps = 0: exactly one internal step of time_step (no accumulator, no interpolation). The step
+    // leaves the robot's colliders where its links are; their frames (body_world) follow when asked for.
     d.world->stepSimulation(d.dt(), 0, d.dt());
     ++d.steps;
-    d.refreshKinematics();
+    // The mimic gears start every step's solve from zero, unlike the servos and limits (warm-started, with the
+    // adaptive gripper of test_fixture_grippers 3 of 6 carried objects were dropped).
+    for (btMultiBodyGearConstraint* gear : d.gears) gear->internalSetAppliedImpulse(0, 0.0);
+    d.body_world_current = false;
     for (size_t j = 0; j < d.joints.size(); ++j) {
       JointRuntime& runtime = d.joints[j];
       if (runtime.mode != JointControlMode::kEffort) {
@@ -184,10 +196,9 @@ void World::step(std::uint64_t n) {
         runtime.applied_effort = runtime.effort;
       }
     }
-    grasp_contacts.clear();
-    d.collectContacts(&grasp_contacts);
     if (d.grasp_enabled) {
-      const GraspDecision decision = d.grasp_fix->update(simTime(), grasp_contacts);
+      d.collectGraspContacts();
+      const GraspDecision decision = d.grasp_fix->update(simTime(), d.grasp_contacts);
       for (const std::string& object : decision.detach) d.detach(object);
       for (const std::string& object : decision.attach) d.attach(object);
     }
@@ -204,7 +215,6 @@ void World::reset() {
   d.destroy();
   d.steps = 0;
   d.grasp_events.clear();
-  d.last_contacts.clear();
   if (d.grasp_fix) d.grasp_fix->reset();
   d.build();
 }

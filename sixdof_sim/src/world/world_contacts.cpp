@@ -2,15 +2,31 @@
 
 namespace sixdof_sim {
 
-void World::Impl::collectContacts(std::vector<GraspContact>* grasp_contacts) {
-  last_contacts.clear();
-  // Grasp-fix samples: one per (robot link, dynamic object) pair and step, over all of the pair's manifolds and
-  // points: the link's total force on the object and the mean contact point. The total, not a per-point mean:
-  // Bullet keeps 1 to 4 points per manifold depending on the contact's shape (a finger pad on a cylinder's side
-  // is a line: often several points on one finger and one on the other), so per-point means of a balanced grip
-  // differed up to 4x and failed the grasp fix's 0.3 force-ratio test (upright cylinders were never attached).
-  std::map<std::string, GraspContact> pairs;
-  std::map<std::string, int> pair_points;
+std::string World::Impl::shapeName(const btCollisionObject* object, int shape_index) const {
+  switch (object->getUserIndex()) {
+    case kRobotBody: {
+      const RobotBody& body = bodies[object->getUserIndex2()];
+      if (shape_index >= 0 && shape_index < static_cast<int>(body.shape_links.size())) {
+        return body.shape_links[shape_index];
+      }
+      return body.links.front();
+    }
+    case kObjectBody:
+      return static_cast<const ObjectRuntime*>(object->getUserPointer())->spec.name;
+    default:
+      return "ground";
+  }
+}
+
+// Grasp-fix samples of the last step: one per (robot link, dynamic object) pair, over all of the pair's manifolds
+// and points: the link's total force on the object and the mean contact point. The total, not a per-point mean:
+// Bullet keeps 1 to 4 points per manifold depending on the contact's shape (a finger pad on a cylinder's side is a
+// line: often several points on one finger and one on the other), so per-point means of a balanced grip differed
+// up to 4x and failed the grasp fix's 0.3 force-ratio test (upright cylinders were never attached).
+// Only robot/object manifolds are looked at, and the vectors keep their capacity from step to step.
+void World::Impl::collectGraspContacts() {
+  grasp_contacts.clear();
+  grasp_contact_points.clear();
   const int manifolds = dispatcher->getNumManifolds();
   for (int m = 0; m < manifolds; ++m) {
     const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
@@ -18,61 +34,37 @@ void World::Impl::collectContacts(std::vector<GraspContact>* grasp_contacts) {
     if (points == 0) continue;
     const btCollisionObject* a = manifold->getBody0();
     const btCollisionObject* b = manifold->getBody1();
-    auto name_of = [&](const btCollisionObject* o, int shape_index) -> std::string {
-      switch (o->getUserIndex()) {
-        case kRobotBody: {
-          const RobotBody& body = bodies[o->getUserIndex2()];
-          if (shape_index >= 0 && shape_index < static_cast<int>(body.shape_links.size())) {
-            return body.shape_links[shape_index];
-          }
-          return body.links.front();
-        }
-        case kObjectBody:
-          for (const auto& obj : objects) {
-            if (obj->body.get() == o) return obj->spec.name;
-          }
-          return "";
-        default:
-          return "ground";
-      }
-    };
     const bool a_robot = a->getUserIndex() == kRobotBody;
-    const bool b_robot = b->getUserIndex() == kRobotBody;
+    const btCollisionObject* robot = a_robot ? a : b;
+    const btCollisionObject* object = a_robot ? b : a;
+    if (robot->getUserIndex() != kRobotBody || object->getUserIndex() != kObjectBody || object->isStaticObject()) {
+      continue;
+    }
+    const std::string& object_name = static_cast<const ObjectRuntime*>(object->getUserPointer())->spec.name;
     for (int p = 0; p < points; ++p) {
       const btManifoldPoint& pt = manifold->getContactPoint(p);
-      Contact contact;
-      contact.body_a = name_of(a, pt.m_index0);
-      contact.body_b = name_of(b, pt.m_index1);
-      contact.a_is_robot = a_robot;
-      contact.b_is_robot = b_robot;
-      contact.position_on_b = toEigen(pt.getPositionWorldOnB());
-      contact.normal_on_b = toEigen(pt.m_normalWorldOnB);
-      contact.depth = pt.getDistance();
-      contact.normal_impulse = pt.getAppliedImpulse();
-      last_contacts.push_back(contact);
-      if (a_robot == b_robot) continue;
-      const btCollisionObject* object = a_robot ? b : a;
-      if (object->getUserIndex() != kObjectBody || object->isStaticObject()) continue;
+      const std::string link = shapeName(robot, a_robot ? pt.m_index0 : pt.m_index1);
       // Impulse on body A; the object receives it with the sign of its side.
       const btVector3 impulse = pt.m_normalWorldOnB * pt.m_appliedImpulse +
                                 pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
                                 pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2;
-      const Eigen::Vector3d force = toEigen(a_robot ? -impulse : impulse) / dt();
-      const std::string link = a_robot ? contact.body_a : contact.body_b;
-      const std::string object_name = a_robot ? contact.body_b : contact.body_a;
-      const std::string key = object_name + '\n' + link;
-      GraspContact& gc = pairs[key];
-      gc.object = object_name;
-      gc.link = link;
-      gc.force_on_object += force;
+      size_t k = 0;
+      while (k < grasp_contacts.size() && (grasp_contacts[k].object != object_name || grasp_contacts[k].link != link)) {
+        ++k;
+      }
+      if (k == grasp_contacts.size()) {
+        grasp_contacts.emplace_back();
+        grasp_contacts[k].object = object_name;
+        grasp_contacts[k].link = link;
+        grasp_contact_points.push_back(0);
+      }
+      GraspContact& gc = grasp_contacts[k];
+      gc.force_on_object += toEigen(a_robot ? -impulse : impulse) / dt();
       gc.point += toEigen((pt.getPositionWorldOnA() + pt.getPositionWorldOnB()) * 0.5);
-      ++pair_points[key];
+      ++grasp_contact_points[k];
     }
   }
-  for (auto& entry : pairs) {
-    entry.second.point /= pair_points[entry.first];
-    grasp_contacts->push_back(entry.second);
-  }
+  for (size_t k = 0; k < grasp_contacts.size(); ++k) grasp_contacts[k].point /= grasp_contact_points[k];
 }
 
 void World::Impl::pushEvent(GraspEvent::Type type, const std::string& object) {
@@ -92,13 +84,14 @@ void World::Impl::attach(const std::string& name) {
   if (object == nullptr || palm == links.end()) return;
   const int body = palm->second.body;
   // Fix the object at its current pose relative to the palm's body.
-  const btTransform body_to_object = body_world[body].inverse() * object->body->getWorldTransform();
+  const btTransform body_to_object = bodyWorld(body).inverse() * object->body->getWorldTransform();
   grasp_constraint = std::make_unique<btMultiBodyFixedConstraint>(
       multibody.get(), bodies[body].bullet_link, object->body.get(), body_to_object.getOrigin(), btVector3(0, 0, 0),
       body_to_object.getBasis(), btMatrix3x3::getIdentity());
   grasp_constraint->setMaxAppliedImpulse(kGraspConstraintMaxImpulse);
   grasp_constraint->finalizeMultiDof();
   world->addMultiBodyConstraint(grasp_constraint.get());
+  setArticulatedWarmstarting(false);
   if (grasp_config->disable_collisions_on_attach) {
     object->body->setCollisionFlags(object->body->getCollisionFlags() | btCollisionObject::CF_NO_CONTACT_RESPONSE);
   }
@@ -109,6 +102,7 @@ void World::Impl::detach(const std::string& name) {
   if (!grasp_constraint) return;
   world->removeMultiBodyConstraint(grasp_constraint.get());
   grasp_constraint.reset();
+  setArticulatedWarmstarting(true);
   ObjectRuntime* object = findObject(name);
   if (object != nullptr && object->spec.collision) {
     object->body->setCollisionFlags(object->body->getCollisionFlags() & ~btCollisionObject::CF_NO_CONTACT_RESPONSE);
@@ -145,6 +139,30 @@ std::vector<std::string> World::attachedObjects() const {
   return {impl_->grasp_fix->attached()};
 }
 
-std::vector<Contact> World::contacts() const { return impl_->last_contacts; }
+// Read from the collision dispatcher's manifolds, which hold the last step's contact points until the next step.
+std::vector<Contact> World::contacts() const {
+  const Impl& d = *impl_;
+  std::vector<Contact> contacts;
+  const int manifolds = d.dispatcher->getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = d.dispatcher->getManifoldByIndexInternal(m);
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    for (int p = 0; p < manifold->getNumContacts(); ++p) {
+      const btManifoldPoint& pt = manifold->getContactPoint(p);
+      Contact contact;
+      contact.body_a = d.shapeName(a, pt.m_index0);
+      contact.body_b = d.shapeName(b, pt.m_index1);
+      contact.a_is_robot = a->getUserIndex() == kRobotBody;
+      contact.b_is_robot = b->getUserIndex() == kRobotBody;
+      contact.position_on_b = toEigen(pt.getPositionWorldOnB());
+      contact.normal_on_b = toEigen(pt.m_normalWorldOnB);
+      contact.depth = pt.getDistance();
+      contact.normal_impulse = pt.getAppliedImpulse();
+      contacts.push_back(contact);
+    }
+  }
+  return contacts;
+}
 
 }  // namespace sixdof_sim

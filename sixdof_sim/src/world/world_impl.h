@@ -15,6 +15,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <BulletCollision/BroadphaseCollision/btAxisSweep3.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 
 #include <Eigen/Geometry>
@@ -32,10 +33,26 @@ namespace sixdof_sim {
 inline constexpr double kMargin = 0.001;
 // Friction of robot links without <gazebo><mu1> (Gazebo's default mu is 1).
 inline constexpr double kDefaultLinkFriction = 1.0;
-// Objects at rest (below these speeds for 2 s) sleep until something touches them: resting objects
-// then cost no solver time, and sit exactly still.
+// Objects at rest (below these speeds for 2 s) sleep until something comes near them: resting objects
+// then cost no collision or solver time, and sit exactly still. Bullet puts a simulation island to sleep
+// only when every body in it rests, and joins bodies whose broadphase bounds overlap into one island:
+// hence the exact bounds of the sweep-and-prune broadphase below (the default dynamic tree pads every
+// bound by 5 cm, which kept objects up to ~20 cm apart, or near the moving arm, awake forever).
 inline constexpr double kSleepLinearVelocity = 0.005;
 inline constexpr double kSleepAngularVelocity = 0.02;
+// Sweep-and-prune broadphase: its bounds (m; 32-bit quantization, ~0.5 um) and how many collision objects
+// (robot links, objects, ground) a world can hold; spawning beyond that is refused.
+inline constexpr double kBroadphaseHalfExtent = 1000.0;
+inline constexpr int kMaxCollisionObjects = 4096;
+// The constraint solver stops iterating once the squared impulse change of an iteration is below this
+// (PyBullet's default); solver_iterations stays the bound.
+inline constexpr double kSolverResidualThreshold = 1e-7;
+// The robot's joint servos and limits start each step's solve from the impulses of the step before (scaled by
+// this), so the solver mostly converges in one or two iterations instead of ten to twenty. Not the mimic gears
+// (World::step clears their impulses).
+// Off while the grasp fix holds an object: Bullet then warm-starts the multibody side of the fixed
+// constraint but not the object's, which would press the held object's last impulse onto the arm again.
+inline constexpr double kArticulatedWarmstartingFactor = 1.0;
 // Mimic coupling: position error correction per step and force bound (N or N m; far above any
 // joint effort limit so the coupling does not give).
 inline constexpr double kGearErp = 0.2;
@@ -106,6 +123,22 @@ struct JointRuntime {
   bool friction_in_world = false;
 };
 
+// Broadphase filter: the collision group/mask test, and no pair of two robot links (the multibody has no
+// self-collision, so such pairs would only be found, kept and skipped again every step).
+struct RobotPairFilter : btOverlapFilterCallback {
+  bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override;
+};
+
+// Bullet's multibody world, except that sleeping rigid bodies are not integrated ahead: Bullet predicts the
+// pose of every non-static body each step, asleep or not, although a sleeping body has no velocity and its
+// prediction is its pose (a tenth of a step with 100 resting objects). The prediction of an awake body and of
+// the robot is Bullet's own.
+class DynamicsWorld : public btMultiBodyDynamicsWorld {
+ public:
+  using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
+  void predictUnconstraintMotion(btScalar time_step) override;
+};
+
 struct ObjectRuntime {
   ObjectSpec spec;
   std::unique_ptr<btCollisionShape> shape;
@@ -127,13 +160,15 @@ struct World::Impl {
   // Bullet, rebuilt from scratch by build() (construction and reset()).
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
-  std::unique_ptr<btDbvtBroadphase> broadphase;
+  std::unique_ptr<btBroadphaseInterface> broadphase;
+  RobotPairFilter robot_pair_filter;
   std::unique_ptr<btMultiBodyConstraintSolver> solver;
   std::unique_ptr<btMultiBodyDynamicsWorld> world;
   std::unique_ptr<btMultiBody> multibody;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   std::vector<std::unique_ptr<btCollisionShape>> robot_shapes;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> robot_constraints;
+  std::vector<btMultiBodyGearConstraint*> gears;  // the mimic couplings among robot_constraints
   std::unique_ptr<btCollisionShape> ground_shape;
   std::unique_ptr<btRigidBody> ground;
   std::vector<std::unique_ptr<ObjectRuntime>> objects;  // spawn order
@@ -148,7 +183,9 @@ struct World::Impl {
   std::vector<JointRuntime> joints;
   std::map<std::string, int> joint_index;
   std::vector<double> initial_positions;
-  std::vector<btTransform> body_world;  // current world transform of each body frame
+  // World transform of each body frame (bodyWorld()), computed when first needed after a step or teleport.
+  mutable std::vector<btTransform> body_world;
+  mutable bool body_world_current = false;
 
   // Time and grasp fix.
   std::uint64_t steps = 0;
@@ -157,10 +194,11 @@ struct World::Impl {
   std::unique_ptr<GraspFix> grasp_fix;
   bool grasp_enabled = false;
   std::vector<GraspEvent> grasp_events;
-  std::vector<Contact> last_contacts;
+  std::vector<GraspContact> grasp_contacts;  // of the last step; reused, so stepping allocates nothing
+  std::vector<int> grasp_contact_points;     // contact points behind each of grasp_contacts
 
-  btAlignedObjectArray<btQuaternion> scratch_rot;
-  btAlignedObjectArray<btVector3> scratch_pos;
+  mutable btAlignedObjectArray<btQuaternion> scratch_rot;
+  mutable btAlignedObjectArray<btVector3> scratch_pos;
 
   void buildStructure();
   void build();  // every step below, in order: construction and reset()
@@ -174,15 +212,19 @@ struct World::Impl {
   std::unique_ptr<btCollisionShape> makeShape(const Shape& shape, Eigen::Vector3d* centre);
   Result addObject(const ObjectSpec& spec);
   ObjectRuntime* findObject(const std::string& name) const;
-  void refreshKinematics();
+  void refreshKinematics();  // after teleporting joints: the colliders follow the links
+  const btTransform& bodyWorld(int body) const;  // a body frame in the world (forward kinematics once a step)
   Eigen::Isometry3d objectPose(const ObjectRuntime& object) const;
   Twist objectTwist(const ObjectRuntime& object) const;
   bool linkWorldPose(const std::string& link, Eigen::Isometry3d* pose) const;
   void applyCommands();
-  void collectContacts(std::vector<GraspContact>* grasp_contacts);
+  void collectGraspContacts();
+  std::string shapeName(const btCollisionObject* object, int shape_index) const;
+  void wakeObjects();
   void attach(const std::string& object);
   void detach(const std::string& object);
   void pushEvent(GraspEvent::Type type, const std::string& object);
+  void setArticulatedWarmstarting(bool on);
   Result checkJointCommand(const std::string& joint, int* index);
   double dt() const { return options.time_step; }
 };

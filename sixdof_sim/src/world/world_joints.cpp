@@ -5,7 +5,7 @@ namespace sixdof_sim {
 bool World::Impl::linkWorldPose(const std::string& link, Eigen::Isometry3d* pose) const {
   const auto it = links.find(link);
   if (it == links.end()) return false;
-  *pose = toEigen(body_world[it->second.body]) * it->second.body_to_link;
+  *pose = toEigen(bodyWorld(it->second.body)) * it->second.body_to_link;
   return true;
 }
 
@@ -91,7 +91,7 @@ Result World::setJointPositions(const std::vector<std::string>& names, const std
   if (d.grasp_fix && !d.grasp_fix->attached().empty()) {
     attached = d.findObject(d.grasp_fix->attached());
     palm_body = d.links.at(d.grasp_config->palm_link).body;
-    if (attached != nullptr) palm_to_object = d.body_world[palm_body].inverse() * attached->body->getWorldTransform();
+    if (attached != nullptr) palm_to_object = d.bodyWorld(palm_body).inverse() * attached->body->getWorldTransform();
   }
   for (size_t j = 0; j < q.size(); ++j) {
     JointRuntime& runtime = d.joints[j];
@@ -105,7 +105,7 @@ Result World::setJointPositions(const std::vector<std::string>& names, const std
   }
   d.refreshKinematics();
   if (attached != nullptr && palm_to_object) {
-    attached->body->setWorldTransform(d.body_world[palm_body] * *palm_to_object);
+    attached->body->setWorldTransform(d.bodyWorld(palm_body) * *palm_to_object);
     attached->body->setLinearVelocity(btVector3(0, 0, 0));
     attached->body->setAngularVelocity(btVector3(0, 0, 0));
   }

@@ -3,6 +3,21 @@
 #include "sixdof_core/mesh_loader.h"
 
 namespace sixdof_sim {
+namespace {
+
+// The ground: Bullet's infinite plane (the same contacts), but with bounds that end at its surface. The plane's
+// own bounds are infinite in every direction, so every moving body overlapped it in the broadphase and was
+// tested against it every step, however high above the floor.
+class GroundPlaneShape : public btStaticPlaneShape {
+ public:
+  explicit GroundPlaneShape(double z) : btStaticPlaneShape(btVector3(0, 0, 1), z) {}
+  void getAabb(const btTransform& transform, btVector3& aabb_min, btVector3& aabb_max) const override {
+    btStaticPlaneShape::getAabb(transform, aabb_min, aabb_max);
+    aabb_max.setZ(m_planeConstant);
+  }
+};
+
+}  // namespace
 
 Result validateObjectSpec(const ObjectSpec& spec) {
   auto bad = [&](const std::string& what) {
@@ -92,7 +107,7 @@ std::unique_ptr<btCollisionShape> World::Impl::makeShape(const Shape& shape, Eig
 // The ground plane and the world spec's objects.
 void World::Impl::addEnvironment() {
   if (spec.ground.enabled) {
-    ground_shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), spec.ground.z);
+    ground_shape = std::make_unique<GroundPlaneShape>(spec.ground.z);
     btRigidBody::btRigidBodyConstructionInfo ci(0.0, nullptr, ground_shape.get());
     ground = std::make_unique<btRigidBody>(ci);
     ground->setFriction(spec.ground.friction);
@@ -112,6 +127,10 @@ Result World::Impl::addObject(const ObjectSpec& object_spec) {
   if (!valid.ok()) return valid;
   if (findObject(object_spec.name) != nullptr) {
     return {Status::kAlreadyExists, describe(object_spec.name) + " already exists"};
+  }
+  if (world->getNumCollisionObjects() >= kMaxCollisionObjects) {
+    return {Status::kInvalidArgument, describe(object_spec.name) + ": the world holds at most " +
+                                          std::to_string(kMaxCollisionObjects) + " bodies"};
   }
   auto object = std::make_unique<ObjectRuntime>();
   object->spec = object_spec;
@@ -135,6 +154,7 @@ Result World::Impl::addObject(const ObjectSpec& object_spec) {
   object->body->setWorldTransform(toBt(object_spec.pose * object->frame_to_body));
   object->body->setSleepingThresholds(kSleepLinearVelocity, kSleepAngularVelocity);
   object->body->setUserIndex(kObjectBody);
+  object->body->setUserPointer(object.get());
   int group = btBroadphaseProxy::DefaultFilter;
   int mask = btBroadphaseProxy::AllFilter;
   if (!object_spec.collision) {
@@ -170,6 +190,12 @@ Twist World::Impl::objectTwist(const ObjectRuntime& object) const {
   return twist;
 }
 
+void World::Impl::wakeObjects() {
+  for (const auto& o : objects) {
+    if (!o->spec.is_static) o->body->activate();
+  }
+}
+
 Result World::spawnObject(const ObjectSpec& spec) { return impl_->addObject(spec); }
 
 Result World::deleteObject(const std::string& name) {
@@ -182,6 +208,7 @@ Result World::deleteObject(const std::string& name) {
   }
   d.world->removeRigidBody(object->body.get());
   d.objects.erase(std::find_if(d.objects.begin(), d.objects.end(), [&](const auto& o) { return o.get() == object; }));
+  d.wakeObjects();  // what rested on it falls
   return Result::success();
 }
 
@@ -223,6 +250,7 @@ Result World::setObjectState(const std::string& name, const Eigen::Isometry3d& p
   object->body->setLinearVelocity(toBt(twist.linear + twist.angular.cross(com - pose.translation())));
   object->body->setAngularVelocity(toBt(twist.angular));
   object->body->clearForces();
+  d.wakeObjects();  // what rested on it falls; it may land on sleeping objects
   object->body->activate(true);
   // Static bodies have no motion integration: the broadphase must learn the new pose now.
   d.world->updateSingleAabb(object->body.get());

@@ -109,24 +109,57 @@ void World::Impl::buildStructure() {
 void World::Impl::createDynamicsWorld() {
   collision_config = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher = std::make_unique<btCollisionDispatcher>(collision_config.get());
-  broadphase = std::make_unique<btDbvtBroadphase>();
+  const btVector3 bound(kBroadphaseHalfExtent, kBroadphaseHalfExtent, kBroadphaseHalfExtent);
+  broadphase = std::make_unique<bt32BitAxisSweep3>(-bound, bound, kMaxCollisionObjects, nullptr, true);
+  broadphase->getOverlappingPairCache()->setOverlapFilterCallback(&robot_pair_filter);
   solver = std::make_unique<btMultiBodyConstraintSolver>();
-  world = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher.get(), broadphase.get(), solver.get(),
-                                                     collision_config.get());
+  world = std::make_unique<DynamicsWorld>(dispatcher.get(), broadphase.get(), solver.get(), collision_config.get());
   world->setGravity(toBt(spec.gravity));
+  // Bounds of static and sleeping bodies are not recomputed every step (teleports update them).
+  world->setForceUpdateAllAabbs(false);
   btContactSolverInfo& info = world->getSolverInfo();
   info.m_numIterations = options.solver_iterations;
   info.m_timeStep = options.time_step;
   // Contacts: penetration deeper than 0.5 mm is corrected by split impulse (position only, no
   // velocity: objects are not launched); shallower by velocity (ERP 0.2: at most 0.1 m/s).
-  // Deterministic order (no randomisation), warm starting for stable resting contacts.
+  // Deterministic order (no randomisation), warm starting for stable resting contacts; iterations end early
+  // once the solution has converged.
   info.m_erp = 0.2;
   info.m_erp2 = 0.2;
   info.m_globalCfm = 0.0;
   info.m_splitImpulse = 1;
   info.m_splitImpulsePenetrationThreshold = -0.0005;
   info.m_solverMode = SOLVER_USE_WARMSTARTING | SOLVER_USE_2_FRICTION_DIRECTIONS;
+  info.m_leastSquaresResidualThreshold = kSolverResidualThreshold;
+  info.m_articulatedWarmstartingFactor = kArticulatedWarmstartingFactor;
+  setArticulatedWarmstarting(true);
   gCalculateCombinedFrictionCallback = &combineFrictionMin;
+}
+
+void DynamicsWorld::predictUnconstraintMotion(btScalar time_step) {
+  for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
+    btRigidBody* body = m_nonStaticRigidBodies[i];
+    if (body->isStaticOrKinematicObject() || !body->isActive()) continue;
+    body->applyDamping(time_step);
+    body->predictIntegratedTransform(time_step, body->getInterpolationWorldTransform());
+  }
+  predictMultiBodyTransforms(time_step);
+}
+
+void World::Impl::setArticulatedWarmstarting(bool on) {
+  btContactSolverInfo& info = world->getSolverInfo();
+  info.m_solverMode = on ? info.m_solverMode | SOLVER_USE_ARTICULATED_WARMSTARTING
+                         : info.m_solverMode & ~SOLVER_USE_ARTICULATED_WARMSTARTING;
+}
+
+bool RobotPairFilter::needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const {
+  if ((a->m_collisionFilterGroup & b->m_collisionFilterMask) == 0 ||
+      (b->m_collisionFilterGroup & a->m_collisionFilterMask) == 0) {
+    return false;
+  }
+  const auto* object_a = static_cast<const btCollisionObject*>(a->m_clientObject);
+  const auto* object_b = static_cast<const btCollisionObject*>(b->m_clientObject);
+  return object_a->getUserIndex() != kRobotBody || object_b->getUserIndex() != kRobotBody;
 }
 
 // The robot as one fixed-base btMultiBody: a Bullet link per body, joint frames at q = 0.
@@ -168,7 +201,7 @@ void World::Impl::buildMultibody() {
   }
   multibody->setBaseWorldTransform(toBt(base.head_to_body));
   multibody->finalizeMultiDof();
-  multibody->setHasSelfCollision(false);
+  multibody->setHasSelfCollision(false);  // RobotPairFilter leaves robot/robot pairs out of the broadphase
   multibody->setLinearDamping(0.0);
   multibody->setAngularDamping(0.0);
   multibody->setUseGyroTerm(true);
@@ -288,6 +321,7 @@ void World::Impl::addMimicConstraints() {
     gear->setErp(kGearErp);
     gear->setMaxAppliedImpulse(kGearMaxForce * dt());
     world->addMultiBodyConstraint(gear.get());
+    gears.push_back(gear.get());
     robot_constraints.push_back(std::move(gear));
   }
 }

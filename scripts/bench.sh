@@ -23,6 +23,18 @@ fi
   echo "no benchmark executables found under install/lib (build first)" >&2
   exit 1
 }
+# The benchmarks comparing the simulator with PyBullet run it in a venv of their own (the pinned version of
+# scripts/requirements-bench.txt, made again when that file changes) and draw their plots into bench/.
+if printf '%s\n' "${benches[@]}" | grep -qE '/sim_(vs_pybullet|scaling)_bench$'; then
+  pybullet_venv=$repo/.venv-pybullet
+  if ! cmp -s scripts/requirements-bench.txt "$pybullet_venv/requirements-bench.txt"; then
+    rm -rf "$pybullet_venv"
+    /usr/bin/python3 -m venv "$pybullet_venv"
+    "$pybullet_venv/bin/pip" install --quiet --disable-pip-version-check -r scripts/requirements-bench.txt
+    cp scripts/requirements-bench.txt "$pybullet_venv/requirements-bench.txt"
+  fi
+  export SIXDOF_PYBULLET_PYTHON=$pybullet_venv/bin/python SIXDOF_BENCH_DIR=$repo/bench
+fi
 if [ ${#benches[@]} -gt 0 ] && [ $# -gt 0 ]; then
   # Named benchmarks: only their sections are replaced (or added), each saying when it ran; the others stay.
   for b in "${benches[@]}"; do

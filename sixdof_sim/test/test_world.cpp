@@ -17,6 +17,19 @@ class WorldTest : public ::testing::Test {
  protected:
   WorldTest() : world(test::robotUrdf(), loadWorldFile(test::defaultWorldPath()), test::options(false)) {}
   World world;
+
+  // Two 4 cm cubes on the table, "top" resting on "bottom".
+  void spawnStack() {
+    ObjectSpec bottom;
+    bottom.name = "bottom";
+    bottom.shape.box_size = Eigen::Vector3d::Constant(0.04);
+    bottom.pose.translation() = Eigen::Vector3d(0.3, 0.4, 0.02);
+    ObjectSpec top = bottom;
+    top.name = "top";
+    top.pose.translation().z() = 0.06;
+    ASSERT_TRUE(world.spawnObject(bottom).ok());
+    ASSERT_TRUE(world.spawnObject(top).ok());
+  }
 };
 
 TEST_F(WorldTest, JointsComeFromTheUrdf) {
@@ -259,15 +272,7 @@ TEST_F(WorldTest, MarkersDoNotCollide) {
 
 // Objects at rest sleep (exactly still, no solver work) and wake when what they rest on goes away.
 TEST_F(WorldTest, RestingObjectsSleepAndWakeWhenDisturbed) {
-  ObjectSpec bottom;
-  bottom.name = "bottom";
-  bottom.shape.box_size = Eigen::Vector3d::Constant(0.04);
-  bottom.pose.translation() = Eigen::Vector3d(0.3, 0.4, 0.02);
-  ObjectSpec top = bottom;
-  top.name = "top";
-  top.pose.translation().z() = 0.06;
-  ASSERT_TRUE(world.spawnObject(bottom).ok());
-  ASSERT_TRUE(world.spawnObject(top).ok());
+  ASSERT_NO_FATAL_FAILURE(spawnStack());
   world.step(3000);  // asleep after 2 s at rest
   for (const std::string& name : world.objectNames()) {
     ObjectState state;
@@ -280,6 +285,38 @@ TEST_F(WorldTest, RestingObjectsSleepAndWakeWhenDisturbed) {
   ObjectState state;
   ASSERT_TRUE(world.objectState("top", &state).ok());
   EXPECT_NEAR(state.spec.pose.translation().z(), 0.02, 1.5e-3);  // fell onto the table
+}
+
+// A sleeping object teleported (velocity zero) falls from its new pose; teleporting what another rests on
+// wakes that one too.
+TEST_F(WorldTest, SleepingObjectsWakeWhenTeleported) {
+  ASSERT_NO_FATAL_FAILURE(spawnStack());
+  auto height = [&](const std::string& name) {
+    ObjectState state;
+    EXPECT_TRUE(world.objectState(name, &state).ok());
+    return state.spec.pose.translation().z();
+  };
+  auto still = [&](const std::string& name) {
+    ObjectState state;
+    EXPECT_TRUE(world.objectState(name, &state).ok());
+    return state.twist.linear.isZero(0.0) && state.twist.angular.isZero(0.0);
+  };
+  world.step(3000);
+  ASSERT_TRUE(still("top") && still("bottom"));  // asleep: exactly still
+  Eigen::Isometry3d lifted = Eigen::Isometry3d::Identity();
+  lifted.translation() = Eigen::Vector3d(0.3, 0.4, 0.3);
+  ASSERT_TRUE(world.setObjectState("top", lifted).ok());
+  world.step(1000);
+  EXPECT_NEAR(height("top"), 0.06, 1.5e-3);  // fell back onto the bottom cube
+
+  world.step(3000);
+  ASSERT_TRUE(still("top") && still("bottom"));
+  Eigen::Isometry3d aside = Eigen::Isometry3d::Identity();
+  aside.translation() = Eigen::Vector3d(0.5, 0.4, 0.02);
+  ASSERT_TRUE(world.setObjectState("bottom", aside).ok());
+  world.step(500);
+  EXPECT_NEAR(height("top"), 0.02, 1.5e-3);  // fell onto the table
+  EXPECT_NEAR(height("bottom"), 0.02, 1.5e-3);
 }
 
 // The ground plane holds what falls off the table (its broadphase bounds end at its surface).

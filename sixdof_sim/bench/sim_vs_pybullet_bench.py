@@ -39,7 +39,7 @@ before the timed loop; the control call alone costs {control_us:.1f} us).
 
 What differs: PyBullet's Bullet is single precision (ours double); a contact's friction is the product of the two
 coefficients in PyBullet, the smaller one in ours; PyBullet keeps its own collision margins (ours 1 mm); PyBullet's
-API has no articulated warm starting (ours warm-starts the servos, limits and gears); PyBullet keeps objects awake
+API has no articulated warm starting (ours warm-starts the servos and limits); PyBullet keeps objects awake
 by default (the last column lets them sleep, at PyBullet's own sleeping thresholds). The arm's trajectory keeps it
 clear of the objects, so both do the same work: the objects settle on the table, then rest."""
 

@@ -7,12 +7,11 @@ import numbers
 from collections.abc import Sequence
 
 from geometry_msgs.msg import Pose
-from moveit_msgs.msg import Constraints, MoveItErrorCodes, RobotTrajectory
+from moveit_msgs.msg import Constraints, RobotTrajectory
 
 from .exceptions import SixdofCommanderError
 from .move_group_base import MoveGroupBase
 from .path_constraints import check_path_constraints
-from .retiming import retime_time_optimal
 
 
 class CartesianPath(MoveGroupBase):
@@ -38,23 +37,10 @@ class CartesianPath(MoveGroupBase):
         constraints = None
         if path_constraints is not None:
             constraints = check_path_constraints(path_constraints, "compute_cartesian_path", "path_constraints")
-        request = self._goal.cartesian_path_request(
-            waypoints, eef_step, jump_threshold, avoid_collisions, constraints
+        request = self._goal.cartesian_path_request(waypoints, eef_step, jump_threshold, avoid_collisions, constraints)
+        return self._clients.cartesian_path(
+            request, self._goal.max_velocity_scaling_factor, self._goal.max_acceleration_scaling_factor
         )
-        response, self._last_error = self._reports.call(self._cartesian_service, request)
-        if response is None or self._last_error.val != MoveItErrorCodes.SUCCESS:
-            return (RobotTrajectory() if response is None else response.solution), -1.0
-        solution = response.solution
-        if len(solution.joint_trajectory.points) >= 2:
-            solution, self._last_error = retime_time_optimal(
-                self._retime_service,
-                solution,
-                self._goal.max_velocity_scaling_factor,
-                self._goal.max_acceleration_scaling_factor,
-            )
-            if solution is None:
-                return RobotTrajectory(), -1.0
-        return solution, response.fraction
 
 
 def _cartesian_arguments(args: tuple[object, ...], kwargs: dict[str, object]) -> tuple[float, bool]:

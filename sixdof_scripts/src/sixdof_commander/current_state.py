@@ -51,7 +51,7 @@ class CurrentState(MoveGroupBase):
         request.header.frame_id = self._planning_frame
         request.fk_link_names = [link]
         request.robot_state = state
-        response, outcome = self._reports.call(self._fk_service, request)
+        response, outcome = self._clients.fk(request)
         if response is None:
             raise SixdofCommanderError(f"compute_fk call failed: {outcome.message}")
         if outcome.val != MoveItErrorCodes.SUCCESS or len(response.pose_stamped) != 1:

@@ -3,64 +3,33 @@ is this class under its upstream constructor signature).
 
 This module: construction, introspection, plan/go/execute/stop and attached objects. The rest of the class, one
 concept a module: targets.py, planning_options.py, path_constraints.py, current_state.py, cartesian_path.py,
-retiming.py (their shared state: move_group_base.py)."""
+retiming.py (their shared state: move_group_base.py); the connections to move_group: move_group_clients.py."""
 
 from __future__ import annotations
 
-import threading
 import time
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 import rospy
 from geometry_msgs.msg import Pose, PoseStamped
-from moveit_msgs.msg import (
-    ExecuteTrajectoryAction,
-    ExecuteTrajectoryGoal,
-    MotionPlanRequest,
-    MoveGroupAction,
-    MoveItErrorCodes,
-    RobotState,
-    RobotTrajectory,
-)
-from moveit_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK, GetPositionIK
+from moveit_msgs.msg import MotionPlanRequest, MoveItErrorCodes, RobotState, RobotTrajectory
 from sensor_msgs.msg import JointState
 
-from sixdof_msgs.srv import RetimeTrajectory
-
-from ._ros import (
-    SERVICE_TIMEOUT,
-    ActionClient,
-    JointStateMonitor,
-    PersistentService,
-    ServerWaiter,
-    load_robot_model,
-    require_node,
-    resolve,
-    wait_for_done,
-)
+from ._ros import JointStateMonitor, load_robot_model, require_node, resolve
 from .cartesian_path import CartesianPath
 from .current_state import CurrentState
-from .error_reports import SUCCESS, CallError, ErrorReports
+from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import GoalBuilder
 from .move_group_base import refuse
+from .move_group_clients import MoveGroupClients
 from .path_constraints import PathConstraints
 from .planning_options import PlanningOptions
 from .planning_scene import PlanningScene
 from .retiming import Retiming
 from .robot_model import RobotDescription, SemanticDescription, resolve_group
 from .targets import Targets
-
-SERVICES = (
-    "plan_kinematic_path",
-    "compute_fk",
-    "compute_cartesian_path",
-    "get_planning_scene",
-    "apply_planning_scene",
-    "get_robot_model",
-    "retime_trajectory",
-)
 
 
 class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, CartesianPath, Retiming):
@@ -83,14 +52,7 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
         (SixdofCommanderError names what is missing), then gets the robot model from it (get_robot_model)."""
         require_node()
         self._ns = ns
-        waiter = ServerWaiter(wait_for_servers)
-        self._move_action = ActionClient(resolve(ns, "move_group"), MoveGroupAction)
-        self._execute_action = ActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
-        waiter.action(self._move_action, resolve(ns, "move_group"))
-        waiter.action(self._execute_action, resolve(ns, "execute_trajectory"))
-        for name in SERVICES:
-            waiter.service(resolve(ns, name))
-        waiter.check(f"MoveGroup('{group_name}')")
+        self._clients = MoveGroupClients(ns, wait_for_servers, f"MoveGroup('{group_name}')")
         self._urdf, self._srdf = load_robot_model(ns, robot_description, wait_for_servers)
         self._group = resolve_group(self._urdf, self._srdf, group_name)
         self._planning_frame = self._srdf.virtual_joint_parent or self._urdf.root_link
@@ -106,15 +68,7 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
                 setter(rospy.get_param(param, 0.1))
             except SixdofCommanderError as err:
                 raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
-        self._last_error = SUCCESS
-        self._reports = ErrorReports(ns)
         self._support_surface = ""
-
-        self._plan_service = PersistentService(resolve(ns, "plan_kinematic_path"), GetMotionPlan)
-        self._fk_service = PersistentService(resolve(ns, "compute_fk"), GetPositionFK)
-        self._ik_service = PersistentService(resolve(ns, "compute_ik"), GetPositionIK)
-        self._cartesian_service = PersistentService(resolve(ns, "compute_cartesian_path"), GetCartesianPath)
-        self._retime_service = PersistentService(resolve(ns, "retime_trajectory"), RetimeTrajectory)
         self._joint_states = JointStateMonitor(resolve(ns, "joint_states"))
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
         self._rng = np.random.default_rng()
@@ -183,7 +137,7 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
         """The outcome of the last plan/go/execute/compute_cartesian_path call: `val` (MoveItErrorCodes), `name`,
         and `message`, the words of a failure (move_group's error report or the action's status text; the code's
         name alone when move_group sent none)."""
-        return self._last_error
+        return self._clients.last_error
 
     # Planning and execution --------------------------------------------------------------------------
     def _set_target_from(self, joints: object, method: str) -> None:
@@ -211,16 +165,10 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
         (success, trajectory, planning_time, error_code)."""
         if joints is not None:
             self._set_target_from(joints, "plan")
-        request = self._goal.motion_plan_request()
         start = time.monotonic()
-        timeout = request.allowed_planning_time * max(request.num_planning_attempts, 1) + SERVICE_TIMEOUT
-        answer, self._last_error = self._reports.call(
-            self._plan_service, request, timeout, lambda r: r.motion_plan_response.error_code.val
-        )
-        if self._last_error.val != MoveItErrorCodes.SUCCESS:
-            rospy.logwarn(f"plan: {self._last_error}")
+        answer = self._clients.plan(self._goal.motion_plan_request())
         if answer is None:
-            return False, RobotTrajectory(), time.monotonic() - start, self._last_error.code
+            return False, RobotTrajectory(), time.monotonic() - start, self._clients.last_error.code
         response = answer.motion_plan_response
         success = response.error_code.val == MoveItErrorCodes.SUCCESS
         return success, response.trajectory, response.planning_time, response.error_code
@@ -233,7 +181,7 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
             wait, joints = joints, None
         elif joints is not None:
             self._set_target_from(joints, "go")
-        return self._run_action(self._move_action, self._goal.move_group_goal(), "move_group", wait)
+        return self._clients.move(self._goal.move_group_goal(), wait)
 
     def execute(self, plan_msg: RobotTrajectory, wait: bool = True) -> bool:
         """Execute a planned trajectory (execute_trajectory action). Without wait, returns once sent."""
@@ -241,39 +189,11 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
             raise SixdofCommanderError(f"execute() needs a moveit_msgs/RobotTrajectory, got {type(plan_msg).__name__}")
         if not plan_msg.joint_trajectory.points:
             raise SixdofCommanderError("execute() got an empty trajectory (did planning fail?)")
-        goal = ExecuteTrajectoryGoal()
-        goal.trajectory = plan_msg
-        return self._run_action(self._execute_action, goal, "execute_trajectory", wait)
-
-    def _run_action(self, client: ActionClient, goal: object, name: str, wait: bool) -> bool:
-        done = threading.Event()
-        client.send_goal(goal, done_cb=lambda _state, _result: done.set())
-        if not wait:
-            self._last_error = CallError(MoveItErrorCodes.SUCCESS, f"{name} goal sent")
-            return True
-        reason = wait_for_done(client, done)
-        if reason:
-            client.stop_tracking_goal()
-            self._last_error = CallError(MoveItErrorCodes.COMMUNICATION_FAILURE, f"{name}: {reason}")
-            rospy.logerr(str(self._last_error))
-            return False
-        result = client.get_result()
-        if result is None:
-            self._last_error = CallError(
-                MoveItErrorCodes.COMMUNICATION_FAILURE, f"{name}: no result (goal status {client.get_state()})"
-            )
-            return False
-        # The words of a failure are the goal's status text (actionlib's set_aborted(result, text)).
-        success = result.error_code.val == MoveItErrorCodes.SUCCESS
-        self._last_error = CallError(result.error_code.val, "" if success else client.get_goal_status_text(), name)
-        if not success:
-            rospy.logwarn(f"{name}: {self._last_error}")
-        return success
+        return self._clients.execute(plan_msg, wait)
 
     def stop(self) -> None:
         """Stop any motion this group's node is planning or executing."""
-        self._move_action.cancel_all_goals()
-        self._execute_action.cancel_all_goals()
+        self._clients.stop()
 
     def pick(self, object_name: str, grasp: object = (), plan_only: bool = False) -> None:
         """Refused: there is no pick action; sixdof_commander.ArmDriver.pick(object) picks simulator objects."""

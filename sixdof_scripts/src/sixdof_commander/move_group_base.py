@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 from moveit_msgs.msg import Constraints
 
-from ._ros import ActionClient, JointStateMonitor, PersistentService
-from .error_reports import CallError, ErrorReports
+from ._ros import JointStateMonitor
 from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .goals import GoalBuilder
+from .move_group_clients import MoveGroupClients
 from .planning_scene import PlanningScene
 from .robot_model import Group, RobotDescription, SemanticDescription
 
@@ -24,16 +24,8 @@ class MoveGroupBase:
     _group: Group
     _planning_frame: str
     _goal: GoalBuilder  # targets and planning parameters, and the requests built from them
-    _last_error: CallError  # the outcome of the last plan/go/execute/compute_cartesian_path call
-    _reports: ErrorReports
     _support_surface: str
-    _move_action: ActionClient
-    _execute_action: ActionClient
-    _plan_service: PersistentService
-    _fk_service: PersistentService
-    _ik_service: PersistentService
-    _cartesian_service: PersistentService
-    _retime_service: PersistentService
+    _clients: MoveGroupClients  # move_group's actions and services, the last call's outcome
     _joint_states: JointStateMonitor
     _scene: PlanningScene
     _rng: np.random.Generator

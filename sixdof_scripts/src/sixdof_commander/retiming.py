@@ -7,36 +7,16 @@ import math
 
 import numpy as np
 import rospy
-from moveit_msgs.msg import MoveItErrorCodes, RobotState, RobotTrajectory
+from moveit_msgs.msg import RobotState, RobotTrajectory
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from sixdof_msgs.srv import RetimeTrajectoryRequest
-
-from ._ros import SERVICE_TIMEOUT, PersistentService, call_service, resolve
-from .error_reports import SUCCESS, CallError
+from ._ros import resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .kinematics import iterative_parabolic_times
 from .move_group_base import MoveGroupBase
 
 RETIME_ALGORITHMS = ("iterative_time_parameterization", "time_optimal_trajectory_generation")
-
-
-def retime_time_optimal(
-    service: PersistentService, trajectory: RobotTrajectory, velocity: float, acceleration: float
-) -> tuple[RobotTrajectory | None, CallError]:
-    """The trajectory's path timed by move_group's retime_trajectory (its time-optimal parameterization, the one
-    every plan gets) at these scaling factors: (trajectory, SUCCESS), or (None, the failure in words)."""
-    request = RetimeTrajectoryRequest(
-        trajectory=trajectory, velocity_scaling_factor=velocity, acceleration_scaling_factor=acceleration
-    )
-    try:
-        response = call_service(service, request, SERVICE_TIMEOUT)
-    except (rospy.ServiceException, rospy.ROSException) as err:
-        return None, CallError(MoveItErrorCodes.COMMUNICATION_FAILURE, f"{service.resolved_name}: {err}")
-    if response.error_code.val != MoveItErrorCodes.SUCCESS:
-        return None, CallError(response.error_code.val, response.error_message, service.resolved_name)
-    return response.trajectory, SUCCESS
 
 
 class Retiming(MoveGroupBase):
@@ -95,7 +75,7 @@ class Retiming(MoveGroupBase):
     def _retime_time_optimal(
         self, trajectory: RobotTrajectory, velocity: float, acceleration: float
     ) -> RobotTrajectory:
-        retimed, outcome = retime_time_optimal(self._retime_service, trajectory, velocity, acceleration)
+        retimed, outcome = self._clients.retime(trajectory, velocity, acceleration)
         if retimed is None:
             raise SixdofCommanderError(f"retime_trajectory: move_group's retime_trajectory failed: {outcome}")
         return retimed

@@ -143,7 +143,7 @@ class Targets(MoveGroupBase):
         request.ik_request.robot_state.is_diff = True
         request.ik_request.ik_link_name = link
         request.ik_request.pose_stamped = pose_stamped_from_target(pose, self._goal.pose_reference_frame)
-        response, outcome = self._reports.call(self._ik_service, request)
+        response, outcome = self._clients.ik(request)
         if response is None:
             raise SixdofCommanderError(f"set_joint_value_target: compute_ik call failed: {outcome.message}")
         if outcome.val != MoveItErrorCodes.SUCCESS:

@@ -22,23 +22,13 @@ class CurrentState(MoveGroupBase):
 
     def get_current_joint_values(self) -> list[float]:
         """Current positions of the group's joints from joint_states, in get_active_joints() order."""
-        positions = self._joint_states.positions(self._group.joint_names)
+        positions = self._state.positions(self._group.joint_names)
         return [positions[n] for n in self._group.joint_names]
 
     def get_current_state(self) -> RobotState:
-        """The current joint positions of the whole robot, as a RobotState. A mimic joint's value is computed
-        from its source joint, as MoveIt's RobotState does: joint_states reports what a physical mimic coupling
-        measures, which may lag its source (a parallel gripper squeezing an object)."""
-        measured = self._joint_states.joint_state()
-        values = dict(zip(measured.name, measured.position, strict=True))
-        state = RobotState()
-        for name, position in values.items():
-            joint = self._urdf.joints.get(name)
-            if joint is not None and joint.mimic is not None and joint.mimic in values:
-                position = joint.mimic_multiplier * values[joint.mimic] + joint.mimic_offset
-            state.joint_state.name.append(name)
-            state.joint_state.position.append(position)
-        return state
+        """The current joint positions of the whole robot, as a RobotState (mimic joints computed from their
+        sources, as MoveIt's RobotState does)."""
+        return self._state.current_state()
 
     def get_current_state_bounded(self) -> RobotState:
         """The current state with every joint value moved into its limits."""

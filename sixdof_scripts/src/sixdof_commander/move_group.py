@@ -3,7 +3,9 @@ is this class under its upstream constructor signature).
 
 This module: construction, introspection, plan/go/execute/stop and attached objects. The rest of the class, one
 concept a module: targets.py, planning_options.py, path_constraints.py, current_state.py, cartesian_path.py,
-retiming.py (their shared state: move_group_base.py); the connections to move_group: move_group_clients.py."""
+retiming.py (their shared state: move_group_base.py). The objects MoveGroup holds: its connections to move_group
+(move_group_clients.py), the current joint values (state_monitor.py) and its targets and parameters, from which the
+requests are built (goals.py)."""
 
 from __future__ import annotations
 
@@ -16,7 +18,7 @@ from geometry_msgs.msg import Pose, PoseStamped
 from moveit_msgs.msg import MotionPlanRequest, MoveItErrorCodes, RobotState, RobotTrajectory
 from sensor_msgs.msg import JointState
 
-from ._ros import JointStateMonitor, load_robot_model, require_node, resolve
+from ._ros import load_robot_model, require_node, resolve
 from .cartesian_path import CartesianPath
 from .current_state import CurrentState
 from .error_reports import CallError
@@ -29,6 +31,7 @@ from .planning_options import PlanningOptions
 from .planning_scene import PlanningScene
 from .retiming import Retiming
 from .robot_model import RobotDescription, SemanticDescription, resolve_group
+from .state_monitor import StateMonitor
 from .targets import Targets
 
 
@@ -69,7 +72,7 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
             except SixdofCommanderError as err:
                 raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
         self._support_surface = ""
-        self._joint_states = JointStateMonitor(resolve(ns, "joint_states"))
+        self._state = StateMonitor(resolve(ns, "joint_states"), self._urdf)
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
         self._rng = np.random.default_rng()
 

@@ -6,12 +6,12 @@ from __future__ import annotations
 import numpy as np
 from moveit_msgs.msg import Constraints
 
-from ._ros import JointStateMonitor
 from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .goals import GoalBuilder
 from .move_group_clients import MoveGroupClients
 from .planning_scene import PlanningScene
 from .robot_model import Group, RobotDescription, SemanticDescription
+from .state_monitor import StateMonitor
 
 
 class MoveGroupBase:
@@ -26,7 +26,7 @@ class MoveGroupBase:
     _goal: GoalBuilder  # targets and planning parameters, and the requests built from them
     _support_surface: str
     _clients: MoveGroupClients  # move_group's actions and services, the last call's outcome
-    _joint_states: JointStateMonitor
+    _state: StateMonitor  # the current joint values (joint_states)
     _scene: PlanningScene
     _rng: np.random.Generator
 

@@ -101,7 +101,7 @@ class Targets(MoveGroupBase):
         current = None
         if set(values) != set(self._group.joint_names):
             unknown = sorted(str(k) for k in values if k not in self._group.joint_names)
-            current = None if unknown else self._joint_states.positions(self._group.joint_names)
+            current = None if unknown else self._state.positions(self._group.joint_names)
         self._goal.set_joint_value_target(values, current)
 
     def _set_joint_state_target(self, msg: JointState, what: str) -> None:

@@ -34,15 +34,17 @@ struct Segment {
     const double half_sin = std::sin(0.5 * angle);
     return a + y * (radius * std::sin(angle)) + x * (2.0 * radius * half_sin * half_sin);
   }
-  Eigen::VectorXd tangent(double s) const {
-    if (!circular) return x;
+  // Tangent and curvature at s, written into `tangent` and `curvature` (x.size() values each).
+  void derivatives(double s, Eigen::Ref<Eigen::VectorXd> tangent, Eigen::Ref<Eigen::VectorXd> curvature) const {
+    if (!circular) {
+      tangent = x;
+      curvature.setZero();
+      return;
+    }
     const double angle = s / radius;
-    return y * std::cos(angle) + x * std::sin(angle);
-  }
-  Eigen::VectorXd curvature(double s) const {
-    if (!circular) return Eigen::VectorXd::Zero(x.size());
-    const double angle = s / radius;
-    return (x * std::cos(angle) - y * std::sin(angle)) / radius;
+    const double c = std::cos(angle), sn = std::sin(angle);
+    tangent = y * c + x * sn;
+    curvature = (x * c - y * sn) / radius;
   }
 };
 
@@ -72,16 +74,18 @@ bool intersect(double c0, double c1, double limit, double* lo, double* hi) {
 class Solver {
  public:
   Solver(std::vector<Segment> segments, std::vector<PathPoint> grid, Limits limits)
-      : segments_(std::move(segments)), grid_(std::move(grid)), limits_(std::move(limits)) {
+      : segments_(std::move(segments)),
+        grid_(std::move(grid)),
+        limits_(std::move(limits)),
+        joints_(limits_.velocity.size()),
+        ends_(4 * joints_ * (grid_.size() - 1)) {
     // Tangent and curvature at both ends of every interval, on the interval's own segment (a point on a
     // segment boundary has one curvature per side).
-    ends_.resize(grid_.size() - 1);
     for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
       const Segment& seg = segmentOf(i);
       for (int e = 0; e < 2; ++e) {
         const double s = std::clamp(grid_[i + e].s - seg.start, 0.0, seg.length);
-        ends_[i].d1[e] = seg.tangent(s);
-        ends_[i].d2[e] = seg.curvature(s);
+        seg.derivatives(s, slot(i, e, kTangent), slot(i, e, kCurvature));
       }
     }
   }
@@ -133,12 +137,22 @@ class Solver {
  private:
   double step(std::size_t i) const { return grid_[i + 1].s - grid_[i].s; }
 
+  // Tangent (kTangent) or curvature (kCurvature) at end e (0: start, 1: end) of interval i, in ends_ (slot: to fill).
+  static constexpr int kTangent = 0;
+  static constexpr int kCurvature = 1;
+  Eigen::Map<Eigen::VectorXd> slot(std::size_t i, int e, int which) {
+    return Eigen::Map<Eigen::VectorXd>(ends_.data() + (4 * i + 2 * e + which) * joints_, joints_);
+  }
+  Eigen::Map<const Eigen::VectorXd> end(std::size_t i, int e, int which) const {
+    return Eigen::Map<const Eigen::VectorXd>(ends_.data() + (4 * i + 2 * e + which) * joints_, joints_);
+  }
+
   const Segment& segmentOf(std::size_t interval) const { return segments_[grid_[interval].segment]; }
 
   // Largest x at grid point p, for one adjacent interval, with some admissible acceleration.
   double speedLimit(std::size_t interval, int end) const {
-    const Eigen::VectorXd& d1 = ends_[interval].d1[end];
-    const Eigen::VectorXd& d2 = ends_[interval].d2[end];
+    const Eigen::Map<const Eigen::VectorXd> d1 = this->end(interval, end, kTangent);
+    const Eigen::Map<const Eigen::VectorXd> d2 = this->end(interval, end, kCurvature);
     double x = std::numeric_limits<double>::infinity();
     const Eigen::Index m = d1.size();
     for (Eigen::Index j = 0; j < m; ++j) {
@@ -177,10 +191,10 @@ class Solver {
   // acceleration u = (x_{i+1} - x) / (2 ds) must respect every joint's acceleration limit at both ends.
   bool transition(std::size_t i, double x, double* lo, double* hi) const {
     const double h = 2.0 * step(i);
-    const Eigen::VectorXd& a0 = ends_[i].d1[0];
-    const Eigen::VectorXd& b0 = ends_[i].d2[0];
-    const Eigen::VectorXd& a1 = ends_[i].d1[1];
-    const Eigen::VectorXd& b1 = ends_[i].d2[1];
+    const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
+    const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
+    const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
+    const Eigen::Map<const Eigen::VectorXd> b1 = end(i, 1, kCurvature);
     bool ok = true;
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
@@ -197,10 +211,10 @@ class Solver {
   double maxStart(std::size_t i, double limit, double next_upper) {
     if (limit == 0.0) return 0.0;
     const double h = 2.0 * step(i);
-    const Eigen::VectorXd& a0 = ends_[i].d1[0];
-    const Eigen::VectorXd& b0 = ends_[i].d2[0];
-    const Eigen::VectorXd& a1 = ends_[i].d1[1];
-    const Eigen::VectorXd& b1 = ends_[i].d2[1];
+    const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
+    const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
+    const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
+    const Eigen::Map<const Eigen::VectorXd> b1 = end(i, 1, kCurvature);
     // Lines x_{i+1} = c + m x_i.
     std::vector<std::pair<double, double>>& lower = lower_lines_;
     std::vector<std::pair<double, double>>& upper = upper_lines_;
@@ -217,10 +231,13 @@ class Solver {
       lower.push_back(lo);
       upper.push_back(hi);
     };
+    // On a straight interval (same tangent at both ends, no curvature) the end's lines are the start's: the
+    // minimum below needs them once.
+    const bool straight = b0.isZero(0.0) && b1.isZero(0.0) && a0 == a1;
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
       add(a0[j] / h, b0[j] - a0[j] / h, A);
-      add(a1[j] / h + b1[j], -a1[j] / h, A);
+      if (!straight) add(a1[j] / h + b1[j], -a1[j] / h, A);
     }
     for (const auto& [lc, lm] : lower) {
       for (const auto& [hc, hm] : upper) {
@@ -245,20 +262,19 @@ class Solver {
     TrajectoryPoint point;
     point.time_from_start = t;
     point.positions = toStd(seg.position(s));
-    const Eigen::VectorXd d1 = seg.tangent(s);
+    Eigen::VectorXd d1(joints_), d2(joints_);
+    seg.derivatives(s, d1, d2);
     point.velocities = toStd(d1 * sd);
-    point.accelerations = toStd(d1 * u_[i] + seg.curvature(s) * sd * sd);
+    point.accelerations = toStd(d1 * u_[i] + d2 * sd * sd);
     return point;
   }
 
   std::vector<Segment> segments_;
   std::vector<PathPoint> grid_;
   Limits limits_;
-  struct IntervalEnds {
-    Eigen::VectorXd d1[2];
-    Eigen::VectorXd d2[2];
-  };
-  std::vector<IntervalEnds> ends_;
+  Eigen::Index joints_;
+  // Per interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
+  std::vector<double> ends_;
   std::vector<double> x_;
   std::vector<double> u_;
   std::vector<std::pair<double, double>> lower_lines_;  // maxStart's scratch space

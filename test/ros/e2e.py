@@ -45,6 +45,15 @@ def wait_for_stack(object_name: str = "red_cube") -> None:
     raise AssertionError(f"'{object_name}' never appeared in the planning scene")
 
 
+def wait_for_action_server(client, timeout: float, what: str) -> None:
+    """Until an actionlib client's server is up; AssertionError naming `what` after `timeout` wall-clock seconds
+    (a free-running simulator's clock would spend a simulated timeout in a fraction of that)."""
+    deadline = time.monotonic() + timeout
+    while not client.wait_for_server(rospy.Duration(0.05)):
+        if time.monotonic() > deadline or rospy.is_shutdown():
+            raise AssertionError(f"no {what} action server within {timeout} s")
+
+
 # The world objects (poses and shapes) and the attached objects.
 OBJECTS = PlanningSceneComponents.WORLD_OBJECT_GEOMETRY | PlanningSceneComponents.ROBOT_STATE_ATTACHED_OBJECTS
 

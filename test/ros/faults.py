@@ -16,7 +16,7 @@ import rosgraph
 import rosnode
 import rospy
 from actionlib import CommState
-from e2e import wait_for_stack
+from e2e import wait_for_action_server, wait_for_stack
 from moveit_msgs.msg import ExecuteTrajectoryAction
 from moveit_msgs.srv import GetMotionPlan
 from sixdof_commander import MoveGroup
@@ -82,5 +82,5 @@ def connect(node: str, group: str) -> tuple[MoveGroup, rospy.ServiceProxy, actio
     rospy.init_node(node)
     wait_for_stack()
     execute = actionlib.SimpleActionClient("execute_trajectory", ExecuteTrajectoryAction)
-    assert execute.wait_for_server(rospy.Duration(60.0)), "no execute_trajectory action server"
+    wait_for_action_server(execute, 60.0, "execute_trajectory")
     return MoveGroup(group, wait_for_servers=60.0), rospy.ServiceProxy("plan_kinematic_path", GetMotionPlan), execute

@@ -31,7 +31,7 @@ from control_msgs.msg import (
     GripperCommandGoal,
 )
 from control_msgs.srv import QueryTrajectoryState
-from e2e import planning_scene, wait_for_stack
+from e2e import planning_scene, wait_for_action_server, wait_for_stack
 from faults import bounded_call, node_pid, wait_for_action
 from moveit_msgs.msg import (
     AttachedCollisionObject,
@@ -275,7 +275,7 @@ class Fuzz(unittest.TestCase):
 
     def run_action(self, name, action_class, goal_class, base, rng, count):
         client = actionlib.SimpleActionClient(name, action_class)
-        self.assertTrue(client.wait_for_server(rospy.Duration(30.0)), f"no {name} action server")
+        wait_for_action_server(client, 30.0, name)
         fuzzer = Fuzzer(rng, self.names)
         answered = 0
         for i in range(count):

@@ -16,7 +16,7 @@ import xml.etree.ElementTree as ET
 import actionlib
 import rospy
 import rostest
-from e2e import STARTUP_TIMEOUT, case, object_state
+from e2e import STARTUP_TIMEOUT, case, object_state, wait_for_action_server
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import (
     CollisionObject,
@@ -81,7 +81,7 @@ class OccupancyMapTest(unittest.TestCase):
         cls.pause = rospy.ServiceProxy("sixdof_sim/pause_physics", Empty)
         cls.unpause = rospy.ServiceProxy("sixdof_sim/unpause_physics", Empty)
         cls.execute = actionlib.SimpleActionClient("execute_trajectory", ExecuteTrajectoryAction)
-        assert cls.execute.wait_for_server(rospy.Duration(STARTUP_TIMEOUT)), "execute_trajectory not up"
+        wait_for_action_server(cls.execute, STARTUP_TIMEOUT, "execute_trajectory")
         # The sweep of the first joint through the pick pose, its tip low over the table in the camera's view.
         cls.joints, pick, cls.tip = group_joints(rospy.get_param("robot_description_semantic"), GROUP, "pick pose")
         cls.middle = [0.0] + pick[1:]

@@ -2,6 +2,7 @@
 
 import math
 import threading
+import time
 import xml.etree.ElementTree as ET
 
 import rospy
@@ -16,9 +17,12 @@ FINGER_JOINTS = ["finger1_joint", "finger2_joint"]
 
 
 def wait_for_servers(clients: tuple, timeout: float) -> None:
-    """Until each action client's server is up (an assertion fails after `timeout` seconds for one)."""
+    """Until each action client's server is up (an assertion fails after `timeout` wall-clock seconds for one: a
+    free-running simulator's clock would spend a simulated timeout in a fraction of that)."""
     for client in clients:
-        assert client.wait_for_server(rospy.Duration(timeout)), "action server missing"
+        deadline = time.monotonic() + timeout
+        while not client.wait_for_server(rospy.Duration(0.05)):
+            assert time.monotonic() < deadline and not rospy.is_shutdown(), "action server missing"
 
 
 def sim_service(name: str, service_type: type, timeout: float) -> rospy.ServiceProxy:
@@ -73,12 +77,17 @@ class JointStateListener:
             self._msg = msg
 
     def positions(self, joints: list[str]) -> list[float]:
+        return self.reading(joints)[1]
+
+    def reading(self, joints: list[str]) -> tuple[rospy.Time, list[float]]:
+        """The latest message's stamp and the joints' positions in it."""
         deadline = rospy.Time.now() + rospy.Duration(30.0)
         while self._msg is None and rospy.Time.now() < deadline and not rospy.is_shutdown():
             rospy.rostime.wallsleep(0.01)
         with self._lock:
-            by_name = dict(zip(self._msg.name, self._msg.position, strict=True))
-        return [by_name[j] for j in joints]
+            msg = self._msg
+        by_name = dict(zip(msg.name, msg.position, strict=True))
+        return msg.header.stamp, [by_name[j] for j in joints]
 
     def wait_near(self, joints: list[str], target: list[float], tolerance: float, timeout: float = 10.0) -> bool:
         """Whether all joints come within tolerance of target within timeout simulated seconds."""
@@ -92,15 +101,19 @@ class JointStateListener:
         return False
 
     def settled(self, joints: list[str], still: float = 1e-4, timeout: float = 10.0) -> list[float]:
-        """Positions once two readings 0.2 simulated seconds apart differ by less than `still`."""
+        """Positions once two messages stamped at least 0.2 simulated seconds apart differ by less than `still`
+        (messages, not reads: a free-running simulator publishes at most about publish_rate messages per wall-clock
+        second, so two reads 0.2 simulated seconds apart may see the same message)."""
         deadline = rospy.Time.now() + rospy.Duration(timeout)
-        previous = self.positions(joints)
+        stamp, previous = self.reading(joints)
         while rospy.Time.now() < deadline and not rospy.is_shutdown():
-            rospy.sleep(0.2)
-            current = self.positions(joints)
+            rospy.rostime.wallsleep(0.005)
+            current_stamp, current = self.reading(joints)
+            if (current_stamp - stamp).to_sec() < 0.2:
+                continue
             if all(abs(a - b) < still for a, b in zip(current, previous, strict=True)):
                 return current
-            previous = current
+            stamp, previous = current_stamp, current
         raise AssertionError(f"joints {joints} did not come to rest")
 
 

@@ -19,6 +19,7 @@ from sim_test_util import (
     at_rest,
     top_down_ik,
     trajectory_goal,
+    wait_for_servers,
     wait_until,
 )
 from std_srvs.srv import Empty
@@ -38,8 +39,7 @@ class SimGraspTest(unittest.TestCase):
         rospy.init_node("test_sim_grasp")
         cls.arm = actionlib.SimpleActionClient("arm_controller/follow_joint_trajectory", FollowJointTrajectoryAction)
         cls.gripper = actionlib.SimpleActionClient("gripper_controller/gripper_cmd", GripperCommandAction)
-        for client in (cls.arm, cls.gripper):
-            assert client.wait_for_server(rospy.Duration(TIMEOUT)), "action server missing"
+        wait_for_servers((cls.arm, cls.gripper), TIMEOUT)
         rospy.wait_for_service("sixdof_sim/reset_world", TIMEOUT)
         cls.reset_world = rospy.ServiceProxy("sixdof_sim/reset_world", Empty)
         cls.get_object = rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)

@@ -10,6 +10,7 @@ to each figure and one line of what it measured: the growth between the smallest
 whose table is missing (a partial run, `scripts/bench.sh ik_bench`) is left out and named on stderr."""
 
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -71,13 +72,17 @@ def ratio(values: list[float]) -> str:
     return f"x{r:.0f}" if r >= 10 else f"x{r:.2g}"
 
 
-def plot(path: Path, xs: list[float], series: dict[str, list[float]], xlabel: str, ylabel: str, title: str) -> None:
+def plot(
+    path: Path, t: Table, x: str, series: dict[str, str], xlabel: str, ylabel: str, title: str
+) -> dict[str, list[float]]:
+    """Draw column `x` against each column of `series` ({legend label: column}); returns every column drawn."""
+    columns = {name: t.column(name) for name in [x, *series.values()]}
     fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
     # One colour per method (FCL red, the rest blue), p95 dashed.
-    for label, ys in series.items():
+    for label, name in series.items():
         ax.plot(
-            xs,
-            ys,
+            columns[x],
+            columns[name],
             marker="o",
             label=label,
             color="C3" if "FCL" in label else "C0",
@@ -93,28 +98,26 @@ def plot(path: Path, xs: list[float], series: dict[str, list[float]], xlabel: st
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+    return columns
 
 
-def planning(text: str, out: Path) -> str | None:
-    t = find_table(text, "scaling_bench", "planning time vs obstacles (RRTConnect, 0.005 rad)")
-    if t is None:
-        return None
-    boxes = t.column("boxes")
-    pre, fcl = t.column("median ms, pre-check"), t.column("median ms, FCL only")
+def planning(t: Table, out: Path) -> str:
     series = {
-        "median, pre-check": pre,
-        "p95, pre-check": t.column("p95 ms, pre-check"),
-        "median, FCL only": fcl,
-        "p95, FCL only": t.column("p95 ms, FCL only"),
+        "median, pre-check": "median ms, pre-check",
+        "p95, pre-check": "p95 ms, pre-check",
+        "median, FCL only": "median ms, FCL only",
+        "p95, FCL only": "p95 ms, FCL only",
     }
-    plot(
+    c = plot(
         out / "scaling_planning.png",
-        boxes,
+        t,
+        "boxes",
         series,
         "boxes in the scene",
         "planning time (ms)",
         "Planning time vs obstacles (table-top queries)",
     )
+    boxes, pre, fcl = c["boxes"], c["median ms, pre-check"], c["median ms, FCL only"]
     solved = ", ".join(
         f"{s:.0f}/{f:.0f}" for s, f in zip(t.column("solved, pre-check"), t.column("feasible"), strict=True)
     )
@@ -125,22 +128,19 @@ def planning(text: str, out: Path) -> str | None:
     )
 
 
-def collision_checks(text: str, out: Path) -> str | None:
-    t = find_table(text, "scaling_bench", "collision checks per second vs obstacles (random arm states)")
-    if t is None:
-        return None
-    boxes = t.column("boxes")
-    fcl = t.column("full-state checks/s (FK + FCL)")
-    pre = t.column("pre-check calls/s (FK + spheres)")
-    series = {"full-state checks (FK + FCL)": fcl, "pre-check calls (FK + spheres)": pre}
-    plot(
+def collision_checks(t: Table, out: Path) -> str:
+    fcl_name, pre_name = "full-state checks/s (FK + FCL)", "pre-check calls/s (FK + spheres)"
+    series = {"full-state checks (FK + FCL)": fcl_name, "pre-check calls (FK + spheres)": pre_name}
+    c = plot(
         out / "scaling_collision_checks.png",
-        boxes,
+        t,
+        "boxes",
         series,
         "boxes in the scene",
         "per second",
         "Collision checks per second vs obstacles",
     )
+    boxes, fcl, pre = c["boxes"], c[fcl_name], c[pre_name]
     return (
         f"[collision checks per second vs obstacles](scaling_collision_checks.png): {boxes[0]:.0f} -> "
         f"{boxes[-1]:.0f} boxes, {fcl[0]:,.0f} -> {fcl[-1]:,.0f} full-state checks/s ({ratio(fcl)}), "
@@ -148,25 +148,33 @@ def collision_checks(text: str, out: Path) -> str | None:
     )
 
 
-def octomap(text: str, out: Path) -> str | None:
-    t = find_table(text, "occupancy_bench", "update time vs cloud size (0.025 m)")
-    if t is None:
-        return None
-    points = t.column("points in range")
-    median = t.column("per cloud, median ms")
-    series = {"median": median, "p95": t.column("per cloud, p95 ms")}
-    plot(
+def octomap(t: Table, out: Path) -> str:
+    c = plot(
         out / "scaling_octomap.png",
-        points,
-        series,
+        t,
+        "points in range",
+        {"median": "per cloud, median ms", "p95": "per cloud, p95 ms"},
         "points in range per cloud",
         "update time (ms)",
         "Occupancy map update vs cloud size (0.025 m cells)",
     )
+    points, median = c["points in range"], c["per cloud, median ms"]
     return (
         f"[occupancy map update vs cloud size](scaling_octomap.png): {points[0]:,.0f} -> {points[-1]:,.0f} points "
         f"({ratio(points)}), median {median[0]:.1f} -> {median[-1]:.1f} ms per cloud ({ratio(median)})"
     )
+
+
+# Each curve: the section and title of its table in results.md, and what draws and summarizes it.
+CURVES: dict[str, tuple[str, str, Callable[[Table, Path], str]]] = {
+    "planning": ("scaling_bench", "planning time vs obstacles (RRTConnect, 0.005 rad)", planning),
+    "collision checks": (
+        "scaling_bench",
+        "collision checks per second vs obstacles (random arm states)",
+        collision_checks,
+    ),
+    "octomap": ("occupancy_bench", "update time vs cloud size (0.025 m)", octomap),
+}
 
 
 def main() -> int:
@@ -180,12 +188,12 @@ def main() -> int:
         print(f"plot_scaling.py: {err}", file=sys.stderr)
         return 2
     lines = []
-    for name, curve in (("planning", planning), ("collision checks", collision_checks), ("octomap", octomap)):
-        line = curve(text, results.parent)
-        if line is None:
+    for name, (section, title, curve) in CURVES.items():
+        t = find_table(text, section, title)
+        if t is None:
             print(f"plot_scaling.py: no {name} table in {results}: that curve is left out", file=sys.stderr)
         else:
-            lines.append(f"- {line}")
+            lines.append(f"- {curve(t, results.parent)}")
     if not lines:
         return 0
     report = HEADER + "\n\n" + "\n".join(lines) + "\n"

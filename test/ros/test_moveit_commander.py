@@ -28,6 +28,7 @@ from moveit_msgs.msg import (
     RobotState,
     RobotTrajectory,
 )
+from moveit_msgs.srv import GetPositionFK
 from sensor_msgs.msg import JointState
 
 HANG_GUARD = 120.0  # outcome bound for calls that must return (not a speed claim)
@@ -168,13 +169,19 @@ class MoveItCommanderEndToEnd(unittest.TestCase):
             with case(arguments=extra):
                 self.arm.set_joint_value_target(pose, *extra)
                 solution = self.arm.get_joint_value_target()
-                fk = self.arm._fk(self.arm.get_end_effector_link(), self._state(solution))
+                fk = self._fk(self.arm.get_end_effector_link(), self._state(solution))
                 self.assertLess(np.linalg.norm(np.subtract(_xyz(fk), _xyz(pose))), 1e-3)
         with self.assertRaisesRegex(MoveItCommanderException, "no IK solution"):
             far = PoseStamped()
             far.header.frame_id = self.arm.get_planning_frame()
             far.pose.position.x, far.pose.orientation.w = 3.0, 1.0
             self.arm.set_joint_value_target(far)
+
+    def _fk(self, link, state):
+        """link's pose in the planning frame at `state` (move_group's compute_fk)."""
+        response = rospy.ServiceProxy("compute_fk", GetPositionFK)(fk_link_names=[link], robot_state=state)
+        self.assertEqual(response.error_code.val, MoveItErrorCodes.SUCCESS, f"compute_fk of '{link}'")
+        return response.pose_stamped[0]
 
     def _state(self, values):
         state = RobotState()

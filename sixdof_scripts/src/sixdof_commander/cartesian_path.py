@@ -10,12 +10,15 @@ from geometry_msgs.msg import Pose
 from moveit_msgs.msg import Constraints, RobotTrajectory
 
 from .exceptions import SixdofCommanderError
-from .move_group_base import MoveGroupBase
+from .move_group_base import MoveGroupContext
 from .path_constraints import check_path_constraints
 
 
-class CartesianPath(MoveGroupBase):
-    """MoveGroupCommander.compute_cartesian_path."""
+class CartesianPath:
+    """MoveGroupCommander.compute_cartesian_path: the request from MoveGroup's GoalBuilder, sent by its clients."""
+
+    def __init__(self, context: MoveGroupContext) -> None:
+        self._context = context
 
     def compute_cartesian_path(
         self,
@@ -37,9 +40,11 @@ class CartesianPath(MoveGroupBase):
         constraints = None
         if path_constraints is not None:
             constraints = check_path_constraints(path_constraints, "compute_cartesian_path", "path_constraints")
-        request = self._goal.cartesian_path_request(waypoints, eef_step, jump_threshold, avoid_collisions, constraints)
-        return self._clients.cartesian_path(
-            request, self._goal.max_velocity_scaling_factor, self._goal.max_acceleration_scaling_factor
+        request = self._context.goal.cartesian_path_request(
+            waypoints, eef_step, jump_threshold, avoid_collisions, constraints
+        )
+        return self._context.clients.cartesian_path(
+            request, self._context.goal.max_velocity_scaling_factor, self._context.goal.max_acceleration_scaling_factor
         )
 
 

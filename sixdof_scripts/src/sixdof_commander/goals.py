@@ -334,26 +334,34 @@ class GoalBuilder:
 
     # Parameters --------------------------------------------------------------------------------------
     def set_max_velocity_scaling_factor(self, value: float) -> None:
+        """Scale the joints' maximum velocities by value in (0, 1]."""
         self.max_velocity_scaling_factor = check_scaling_factor(value, "max velocity scaling factor")
 
     def set_max_acceleration_scaling_factor(self, value: float) -> None:
+        """Scale the joints' maximum accelerations by value in (0, 1]."""
         self.max_acceleration_scaling_factor = check_scaling_factor(value, "max acceleration scaling factor")
 
     def set_planning_time(self, seconds: float) -> None:
+        """Time allowed to plan, seconds (> 0; default 5)."""
         self.planning_time = check_positive(seconds, "planning time")
 
-    def set_num_planning_attempts(self, attempts: int) -> None:
+    def set_num_planning_attempts(self, num_planning_attempts: int) -> None:
+        """Number of planning attempts (>= 1; the shortest solution wins)."""
+        attempts = num_planning_attempts
         if isinstance(attempts, bool) or not isinstance(attempts, numbers.Integral) or attempts < 1:
             raise SixdofCommanderError(f"number of planning attempts must be an integer >= 1, got {attempts!r}")
         self.num_planning_attempts = int(attempts)
 
     def set_goal_joint_tolerance(self, value: float) -> None:
+        """Joint goal tolerance, radians or metres (default 1e-4)."""
         self.goal_joint_tolerance = check_positive(value, "goal joint tolerance")
 
     def set_goal_position_tolerance(self, value: float) -> None:
+        """Position goal tolerance, metres (default 1e-4)."""
         self.goal_position_tolerance = check_positive(value, "goal position tolerance")
 
     def set_goal_orientation_tolerance(self, value: float) -> None:
+        """Orientation goal tolerance about each axis, radians (default 1e-3)."""
         self.goal_orientation_tolerance = check_positive(value, "goal orientation tolerance")
 
     def set_workspace(self, values: Sequence[float]) -> None:

@@ -1,18 +1,17 @@
 """MoveGroup: MoveGroupCommander's API over the sixdof move_group node (moveit_commander's MoveGroupCommander
 is this class under its upstream constructor signature).
 
-This module: construction, introspection, plan/go/execute/stop and attached objects. The rest of the class, one
-concept a module: targets.py, planning_options.py, path_constraints.py, current_state.py, cartesian_path.py,
-retiming.py (their shared state: move_group_base.py). The objects MoveGroup holds: its connections to move_group
-(move_group_clients.py), the current joint values (state_monitor.py) and its targets and parameters, from which the
-requests are built (goals.py)."""
+This module: construction, introspection, plan/go/execute/stop and attached objects. MoveGroup holds its request
+builder (goals.py: targets and parameters, from which the requests are built), its connections to move_group
+(move_group_clients.py) and the current joint values (state_monitor.py), and serves the rest of its methods from
+parts that get these collaborators, one concept a module: targets.py, planning_options.py, path_constraints.py,
+current_state.py, cartesian_path.py (served_by in move_group_base.py); retime_trajectory comes from retiming.py."""
 
 from __future__ import annotations
 
 import time
 from collections.abc import Mapping, Sequence
 
-import numpy as np
 import rospy
 from geometry_msgs.msg import Pose, PoseStamped
 from moveit_msgs.msg import MotionPlanRequest, MoveItErrorCodes, RobotState, RobotTrajectory
@@ -24,10 +23,10 @@ from .current_state import CurrentState
 from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import GoalBuilder
-from .move_group_base import refuse
+from .move_group_base import MoveGroupContext, refuse, served_by
 from .move_group_clients import MoveGroupClients
 from .path_constraints import PathConstraints
-from .planning_options import PlanningOptions
+from .planning_options import GOAL_SETTERS, PlanningOptions
 from .planning_scene import PlanningScene
 from .retiming import Retiming
 from .robot_model import RobotDescription, SemanticDescription, resolve_group
@@ -35,13 +34,21 @@ from .state_monitor import StateMonitor
 from .targets import Targets
 
 
-class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, CartesianPath, Retiming):
+@served_by(
+    _goal=(GoalBuilder, GOAL_SETTERS),
+    _targets=Targets,
+    _options=PlanningOptions,
+    _constraints=PathConstraints,
+    _current=CurrentState,
+    _cartesian=CartesianPath,
+)
+class MoveGroup(Retiming):
     """Plans and moves one planning group (MoveGroupCommander's method names and semantics).
 
-    Targets and parameters are kept here; plan() calls the plan_kinematic_path service, go() the
-    move_group action (plan and execute), execute() the execute_trajectory action. This module holds the
-    construction, introspection, planning and execution; the other methods come from the parts named in
-    MoveGroupBase's docstring.
+    Targets and parameters are kept in a GoalBuilder; plan() calls the plan_kinematic_path service, go() the
+    move_group action (plan and execute), execute() the execute_trajectory action. This class holds the
+    construction, introspection, planning and execution; the methods of the parts named above are served by
+    the part kept in that attribute (MoveGroup.set_pose_target: Targets.set_pose_target of self._targets).
     """
 
     def __init__(
@@ -71,10 +78,16 @@ class MoveGroup(Targets, PlanningOptions, PathConstraints, CurrentState, Cartesi
                 setter(rospy.get_param(param, 0.1))
             except SixdofCommanderError as err:
                 raise SixdofCommanderError(f"parameter '{rospy.resolve_name(param)}': {err}") from None
-        self._support_surface = ""
         self._state = StateMonitor(resolve(ns, "joint_states"), self._urdf)
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
-        self._rng = np.random.default_rng()
+        context = MoveGroupContext(
+            self._group, self._urdf, self._planning_frame, self._goal, self._clients, self._state
+        )
+        self._options = PlanningOptions(context)
+        self._constraints = PathConstraints(context)
+        self._current = CurrentState(context)
+        self._targets = Targets(context, self._current)
+        self._cartesian = CartesianPath(context)
 
     # Introspection -----------------------------------------------------------------------------------
     @property

@@ -1,34 +1,74 @@
-"""What MoveGroup's parts share: the attributes MoveGroup.__init__ sets, error codes, and the refusal of the
-MoveGroupCommander methods sixdof does not offer."""
+"""What MoveGroup and its parts share: the context MoveGroup hands its parts, serving a part's methods as
+MoveGroup's, the attributes the retiming mixin reads, and the refusal of the MoveGroupCommander methods sixdof does
+not offer."""
 
 from __future__ import annotations
 
-import numpy as np
+from collections.abc import Callable
+from dataclasses import dataclass
+
 from moveit_msgs.msg import Constraints
 
 from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .goals import GoalBuilder
 from .move_group_clients import MoveGroupClients
-from .planning_scene import PlanningScene
-from .robot_model import Group, RobotDescription, SemanticDescription
+from .robot_model import Group, RobotDescription
 from .state_monitor import StateMonitor
 
 
+class PartMethod:
+    """A method of a class served by one of the parts it holds: on an instance, the bound method of the part kept in
+    `attribute`; on the class, the part's function (its signature and docstring, for help() and inspect)."""
+
+    def __init__(self, attribute: str, function: Callable[..., object]) -> None:
+        self._attribute = attribute
+        self._function = function
+        self.__doc__ = function.__doc__
+
+    def __get__(self, instance: object, owner: type | None = None) -> Callable[..., object]:
+        if instance is None:
+            return self._function
+        return getattr(getattr(instance, self._attribute), self._function.__name__)
+
+
+def served_by(**parts: type | tuple[type, tuple[str, ...]]) -> Callable[[type], type]:
+    """Class decorator: each public method of each part class (keyword: the attribute the decorated class keeps that
+    part's instance in), or the methods named with it (a (class, names) pair), becomes a method of the decorated
+    class, served by that instance. A name the class or another part already has raises TypeError."""
+
+    def decorate(cls: type) -> type:
+        for attribute, served in parts.items():
+            part, names = served if isinstance(served, tuple) else (served, None)
+            for name, function in vars(part).items():
+                if name.startswith("_") or not callable(function) or (names is not None and name not in names):
+                    continue
+                if hasattr(cls, name):
+                    raise TypeError(f"{cls.__name__}.{name}: {part.__name__} and another part both define it")
+                setattr(cls, name, PartMethod(attribute, function))
+        return cls
+
+    return decorate
+
+
+@dataclass(frozen=True)
+class MoveGroupContext:
+    """What MoveGroup hands its parts: the group and the robot model, the planning frame, the request builder (targets
+    and parameters), the connections to move_group and the current joint values."""
+
+    group: Group
+    robot: RobotDescription
+    planning_frame: str
+    goal: GoalBuilder
+    clients: MoveGroupClients
+    state: StateMonitor
+
+
 class MoveGroupBase:
-    """The state of one MoveGroup. MoveGroup.__init__ sets it; MoveGroup's parts (targets.py, planning_options.py,
-    path_constraints.py, current_state.py, cartesian_path.py, retiming.py), each a mixin, use it."""
+    """The attributes of MoveGroup its retiming mixin (retiming.py) reads."""
 
     _ns: str
     _urdf: RobotDescription
-    _srdf: SemanticDescription
-    _group: Group
-    _planning_frame: str
-    _goal: GoalBuilder  # targets and planning parameters, and the requests built from them
-    _support_surface: str
     _clients: MoveGroupClients  # move_group's actions and services, the last call's outcome
-    _state: StateMonitor  # the current joint values (joint_states)
-    _scene: PlanningScene
-    _rng: np.random.Generator
 
 
 def refuse(method: str, why: str) -> MoveItCommanderException:

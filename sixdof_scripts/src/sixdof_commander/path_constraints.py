@@ -8,7 +8,7 @@ import copy
 from moveit_msgs.msg import Constraints
 
 from .exceptions import SixdofCommanderError
-from .move_group_base import MoveGroupBase, has_constraints, refuse
+from .move_group_base import MoveGroupContext, has_constraints, refuse
 
 
 def check_path_constraints(value: object, method: str, argument: str = "constraints") -> Constraints:
@@ -26,8 +26,11 @@ def check_path_constraints(value: object, method: str, argument: str = "constrai
     return copy.deepcopy(value)
 
 
-class PathConstraints(MoveGroupBase):
-    """MoveGroupCommander's constraint methods."""
+class PathConstraints:
+    """MoveGroupCommander's constraint methods (the path constraints are kept in MoveGroup's GoalBuilder)."""
+
+    def __init__(self, context: MoveGroupContext) -> None:
+        self._context = context
 
     def get_known_constraints(self) -> list[str]:
         """Names of stored constraints: none (MoveIt reads them from its warehouse database; there is none)."""
@@ -35,7 +38,7 @@ class PathConstraints(MoveGroupBase):
 
     def get_path_constraints(self) -> Constraints:
         """The path constraints every plan and go() keeps to (empty: none)."""
-        return copy.deepcopy(self._goal.path_constraints)
+        return copy.deepcopy(self._context.goal.path_constraints)
 
     def set_path_constraints(self, value: Constraints | str | None) -> None:
         """Path constraints for the following plans: a Constraints with joint constraints (each joint within
@@ -47,11 +50,11 @@ class PathConstraints(MoveGroupBase):
         elif isinstance(value, str):
             raise refuse(f"set_path_constraints('{value}')", "there is no warehouse database of named constraints")
         else:
-            self._goal.path_constraints = check_path_constraints(value, "set_path_constraints")
+            self._context.goal.path_constraints = check_path_constraints(value, "set_path_constraints")
 
     def clear_path_constraints(self) -> None:
         """No path constraints."""
-        self._goal.path_constraints = Constraints()
+        self._context.goal.path_constraints = Constraints()
 
     def get_trajectory_constraints(self) -> Constraints:
         """The trajectory constraints: always empty."""

@@ -9,39 +9,39 @@ import numpy as np
 
 from .exceptions import SixdofCommanderError
 from .goals import check_number
-from .move_group_base import MoveGroupBase, refuse
+from .move_group_base import MoveGroupContext, refuse
+
+# The GoalBuilder setters that are MoveGroup's methods as they are.
+GOAL_SETTERS = (
+    "set_max_velocity_scaling_factor",
+    "set_max_acceleration_scaling_factor",
+    "set_planning_time",
+    "set_num_planning_attempts",
+    "set_goal_joint_tolerance",
+    "set_goal_position_tolerance",
+    "set_goal_orientation_tolerance",
+)
 
 
-class PlanningOptions(MoveGroupBase):
-    """MoveGroupCommander's planning parameters (kept in MoveGroup's GoalBuilder)."""
+class PlanningOptions:
+    """MoveGroupCommander's planning parameters (kept in MoveGroup's GoalBuilder, whose setters MoveGroup serves
+    itself: GOAL_SETTERS) and the support surface name."""
 
-    def set_max_velocity_scaling_factor(self, value: float) -> None:
-        """Scale the joints' maximum velocities by value in (0, 1]."""
-        self._goal.set_max_velocity_scaling_factor(value)
-
-    def set_max_acceleration_scaling_factor(self, value: float) -> None:
-        """Scale the joints' maximum accelerations by value in (0, 1]."""
-        self._goal.set_max_acceleration_scaling_factor(value)
-
-    def set_planning_time(self, seconds: float) -> None:
-        """Time allowed to plan, seconds (> 0; default 5)."""
-        self._goal.set_planning_time(seconds)
+    def __init__(self, context: MoveGroupContext) -> None:
+        self._context = context
+        self._support_surface = ""
 
     def get_planning_time(self) -> float:
         """Time allowed to plan, seconds."""
-        return self._goal.planning_time
-
-    def set_num_planning_attempts(self, num_planning_attempts: int) -> None:
-        """Number of planning attempts (>= 1; the shortest solution wins)."""
-        self._goal.set_num_planning_attempts(num_planning_attempts)
+        return self._context.goal.planning_time
 
     def set_planner_id(self, planner_id: str) -> None:
         """The planner to use, e.g. 'RRTConnect' ('' for the node's default)."""
-        self._goal.planner_id = str(planner_id)
+        self._context.goal.planner_id = str(planner_id)
 
     def get_planner_id(self) -> str:
         """The planner requested ('' for the node's default)."""
-        return self._goal.planner_id
+        return self._context.goal.planner_id
 
     def set_planning_pipeline_id(self, planning_pipeline: str) -> None:
         """The planning pipeline: move_group has one, 'ompl' ('' means it too); others raise."""
@@ -56,38 +56,27 @@ class PlanningOptions(MoveGroupBase):
 
     def set_goal_tolerance(self, value: float) -> None:
         """Set the joint, position and orientation goal tolerances at once."""
-        self.set_goal_joint_tolerance(value)
-        self.set_goal_position_tolerance(value)
-        self.set_goal_orientation_tolerance(value)
-
-    def set_goal_joint_tolerance(self, value: float) -> None:
-        """Joint goal tolerance, radians or metres (default 1e-4)."""
-        self._goal.set_goal_joint_tolerance(value)
-
-    def set_goal_position_tolerance(self, value: float) -> None:
-        """Position goal tolerance, metres (default 1e-4)."""
-        self._goal.set_goal_position_tolerance(value)
-
-    def set_goal_orientation_tolerance(self, value: float) -> None:
-        """Orientation goal tolerance about each axis, radians (default 1e-3)."""
-        self._goal.set_goal_orientation_tolerance(value)
+        goal = self._context.goal
+        goal.set_goal_joint_tolerance(value)
+        goal.set_goal_position_tolerance(value)
+        goal.set_goal_orientation_tolerance(value)
 
     def get_goal_tolerance(self) -> tuple[float, float, float]:
         """(joint, position, orientation) goal tolerances."""
-        g = self._goal
+        g = self._context.goal
         return (g.goal_joint_tolerance, g.goal_position_tolerance, g.goal_orientation_tolerance)
 
     def get_goal_joint_tolerance(self) -> float:
         """Joint goal tolerance."""
-        return self._goal.goal_joint_tolerance
+        return self._context.goal.goal_joint_tolerance
 
     def get_goal_position_tolerance(self) -> float:
         """Position goal tolerance (radius of a sphere around the target, metres)."""
-        return self._goal.goal_position_tolerance
+        return self._context.goal.goal_position_tolerance
 
     def get_goal_orientation_tolerance(self) -> float:
         """Orientation goal tolerance (about each axis, radians)."""
-        return self._goal.goal_orientation_tolerance
+        return self._context.goal.goal_orientation_tolerance
 
     def allow_looking(self, value: bool) -> None:
         """Looking around (moving sensors to clear unknown space) is not supported: only False is accepted."""
@@ -115,10 +104,10 @@ class PlanningOptions(MoveGroupBase):
         half = len(values) // 2
         if any(values[i] > values[i + half] for i in range(half)):
             raise SixdofCommanderError(f"set_workspace: a minimum exceeds its maximum in {values}")
-        mobile = [j.name for j in self._urdf.joints.values() if j.type in ("floating", "planar")]
+        mobile = [j.name for j in self._context.robot.joints.values() if j.type in ("floating", "planar")]
         if values and mobile:
             raise refuse("set_workspace", f"the robot's base joints {mobile} are not planned by sixdof")
-        self._goal.set_workspace(values)
+        self._context.goal.set_workspace(values)
 
     def set_support_surface_name(self, value: str) -> None:
         """The support surface of pick/place (MoveIt uses it only there). Stored and reported by

@@ -130,6 +130,21 @@ ErrorCode checkPosition(const sixdof_core::RobotModel& model, const moveit_msgs:
   return makeSuccess(source);
 }
 
+// Checks each constraint of `list` (named list_name[i]) with `check` into a Value, then hands the Value to `use`;
+// the first error of either ends the walk.
+template <class Value, class Msg, class Check, class Use>
+ErrorCode forEachChecked(const sixdof_core::RobotModel& model, const std::vector<Msg>& list,
+                         const std::string& list_name, const std::string& source, Check check, Use use) {
+  for (size_t i = 0; i < list.size(); ++i) {
+    Value value;
+    ErrorCode code = check(model, list[i], list_name + "[" + std::to_string(i) + "]", source, &value);
+    if (!isSuccess(code)) return code;
+    code = use(value);
+    if (!isSuccess(code)) return code;
+  }
+  return makeSuccess(source);
+}
+
 }  // namespace
 
 bool constraintsEmpty(const moveit_msgs::Constraints& c) {
@@ -148,25 +163,24 @@ ErrorCode toPathConstraints(const sixdof_core::RobotModel& model, const std::str
   }
   const auto* joint_group = model.findGroup(group);
   std::vector<JointRange> joints;
-  for (size_t i = 0; i < constraints.joint_constraints.size(); ++i) {
-    JointRange range;
-    ErrorCode code = checkJoint(model, constraints.joint_constraints[i],
-                                what + ".joint_constraints[" + std::to_string(i) + "]", source, &range);
-    if (!isSuccess(code)) return code;
-    const auto& active = joint_group->active_joints;
-    if (std::find(active.begin(), active.end(), range.joint) != active.end()) {
-      out->joint_bounds.push_back({range.joint, range.position - range.below, range.position + range.above, false});
-    }
-    joints.push_back(range);
-  }
+  ErrorCode code = forEachChecked<JointRange>(
+      model, constraints.joint_constraints, what + ".joint_constraints", source, checkJoint,
+      [&](const JointRange& range) {
+        const auto& active = joint_group->active_joints;
+        if (std::find(active.begin(), active.end(), range.joint) != active.end()) {
+          out->joint_bounds.push_back({range.joint, range.position - range.below, range.position + range.above, false});
+        }
+        joints.push_back(range);
+        return makeSuccess(source);
+      });
+  if (!isSuccess(code)) return code;
   std::vector<PositionRegion> regions;
-  for (size_t i = 0; i < constraints.position_constraints.size(); ++i) {
-    PositionRegion region;
-    ErrorCode code = checkPosition(model, constraints.position_constraints[i],
-                                   what + ".position_constraints[" + std::to_string(i) + "]", source, &region);
-    if (!isSuccess(code)) return code;
-    regions.push_back(region);
-  }
+  code = forEachChecked<PositionRegion>(model, constraints.position_constraints, what + ".position_constraints", source,
+                                        checkPosition, [&](const PositionRegion& region) {
+                                          regions.push_back(region);
+                                          return makeSuccess(source);
+                                        });
+  if (!isSuccess(code)) return code;
   if (joints.empty() && regions.empty()) return makeSuccess(source);
   auto shared_joints = std::make_shared<const std::vector<JointRange>>(std::move(joints));
   auto shared_regions = std::make_shared<const std::vector<PositionRegion>>(std::move(regions));
@@ -216,29 +230,28 @@ ErrorCode evaluateConstraints(const sixdof_core::RobotState& state, const moveit
     result.distance = distance;
     results->push_back(result);
   };
-  for (size_t i = 0; i < constraints.joint_constraints.size(); ++i) {
-    JointRange range;
-    ErrorCode code = checkJoint(model, constraints.joint_constraints[i],
-                                what + ".joint_constraints[" + std::to_string(i) + "]", source, &range);
-    if (!isSuccess(code)) return code;
-    add(range.satisfied(state), std::abs(range.error(state)));
-  }
-  for (size_t i = 0; i < constraints.position_constraints.size(); ++i) {
-    PositionRegion region;
-    ErrorCode code = checkPosition(model, constraints.position_constraints[i],
-                                   what + ".position_constraints[" + std::to_string(i) + "]", source, &region);
-    if (!isSuccess(code)) return code;
-    Eigen::Isometry3d frame;
-    code = SceneStore::frameTransform(state, region.frame, source, &frame);
-    if (!isSuccess(code)) return code;
-    bool inside = false;
-    const double distance = region.evaluate(state, &inside);
-    add(inside, distance);
-  }
+  ErrorCode code = forEachChecked<JointRange>(model, constraints.joint_constraints, what + ".joint_constraints", source,
+                                              checkJoint, [&](const JointRange& range) {
+                                                add(range.satisfied(state), std::abs(range.error(state)));
+                                                return makeSuccess(source);
+                                              });
+  if (!isSuccess(code)) return code;
+  code = forEachChecked<PositionRegion>(model, constraints.position_constraints, what + ".position_constraints", source,
+                                        checkPosition, [&](const PositionRegion& region) {
+                                          Eigen::Isometry3d frame;
+                                          const ErrorCode frame_code =
+                                              SceneStore::frameTransform(state, region.frame, source, &frame);
+                                          if (!isSuccess(frame_code)) return frame_code;
+                                          bool inside = false;
+                                          const double distance = region.evaluate(state, &inside);
+                                          add(inside, distance);
+                                          return makeSuccess(source);
+                                        });
+  if (!isSuccess(code)) return code;
   for (size_t i = 0; i < constraints.orientation_constraints.size(); ++i) {
     const auto& c = constraints.orientation_constraints[i];
     const std::string owhat = what + ".orientation_constraints[" + std::to_string(i) + "]";
-    ErrorCode code = validateLink(model, c.link_name, source);
+    code = validateLink(model, c.link_name, source);
     if (!isSuccess(code)) {
       code.message = owhat + ": " + code.message;
       return code;

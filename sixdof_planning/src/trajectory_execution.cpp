@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -22,22 +23,16 @@ constexpr double kLateSilence = 0.2;
 
 std::string followErrorName(int code) {
   using R = control_msgs::FollowJointTrajectoryResult;
-  switch (code) {
-    case R::SUCCESSFUL:
-      return "SUCCESSFUL";
-    case R::INVALID_GOAL:
-      return "INVALID_GOAL";
-    case R::INVALID_JOINTS:
-      return "INVALID_JOINTS";
-    case R::OLD_HEADER_TIMESTAMP:
-      return "OLD_HEADER_TIMESTAMP";
-    case R::PATH_TOLERANCE_VIOLATED:
-      return "PATH_TOLERANCE_VIOLATED";
-    case R::GOAL_TOLERANCE_VIOLATED:
-      return "GOAL_TOLERANCE_VIOLATED";
-    default:
-      return "error " + std::to_string(code);
-  }
+  static const std::map<int, std::string> kNames = {
+      {R::SUCCESSFUL, "SUCCESSFUL"},
+      {R::INVALID_GOAL, "INVALID_GOAL"},
+      {R::INVALID_JOINTS, "INVALID_JOINTS"},
+      {R::OLD_HEADER_TIMESTAMP, "OLD_HEADER_TIMESTAMP"},
+      {R::PATH_TOLERANCE_VIOLATED, "PATH_TOLERANCE_VIOLATED"},
+      {R::GOAL_TOLERANCE_VIOLATED, "GOAL_TOLERANCE_VIOLATED"},
+  };
+  const auto name = kNames.find(code);
+  return name != kNames.end() ? name->second : "error " + std::to_string(code);
 }
 
 std::string str(double value) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include <sixdof_core/primitive_dimensions.h>
@@ -104,25 +105,14 @@ std::string describeContact(const sixdof_core::Contact& contact) {
 ErrorCode planningStatusToError(const sixdof_core::PlanningResult& result, const std::string& source) {
   using S = sixdof_core::PlanningStatus;
   const std::string source_name = source + " (OMPL " + result.planner_id + ")";
-  switch (result.status) {
-    case S::kSuccess:
-      return makeSuccess(source_name);
-    case S::kInvalidRequest:
-      return makeError(ErrorCode::FAILURE, result.message, source_name);
-    case S::kInvalidStart:
-      return makeError(ErrorCode::START_STATE_INVALID, result.message, source_name);
-    case S::kInvalidGoal:
-      return makeError(ErrorCode::GOAL_STATE_INVALID, result.message, source_name);
-    case S::kGoalInCollision:
-      return makeError(ErrorCode::GOAL_IN_COLLISION, result.message, source_name);
-    case S::kNoIkSolution:
-      return makeError(ErrorCode::NO_IK_SOLUTION, result.message, source_name);
-    case S::kTimeout:
-      return makeError(ErrorCode::TIMED_OUT, result.message, source_name);
-    case S::kPlanningFailed:
-      break;
-  }
-  return makeError(ErrorCode::PLANNING_FAILED, result.message, source_name);
+  if (result.status == S::kSuccess) return makeSuccess(source_name);
+  static const std::map<S, int> kCodes = {
+      {S::kInvalidRequest, ErrorCode::FAILURE},         {S::kInvalidStart, ErrorCode::START_STATE_INVALID},
+      {S::kInvalidGoal, ErrorCode::GOAL_STATE_INVALID}, {S::kGoalInCollision, ErrorCode::GOAL_IN_COLLISION},
+      {S::kNoIkSolution, ErrorCode::NO_IK_SOLUTION},    {S::kTimeout, ErrorCode::TIMED_OUT},
+  };
+  const auto code = kCodes.find(result.status);
+  return makeError(code != kCodes.end() ? code->second : ErrorCode::PLANNING_FAILED, result.message, source_name);
 }
 
 ErrorCode MotionPlanner::planToGoal(const sixdof_core::PlanningContext& planning, const sixdof_core::RobotState& start,

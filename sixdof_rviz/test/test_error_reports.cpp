@@ -76,10 +76,3 @@ TEST_F(ErrorReportsTest, NoReportForTheCallIsNoneAfterTheWait) {
 
 }  // namespace
 }  // namespace sixdof_rviz
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_error_reports");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}

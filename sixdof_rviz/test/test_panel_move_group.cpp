@@ -173,10 +173,3 @@ TEST_F(PanelMoveGroupTest, MonitoredSceneIsALatchedFullScene) {
 
 }  // namespace
 }  // namespace sixdof_rviz
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_panel_move_group");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}

@@ -196,10 +196,3 @@ TEST_F(PlanningPanelLogicTest, WithoutPlannerTheStatusSaysSo) {
 
 }  // namespace
 }  // namespace sixdof_rviz
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_planning_panel_logic");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}

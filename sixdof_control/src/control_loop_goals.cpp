@@ -68,19 +68,9 @@ std::string ControlLoop::limitProblem(const TrajectoryGoal& goal) const {
   return "";
 }
 
-int ControlLoop::controllerIndex(const std::string& name) const {
-  for (std::size_t i = 0; i < controllers_.size(); ++i) {
-    if (controllers_[i].controller.config().name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
+int ControlLoop::controllerIndex(const std::string& name) const { return indexOfController(controllers_, name); }
 
-int ControlLoop::gripperIndex(const std::string& name) const {
-  for (std::size_t i = 0; i < grippers_.size(); ++i) {
-    if (grippers_[i].controller.config().name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
+int ControlLoop::gripperIndex(const std::string& name) const { return indexOfController(grippers_, name); }
 
 // Why no goal is taken now; empty when goals are.
 std::string ControlLoop::refusal() const {
@@ -219,33 +209,33 @@ sixdof_core::GripperResult ControlLoop::setGripperGoal(const std::string& grippe
   return result;
 }
 
-void ControlLoop::cancel(const std::string& controller) {
+template <class Entry, class Stop>
+void ControlLoop::cancelActive(std::vector<Entry>& entries, const std::string& name, Stop stop) {
   Notifications done;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const int index = controllerIndex(controller);
+    const int index = indexOfController(entries, name);
     if (index < 0) return;
-    Controller& c = controllers_[static_cast<std::size_t>(index)];
-    if (!c.controller.active()) return;
-    c.controller.cancel(pick(status_.positions, c.joints));
-    endGoal(c, GoalState::kCanceled, TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "canceled"), done);
+    Entry& entry = entries[static_cast<std::size_t>(index)];
+    if (!entry.controller.active()) return;
+    stop(entry, done);
   }
   notify(done);
 }
 
+void ControlLoop::cancel(const std::string& controller) {
+  cancelActive(controllers_, controller, [this](Controller& c, Notifications& done) {
+    c.controller.cancel(pick(status_.positions, c.joints));
+    endGoal(c, GoalState::kCanceled, TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "canceled"), done);
+  });
+}
+
 void ControlLoop::cancelGripper(const std::string& gripper) {
-  Notifications done;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const int index = gripperIndex(gripper);
-    if (index < 0) return;
-    Gripper& g = grippers_[static_cast<std::size_t>(index)];
-    if (!g.controller.active()) return;
+  cancelActive(grippers_, gripper, [this](Gripper& g, Notifications& done) {
     g.controller.cancel(status_.positions[g.joint]);
     g.command = status_.positions[g.joint];
     endGoal(g, GoalState::kCanceled, "canceled", done);
-  }
-  notify(done);
+  });
 }
 
 void ControlLoop::setEstop(bool engaged) {

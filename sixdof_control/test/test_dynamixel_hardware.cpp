@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 
 #include "emulator_process.h"
@@ -36,6 +37,11 @@ class DynamixelTest : public ::testing::Test {
   }
 
   HardwareResult read() { return hardware->read(0.0, 0.01, positions, velocities); }
+  // Starts the hardware, then has the emulator inject `fault` (one of its commands).
+  void startThenInject(const std::string& fault) {
+    ASSERT_TRUE(hardware->start().ok());
+    ASSERT_EQ(emulator.send(fault), "ok");
+  }
 
   EmulatorProcess emulator{{"--ids", "1", "2", "3"}};
   HardwareLoader loader;
@@ -78,8 +84,7 @@ TEST_F(DynamixelTest, StartHoldsWhereTheServosAre) {
 }
 
 TEST_F(DynamixelTest, HardwareErrorIsReportedNamingTheJoint) {
-  ASSERT_TRUE(hardware->start().ok());
-  ASSERT_EQ(emulator.send("hardware_error 2 32"), "ok");
+  ASSERT_NO_FATAL_FAILURE(startThenInject("hardware_error 2 32"));
   const HardwareResult r = read();
   EXPECT_EQ(r.status, HardwareStatus::kDeviceError);
   EXPECT_NE(r.message.find("joint 'joint2' (id 2)"), std::string::npos) << r.message;
@@ -87,16 +92,14 @@ TEST_F(DynamixelTest, HardwareErrorIsReportedNamingTheJoint) {
 }
 
 TEST_F(DynamixelTest, AServoThatStopsAnsweringTimesOutNamingTheJoint) {
-  ASSERT_TRUE(hardware->start().ok());
-  ASSERT_EQ(emulator.send("remove 3"), "ok");
+  ASSERT_NO_FATAL_FAILURE(startThenInject("remove 3"));
   const HardwareResult r = read();
   EXPECT_EQ(r.status, HardwareStatus::kTimeout);
   EXPECT_NE(r.message.find("joint 'joint3'"), std::string::npos) << r.message;
 }
 
 TEST_F(DynamixelTest, APortThatVanishesIsLost) {
-  ASSERT_TRUE(hardware->start().ok());
-  ASSERT_EQ(emulator.send("vanish"), "ok");
+  ASSERT_NO_FATAL_FAILURE(startThenInject("vanish"));
   HardwareResult r = read();
   if (r.ok()) r = hardware->write(0.0, 0.01, {0.0, 0.5, 0.0});
   EXPECT_EQ(r.status, HardwareStatus::kDeviceLost) << r.message;

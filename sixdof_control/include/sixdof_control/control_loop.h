@@ -145,6 +145,10 @@ class ControlLoop {
   void enterFault(const std::string& message, Notifications& done);
   void updateControllers(double now, double period, Notifications& done);
   void checkLimits(Notifications& done);
+  // Under the lock, runs `stop(entry, done)` on the entry of `entries` (controllers_ or grippers_) named `name` if its
+  // goal is active; then notifies what it ended.
+  template <class Entry, class Stop>
+  void cancelActive(std::vector<Entry>& entries, const std::string& name, Stop stop);
 
   ControlLoopConfig config_;
   HardwareInterface& hardware_;

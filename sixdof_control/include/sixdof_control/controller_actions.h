@@ -42,6 +42,56 @@ struct ActionGoal {
   std::optional<Outcome> early_end;
 };
 
+// The goal an action server runs, at most one at a time: from its acceptance until the host reports its end.
+// Thread-safe.
+template <class Handle, class Outcome>
+class ActiveGoal {
+ public:
+  using Goal = ActionGoal<Handle, Outcome>;
+
+  // Marks the goal accepted and makes it the active one, unless it already ended (then calls finish(that end)).
+  template <class Finish>
+  void accept(const std::shared_ptr<Goal>& goal, Finish finish) {
+    goal->handle.setAccepted();
+    std::optional<Outcome> early;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      goal->accepted = true;
+      early = goal->early_end;
+      if (!early) active_ = goal;
+    }
+    if (early) finish(*early);
+  }
+
+  // The host reported the goal's end: true when it is to be finished now, false when the end is kept for accept()
+  // (the goal is not accepted yet).
+  bool endNow(const std::shared_ptr<Goal>& goal, const Outcome& outcome) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!goal->accepted) {
+      goal->early_end = outcome;
+      return false;
+    }
+    if (active_ == goal) active_.reset();
+    return true;
+  }
+
+  // The active goal, or null.
+  std::shared_ptr<Goal> get() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return active_;
+  }
+
+  // True when `handle` is the active goal's.
+  bool is(const Handle& handle) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return active_ && active_->handle == handle;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<Goal> active_;
+};
+
 class TrajectoryActionServer {
  public:
   using Server = actionlib::ActionServer<control_msgs::FollowJointTrajectoryAction>;
@@ -58,8 +108,6 @@ class TrajectoryActionServer {
  private:
   using Goal = ActionGoal<Server::GoalHandle, GoalOutcome>;
   void goalCallback(Server::GoalHandle gh);
-  void cancelCallback(Server::GoalHandle gh);
-  void ended(const std::shared_ptr<Goal>& goal, const GoalOutcome& outcome);
   void finish(Goal& goal, const GoalOutcome& outcome);
   bool queryState(control_msgs::QueryTrajectoryState::Request& request,
                   control_msgs::QueryTrajectoryState::Response& response);
@@ -69,8 +117,7 @@ class TrajectoryActionServer {
   ControllerHost& host_;
   double state_period_ = 0.0;  // s; 0 = no state topic
   double next_state_ = 0.0;    // stamp's clock
-  std::mutex mutex_;           // active_
-  std::shared_ptr<Goal> active_;
+  ActiveGoal<Server::GoalHandle, GoalOutcome> active_;
   ros::Publisher state_pub_;
   ros::ServiceServer query_state_;
   Server server_;
@@ -91,15 +138,12 @@ class GripperActionServer {
  private:
   using Goal = ActionGoal<Server::GoalHandle, GripperOutcome>;
   void goalCallback(Server::GoalHandle gh);
-  void cancelCallback(Server::GoalHandle gh);
-  void ended(const std::shared_ptr<Goal>& goal, const GripperOutcome& outcome);
   void finish(Goal& goal, const GripperOutcome& outcome);
   control_msgs::GripperCommandResult makeResult(bool reached_goal, bool stalled) const;
 
   std::string name_;
   ControllerHost& host_;
-  std::mutex mutex_;
-  std::shared_ptr<Goal> active_;
+  ActiveGoal<Server::GoalHandle, GripperOutcome> active_;
   Server server_;
 };
 

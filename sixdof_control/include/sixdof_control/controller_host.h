@@ -3,6 +3,7 @@
 // gripper controllers on joints. The simulator's node hosts them on its World's joints, the driver node on the
 // control loop (ControlLoop, through a hardware plugin). ROS-free.
 
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
@@ -40,6 +41,16 @@ struct GripperReading {
   double position = 0.0;
   double effort = 0.0;  // 0 where the joint's effort is not measured
 };
+
+// The index in `entries` of the entry whose `controller` is configured under `name`, or -1: how a host finds the
+// controller a call names.
+template <class Entries>
+int indexOfController(const Entries& entries, const std::string& name) {
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (entries[i].controller.config().name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 // Controllers by name; every time is the host's clock in seconds, which is the node's ROS time. The controllers a
 // goal is for name their joints as the controllers config does, mimic joints included (a host whose joints do not

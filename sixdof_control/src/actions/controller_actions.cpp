@@ -41,33 +41,6 @@ void endGoal(Handle& handle, GoalState state, const Result& result, const std::s
   }
 }
 
-// Marks the goal accepted and makes it the active one, unless it already ended (then applies that end).
-template <class Goal, class Finish>
-void accept(const std::shared_ptr<Goal>& goal, std::mutex& mutex, std::shared_ptr<Goal>& active, Finish finish) {
-  goal->handle.setAccepted();
-  decltype(goal->early_end) early;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    goal->accepted = true;
-    early = goal->early_end;
-    if (!early) active = goal;
-  }
-  if (early) finish(*early);
-}
-
-// The host reported the goal's end: finish it now, or keep the end for accept() when it is not accepted yet.
-template <class Goal, class Outcome>
-bool endNow(const std::shared_ptr<Goal>& goal, const Outcome& outcome, std::mutex& mutex,
-            std::shared_ptr<Goal>& active) {
-  std::lock_guard<std::mutex> lock(mutex);
-  if (!goal->accepted) {
-    goal->early_end = outcome;
-    return false;
-  }
-  if (active == goal) active.reset();
-  return true;
-}
-
 }  // namespace
 
 TrajectoryActionServer::TrajectoryActionServer(ros::NodeHandle nh, const TrajectoryControllerSetup& setup,
@@ -79,7 +52,9 @@ TrajectoryActionServer::TrajectoryActionServer(ros::NodeHandle nh, const Traject
   }
   query_state_ = nh.advertiseService("query_state", &TrajectoryActionServer::queryState, this);
   server_.registerGoalCallback([this](Server::GoalHandle gh) { goalCallback(gh); });
-  server_.registerCancelCallback([this](Server::GoalHandle gh) { cancelCallback(gh); });
+  server_.registerCancelCallback([this](Server::GoalHandle gh) {
+    if (active_.is(gh)) host_.cancel(name_);
+  });
   server_.start();
 }
 
@@ -90,7 +65,9 @@ void TrajectoryActionServer::goalCallback(Server::GoalHandle gh) {
   if (const std::string mimic_error = joints_.checkMimics(goal); !mimic_error.empty()) {
     check = TrajectoryResult::failure(TrajectoryErrorCode::kInvalidGoal, mimic_error);
   } else {
-    check = host_.setGoal(name_, goal, [this, record](const GoalOutcome& o) { ended(record, o); });
+    check = host_.setGoal(name_, goal, [this, record](const GoalOutcome& o) {
+      if (active_.endNow(record, o)) finish(*record, o);
+    });
   }
   if (!check.ok()) {
     control_msgs::FollowJointTrajectoryResult result;
@@ -100,11 +77,7 @@ void TrajectoryActionServer::goalCallback(Server::GoalHandle gh) {
     gh.setRejected(result, check.message);
     return;
   }
-  accept(record, mutex_, active_, [&](const GoalOutcome& o) { finish(*record, o); });
-}
-
-void TrajectoryActionServer::ended(const std::shared_ptr<Goal>& goal, const GoalOutcome& outcome) {
-  if (endNow(goal, outcome, mutex_, active_)) finish(*goal, outcome);
+  active_.accept(record, [&](const GoalOutcome& o) { finish(*record, o); });
 }
 
 void TrajectoryActionServer::finish(Goal& goal, const GoalOutcome& outcome) {
@@ -112,14 +85,6 @@ void TrajectoryActionServer::finish(Goal& goal, const GoalOutcome& outcome) {
   result.error_code = static_cast<int>(outcome.result.status);
   result.error_string = outcome.result.message;
   endGoal(goal.handle, outcome.state, result, outcome.result.message, name_);
-}
-
-void TrajectoryActionServer::cancelCallback(Server::GoalHandle gh) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!active_ || !(active_->handle == gh)) return;
-  }
-  host_.cancel(name_);
 }
 
 bool TrajectoryActionServer::queryState(control_msgs::QueryTrajectoryState::Request& request,
@@ -145,11 +110,7 @@ bool TrajectoryActionServer::queryState(control_msgs::QueryTrajectoryState::Requ
 void TrajectoryActionServer::publish(const ros::Time& stamp) {
   const std::optional<sixdof_core::TrajectoryUpdate> update = host_.lastUpdate(name_);
   if (!update || update->desired.position.empty()) return;
-  std::shared_ptr<Goal> active;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    active = active_;
-  }
+  const std::shared_ptr<Goal> active = active_.get();
   // The state topic runs while this controller commands its joints (not while another controller, e.g.
   // gripper_cmd, has them).
   const double now = stamp.toSec();
@@ -185,7 +146,9 @@ void TrajectoryActionServer::publish(const ros::Time& stamp) {
 GripperActionServer::GripperActionServer(ros::NodeHandle nh, const std::string& gripper, ControllerHost& host)
     : name_(gripper), host_(host), server_(nh, "gripper_cmd", false) {
   server_.registerGoalCallback([this](Server::GoalHandle gh) { goalCallback(gh); });
-  server_.registerCancelCallback([this](Server::GoalHandle gh) { cancelCallback(gh); });
+  server_.registerCancelCallback([this](Server::GoalHandle gh) {
+    if (active_.is(gh)) host_.cancelGripper(name_);
+  });
   server_.start();
 }
 
@@ -202,18 +165,15 @@ control_msgs::GripperCommandResult GripperActionServer::makeResult(bool reached_
 void GripperActionServer::goalCallback(Server::GoalHandle gh) {
   const sixdof_core::GripperGoal goal{gh.getGoal()->command.position, gh.getGoal()->command.max_effort};
   auto record = std::make_shared<Goal>(gh);
-  const sixdof_core::GripperResult check =
-      host_.setGripperGoal(name_, goal, [this, record](const GripperOutcome& o) { ended(record, o); });
+  const sixdof_core::GripperResult check = host_.setGripperGoal(name_, goal, [this, record](const GripperOutcome& o) {
+    if (active_.endNow(record, o)) finish(*record, o);
+  });
   if (!check.ok()) {
     ROS_WARN_STREAM("[" << name_ << "/gripper_cmd] goal rejected: " << check.message);
     gh.setRejected(makeResult(false, false), check.message);
     return;
   }
-  accept(record, mutex_, active_, [&](const GripperOutcome& o) { finish(*record, o); });
-}
-
-void GripperActionServer::ended(const std::shared_ptr<Goal>& goal, const GripperOutcome& outcome) {
-  if (endNow(goal, outcome, mutex_, active_)) finish(*goal, outcome);
+  active_.accept(record, [&](const GripperOutcome& o) { finish(*record, o); });
 }
 
 void GripperActionServer::finish(Goal& goal, const GripperOutcome& outcome) {
@@ -221,20 +181,8 @@ void GripperActionServer::finish(Goal& goal, const GripperOutcome& outcome) {
           name_ + "/gripper_cmd");
 }
 
-void GripperActionServer::cancelCallback(Server::GoalHandle gh) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!active_ || !(active_->handle == gh)) return;
-  }
-  host_.cancelGripper(name_);
-}
-
 void GripperActionServer::publish() {
-  std::shared_ptr<Goal> active;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    active = active_;
-  }
+  const std::shared_ptr<Goal> active = active_.get();
   if (!active) return;
   const GripperReading reading = host_.gripperReading(name_);
   control_msgs::GripperCommandFeedback fb;

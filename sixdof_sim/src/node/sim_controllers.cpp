@@ -7,6 +7,18 @@
 
 namespace sixdof_sim {
 
+namespace {
+
+// The entry of `entries` whose controller is named `name`, while it has a goal (a `done` callback); else nullptr.
+template <class Entry>
+Entry* withGoal(std::vector<Entry>& entries, const std::string& name) {
+  const int index = sixdof_control::indexOfController(entries, name);
+  if (index < 0 || !entries[static_cast<std::size_t>(index)].done) return nullptr;
+  return &entries[static_cast<std::size_t>(index)];
+}
+
+}  // namespace
+
 using sixdof_control::GoalOutcome;
 using sixdof_control::GripperOutcome;
 
@@ -59,17 +71,11 @@ void SimControllers::actual(const Trajectory& t, std::vector<double>* q, std::ve
 }
 
 int SimControllers::trajectoryIndex(const std::string& name) const {
-  for (std::size_t i = 0; i < trajectories_.size(); ++i) {
-    if (trajectories_[i].controller.config().name == name) return static_cast<int>(i);
-  }
-  return -1;
+  return sixdof_control::indexOfController(trajectories_, name);
 }
 
 int SimControllers::gripperIndex(const std::string& name) const {
-  for (std::size_t i = 0; i < grippers_.size(); ++i) {
-    if (grippers_[i].controller.config().name == name) return static_cast<int>(i);
-  }
-  return -1;
+  return sixdof_control::indexOfController(grippers_, name);
 }
 
 bool SimControllers::owns(Owner owner, const std::string& joint) const {
@@ -148,13 +154,12 @@ TrajectoryResult SimControllers::setGoal(const std::string& controller, const Tr
 }
 
 void SimControllers::cancel(const std::string& controller) {
-  const int index = trajectoryIndex(controller);
-  if (index < 0 || !trajectories_[static_cast<std::size_t>(index)].done) return;
-  Trajectory& t = trajectories_[static_cast<std::size_t>(index)];
+  Trajectory* t = withGoal(trajectories_, controller);
+  if (t == nullptr) return;
   std::vector<double> q, v;
-  actual(t, &q, &v);
-  t.controller.cancel(q);
-  endTrajectory(t, GoalState::kCanceled, TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "canceled"));
+  actual(*t, &q, &v);
+  t->controller.cancel(q);
+  endTrajectory(*t, GoalState::kCanceled, TrajectoryResult::failure(TrajectoryErrorCode::kSuccessful, "canceled"));
 }
 
 GripperResult SimControllers::setGripperGoal(const std::string& gripper, const GripperGoal& goal,
@@ -174,11 +179,10 @@ GripperResult SimControllers::setGripperGoal(const std::string& gripper, const G
 }
 
 void SimControllers::cancelGripper(const std::string& gripper) {
-  const int index = gripperIndex(gripper);
-  if (index < 0 || !grippers_[static_cast<std::size_t>(index)].done) return;
-  Gripper& g = grippers_[static_cast<std::size_t>(index)];
-  g.controller.cancel(world_.jointPositions()[g.world_index]);
-  endGripper(g, GoalState::kCanceled, "canceled");
+  Gripper* g = withGoal(grippers_, gripper);
+  if (g == nullptr) return;
+  g->controller.cancel(world_.jointPositions()[g->world_index]);
+  endGripper(*g, GoalState::kCanceled, "canceled");
 }
 
 void SimControllers::reset() {

@@ -5,7 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 #include "gazebo_extensions.h"
 
@@ -171,34 +176,39 @@ GraspFixConfig parseGraspingYaml(const std::string& yaml_text, const std::string
   if (!fix || !fix.IsMap()) throw std::invalid_argument(source + ": no 'grasp_fix' mapping");
   GraspFixConfig config = pluginDefaults();
   bool threshold_given = false;
+  // Each key's reader (yaml-cpp's as<T>() throws on a value of the wrong type); `where` names the key.
+  using Reader = std::function<void(const YAML::Node& value, const std::string& where)>;
+  const auto read = [](auto* field) -> Reader {
+    return [field](const YAML::Node& value, const std::string&) {
+      *field = value.as<std::remove_pointer_t<decltype(field)>>();
+    };
+  };
+  const std::map<std::string, Reader> readers = {
+      {"arm_name", read(&config.arm_name)},
+      {"palm_link", read(&config.palm_link)},
+      {"gripper_links",
+       [&config](const YAML::Node& value, const std::string& where) {
+         if (!value.IsSequence()) throw std::invalid_argument(where + " must be a list of link names");
+         config.gripper_links = value.as<std::vector<std::string>>();
+       }},
+      {"forces_angle_tolerance", read(&config.forces_angle_tolerance)},
+      {"update_rate", read(&config.update_rate)},
+      {"grip_count_threshold",
+       [&](const YAML::Node& value, const std::string&) {
+         config.grip_count_threshold = value.as<int>();
+         threshold_given = true;
+       }},
+      {"max_grip_count", read(&config.max_grip_count)},
+      {"release_tolerance", read(&config.release_tolerance)},
+      {"disable_collisions_on_attach", read(&config.disable_collisions_on_attach)},
+  };
   for (const auto& entry : fix) {
     const std::string key = entry.first.as<std::string>();
-    const YAML::Node& value = entry.second;
+    const auto reader = readers.find(key);
+    if (reader == readers.end()) throw std::invalid_argument(source + ": unknown key 'grasp_fix." + key + "'");
     const std::string where = source + ": 'grasp_fix." + key + "'";
     try {
-      if (key == "arm_name") {
-        config.arm_name = value.as<std::string>();
-      } else if (key == "palm_link") {
-        config.palm_link = value.as<std::string>();
-      } else if (key == "gripper_links") {
-        if (!value.IsSequence()) throw std::invalid_argument(where + " must be a list of link names");
-        config.gripper_links = value.as<std::vector<std::string>>();
-      } else if (key == "forces_angle_tolerance") {
-        config.forces_angle_tolerance = value.as<double>();
-      } else if (key == "update_rate") {
-        config.update_rate = value.as<double>();
-      } else if (key == "grip_count_threshold") {
-        config.grip_count_threshold = value.as<int>();
-        threshold_given = true;
-      } else if (key == "max_grip_count") {
-        config.max_grip_count = value.as<int>();
-      } else if (key == "release_tolerance") {
-        config.release_tolerance = value.as<double>();
-      } else if (key == "disable_collisions_on_attach") {
-        config.disable_collisions_on_attach = value.as<bool>();
-      } else {
-        throw std::invalid_argument(source + ": unknown key 'grasp_fix." + key + "'");
-      }
+      reader->second(entry.second, where);
     } catch (const YAML::Exception&) {
       throw std::invalid_argument(where + " has a value of the wrong type");
     }

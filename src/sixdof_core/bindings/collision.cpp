@@ -103,11 +103,13 @@ void bindQueryTypes(py::module_& m) {
       .value("SELF", CollisionScope::kSelf, "Robot links and attached objects among themselves.")
       .value("WORLD", CollisionScope::kWorld, "Robot links and attached objects vs world objects.");
 
-  py::class_<Contact>(m, "Contact", "A contact between two bodies; the normal points from body1 towards body2.")
-      .def_readonly("body1", &Contact::body1)
-      .def_readonly("body2", &Contact::body2)
-      .def_readonly("type1", &Contact::type1)
-      .def_readonly("type2", &Contact::type2)
+  py::class_<BodyPair>(m, "BodyPair", "Two bodies of the scene and their kinds (a Contact's, a DistanceReport's).")
+      .def_readonly("body1", &BodyPair::body1)
+      .def_readonly("body2", &BodyPair::body2)
+      .def_readonly("type1", &BodyPair::type1)
+      .def_readonly("type2", &BodyPair::type2);
+  py::class_<Contact, BodyPair>(m, "Contact",
+                                "A contact between two bodies; the normal points from body1 towards body2.")
       .def_readonly("position", &Contact::position)
       .def_readonly("normal", &Contact::normal)
       .def_readonly("depth", &Contact::depth)
@@ -116,15 +118,12 @@ void bindQueryTypes(py::module_& m) {
       .def_readonly("colliding", &CollisionReport::colliding)
       .def_readonly("contacts", &CollisionReport::contacts)
       .def("__bool__", [](const CollisionReport& r) { return r.colliding; });
-  py::class_<DistanceReport>(m, "DistanceReport",
-                             "Signed minimum distance over the pairs in scope (negative: the deepest penetration); "
-                             "point1/point2 are the closest points on body1/body2 in the world frame.")
+  py::class_<DistanceReport, BodyPair>(
+      m, "DistanceReport",
+      "Signed minimum distance over the pairs in scope (negative: the deepest penetration); point1/point2 are the "
+      "closest points on body1/body2 in the world frame.")
       .def_readonly("found", &DistanceReport::found, "False when no pair is in scope.")
       .def_readonly("distance", &DistanceReport::distance)
-      .def_readonly("body1", &DistanceReport::body1)
-      .def_readonly("body2", &DistanceReport::body2)
-      .def_readonly("type1", &DistanceReport::type1)
-      .def_readonly("type2", &DistanceReport::type2)
       .def_readonly("point1", &DistanceReport::point1)
       .def_readonly("point2", &DistanceReport::point2);
 }
@@ -263,6 +262,21 @@ std::vector<Eigen::Isometry3d> Scene::linkPoses(const RobotState& state) const {
   return poses;
 }
 
+// set_<name> (every robot link), set_link_<name> and link_<name>: one per-link property of the scene's robot.
+void bindLinkProperty(py::class_<Scene, std::shared_ptr<Scene>>& scene, const std::string& name,
+                      const char* every_link_doc, SceneStatus (CollisionScene::*set_every)(double),
+                      SceneStatus (CollisionScene::*set_link)(const std::string&, double),
+                      double (CollisionScene::*get)(const std::string&) const) {
+  scene
+      .def(("set_" + name).c_str(), [set_every](Scene& s, double value) { check((s.edit().*set_every)(value)); },
+           py::arg(name.c_str()), every_link_doc)
+      .def(("set_link_" + name).c_str(),
+           [set_link](Scene& s, const std::string& link, double value) { check((s.edit().*set_link)(link, value)); },
+           py::arg("link"), py::arg(name.c_str()))
+      .def(("link_" + name).c_str(), [get](const Scene& s, const std::string& link) { return (s.read().*get)(link); },
+           py::arg("link"), "NaN for an unknown link.");
+}
+
 void bindCollision(py::module_& m) {
   bindQueryTypes(m);
   py::class_<Scene, std::shared_ptr<Scene>> scene(
@@ -302,27 +316,12 @@ void bindCollision(py::module_& m) {
           [](const Scene& s, const std::string& a, const std::string& b) {
             return s.read().allowedCollisionMatrix().isAllowed(a, b);
           },
-          py::arg("a"), py::arg("b"))
-      .def(
-          "set_padding", [](Scene& s, double padding) { check(s.edit().setPadding(padding)); }, py::arg("padding"),
-          "Every robot link's padding (m, >= 0).")
-      .def(
-          "set_link_padding",
-          [](Scene& s, const std::string& link, double padding) { check(s.edit().setLinkPadding(link, padding)); },
-          py::arg("link"), py::arg("padding"))
-      .def(
-          "link_padding", [](const Scene& s, const std::string& link) { return s.read().linkPadding(link); },
-          py::arg("link"), "NaN for an unknown link.")
-      .def(
-          "set_scale", [](Scene& s, double scale) { check(s.edit().setScale(scale)); }, py::arg("scale"),
-          "Every robot link's scale (> 0).")
-      .def(
-          "set_link_scale",
-          [](Scene& s, const std::string& link, double scale) { check(s.edit().setLinkScale(link, scale)); },
-          py::arg("link"), py::arg("scale"))
-      .def(
-          "link_scale", [](const Scene& s, const std::string& link) { return s.read().linkScale(link); },
-          py::arg("link"), "NaN for an unknown link.")
+          py::arg("a"), py::arg("b"));
+  bindLinkProperty(scene, "padding", "Every robot link's padding (m, >= 0).", &CollisionScene::setPadding,
+                   &CollisionScene::setLinkPadding, &CollisionScene::linkPadding);
+  bindLinkProperty(scene, "scale", "Every robot link's scale (> 0).", &CollisionScene::setScale,
+                   &CollisionScene::setLinkScale, &CollisionScene::linkScale);
+  scene
       .def(
           "is_colliding",
           [](const Scene& s, const RobotState& state, CollisionScope scope) {

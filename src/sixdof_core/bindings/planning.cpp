@@ -35,6 +35,19 @@ auto run(const Planner& planner, const RobotState& start, Call&& call) {
   return call(*planner.context, start_copy);
 }
 
+// PlanningContext::planTo<goal> (start, goal, its tolerance or pose goal options, planning options) as a method of
+// Planner, run as run() does.
+template <class Goal, class GoalOptions>
+auto planTo(PlanningResult (PlanningContext::*plan_to)(const RobotState&, const Goal&, GoalOptions,
+                                                       const PlanningOptions&) const) {
+  return [plan_to](const Planner& p, const RobotState& start, const Goal& goal, GoalOptions goal_options,
+                   const PlanningOptions& options) {
+    return run(p, start, [&](const PlanningContext& c, const RobotState& s) {
+      return (c.*plan_to)(s, goal, goal_options, options);
+    });
+  };
+}
+
 void bindOptions(py::module_& m) {
   py::enum_<PlanningStatus>(m, "PlanningStatus")
       .value("SUCCESS", PlanningStatus::kSuccess)
@@ -148,16 +161,9 @@ void bindPlanning(py::module_& m) {
                              })
       .def_property_readonly("scene", [](const Planner& p) { return p.scene; })
       .def_property_readonly("ik", [](const Planner& p) { return p.ik; })
-      .def(
-          "plan_to_joints",
-          [](const Planner& p, const RobotState& start, const Eigen::VectorXd& goal, double tolerance,
-             const PlanningOptions& options) {
-            return run(p, start, [&](const PlanningContext& c, const RobotState& s) {
-              return c.planToJoints(s, goal, tolerance, options);
-            });
-          },
-          py::arg("start"), py::arg("goal"), py::arg("tolerance") = 0.0, py::arg("options") = PlanningOptions(),
-          "To the group's joint values goal, +- tolerance per joint.")
+      .def("plan_to_joints", planTo(&PlanningContext::planToJoints), py::arg("start"), py::arg("goal"),
+           py::arg("tolerance") = 0.0, py::arg("options") = PlanningOptions(),
+           "To the group's joint values goal, +- tolerance per joint.")
       .def(
           "plan_to_joints",
           [](const Planner& p, const RobotState& start, const Eigen::VectorXd& goal, const Eigen::VectorXd& tolerance,
@@ -170,37 +176,14 @@ void bindPlanning(py::module_& m) {
           },
           py::arg("start"), py::arg("goal"), py::arg("tolerance"), py::arg("options") = PlanningOptions(),
           "The same with a tolerance per joint (move_group's joint constraints).")
-      .def(
-          "plan_to_named",
-          [](const Planner& p, const RobotState& start, const std::string& name, double tolerance,
-             const PlanningOptions& options) {
-            return run(p, start, [&](const PlanningContext& c, const RobotState& s) {
-              return c.planToNamed(s, name, tolerance, options);
-            });
-          },
-          py::arg("start"), py::arg("name"), py::arg("tolerance") = 0.0, py::arg("options") = PlanningOptions(),
-          "To an SRDF group_state of the group.")
-      .def(
-          "plan_to_pose",
-          [](const Planner& p, const RobotState& start, const Eigen::Isometry3d& pose, const PoseGoalOptions& pose_goal,
-             const PlanningOptions& options) {
-            return run(p, start, [&](const PlanningContext& c, const RobotState& s) {
-              return c.planToPose(s, pose, pose_goal, options);
-            });
-          },
-          py::arg("start"), py::arg("pose"), py::arg("pose_goal") = PoseGoalOptions(),
-          py::arg("options") = PlanningOptions(),
-          "To a 4x4 pose of the group's tip link in its chain's base frame; goal states sampled by IK.")
-      .def(
-          "plan_to_position",
-          [](const Planner& p, const RobotState& start, const Eigen::Vector3d& position,
-             const PoseGoalOptions& pose_goal, const PlanningOptions& options) {
-            return run(p, start, [&](const PlanningContext& c, const RobotState& s) {
-              return c.planToPosition(s, position, pose_goal, options);
-            });
-          },
-          py::arg("start"), py::arg("position"), py::arg("pose_goal") = PoseGoalOptions(),
-          py::arg("options") = PlanningOptions(), "To a position of the tip link, any orientation.")
+      .def("plan_to_named", planTo(&PlanningContext::planToNamed), py::arg("start"), py::arg("name"),
+           py::arg("tolerance") = 0.0, py::arg("options") = PlanningOptions(), "To an SRDF group_state of the group.")
+      .def("plan_to_pose", planTo(&PlanningContext::planToPose), py::arg("start"), py::arg("pose"),
+           py::arg("pose_goal") = PoseGoalOptions(), py::arg("options") = PlanningOptions(),
+           "To a 4x4 pose of the group's tip link in its chain's base frame; goal states sampled by IK.")
+      .def("plan_to_position", planTo(&PlanningContext::planToPosition), py::arg("start"), py::arg("position"),
+           py::arg("pose_goal") = PoseGoalOptions(), py::arg("options") = PlanningOptions(),
+           "To a position of the tip link, any orientation.")
       .def(
           "cartesian_path",
           [](const Planner& p, const RobotState& start, const std::vector<Eigen::Isometry3d>& waypoints,

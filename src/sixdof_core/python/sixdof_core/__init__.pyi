@@ -274,11 +274,13 @@ class CollisionScope(_Enum):
     SELF: ClassVar[CollisionScope]
     WORLD: ClassVar[CollisionScope]
 
-class Contact:
+class BodyPair:
     body1: Final[str]
     body2: Final[str]
     type1: Final[BodyType]
     type2: Final[BodyType]
+
+class Contact(BodyPair):
     position: Final[_Array]
     normal: Final[_Array]
     depth: Final[float]
@@ -288,13 +290,9 @@ class CollisionReport:
     contacts: Final[list[Contact]]
     def __bool__(self) -> bool: ...
 
-class DistanceReport:
+class DistanceReport(BodyPair):
     found: Final[bool]
     distance: Final[float]
-    body1: Final[str]
-    body2: Final[str]
-    type1: Final[BodyType]
-    type2: Final[BodyType]
     point1: Final[_Array]
     point2: Final[_Array]
 

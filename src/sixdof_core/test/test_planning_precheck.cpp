@@ -91,10 +91,7 @@ struct Cluttered {
 // nothing within the stretch it calls unprovable either.
 TEST_F(PrecheckPlanningTest, ProofsHoldUnderFcl) {
   std::mt19937 rng(7);
-  const Cluttered c(&rng);
-  const TableTop& t = c.t;
-  const JointValidityFn& valid = c.valid;
-  const MotionPrecheckFn& precheck = c.precheck;
+  const auto& [t, valid, precheck] = Cluttered(&rng);
   std::uniform_real_distribution<double> length(0.05, 1.5);
   int proven = 0, unprovable = 0;
   for (int k = 0; k < 600; ++k) {
@@ -124,10 +121,7 @@ TEST_F(PrecheckPlanningTest, ProofsHoldUnderFcl) {
 // A single state: with a zero step the pre-check proves free states only, and most clearly free ones.
 TEST_F(PrecheckPlanningTest, ZeroStepProvesFreeStatesOnly) {
   std::mt19937 rng(11);
-  const Cluttered c(&rng);
-  const TableTop& t = c.t;
-  const JointValidityFn& valid = c.valid;
-  const MotionPrecheckFn& precheck = c.precheck;
+  const auto& [t, valid, precheck] = Cluttered(&rng);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(t.context->joints().size()));
   int free = 0, proven = 0;
   for (int k = 0; k < 2000; ++k) {

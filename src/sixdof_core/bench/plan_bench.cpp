@@ -9,8 +9,6 @@
 #include <cstdlib>
 #include <string>
 
-#include <ompl/util/Console.h>
-
 #include "plan_queries.h"
 
 namespace {
@@ -53,7 +51,6 @@ int main(int argc, char** argv) {
   sixdof_core::bench::QueryArgs args;
   if (!args.parse(argc, argv, "plan_bench")) return 2;
   const int queries = args.queries;
-  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   const sixdof_test::TableTop t = sixdof_test::makeTableTop(args.urdf, args.srdf, args.description, 0.005);
   std::printf("plan_bench: %s + %s, IK %s, %d queries\n", args.urdf.c_str(), args.srdf.c_str(), t.ik_note.c_str(),
               queries);

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <ompl/util/Console.h>
+
 #include "../test/test_planning_table_top.h"
 #include "bench_paths.h"
 #include "sixdof_core/planning_context.h"
@@ -17,7 +19,8 @@
 namespace sixdof_core::bench {
 
 // The arguments of the planning benchmarks: `name [queries (default 100)] [urdf] [srdf]`, the robot defaulting to the
-// checkout's description. False (after a usage line) on a bad count.
+// checkout's description. False (after a usage line) on a bad count; true with OMPL's log quieted to errors (the
+// benchmarks print their tables only).
 struct QueryArgs {
   int queries = 100;
   std::string description, urdf, srdf;
@@ -27,7 +30,10 @@ struct QueryArgs {
     description = descriptionDir();
     urdf = argc > 2 ? argv[2] : defaultUrdf();
     srdf = argc > 3 ? argv[3] : defaultSrdf();
-    if (queries >= 1) return true;
+    if (queries >= 1) {
+      ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+      return true;
+    }
     std::fprintf(stderr, "usage: %s [queries >= 1] [urdf] [srdf]\n", name);
     return false;
   }

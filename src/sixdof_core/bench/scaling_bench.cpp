@@ -6,8 +6,6 @@
 //  - collision checks per second on random arm states: full-state checks (forward kinematics + FCL, what the planner's
 //    validity callback does) and pre-check calls (forward kinematics + spheres, over a 0.05 rad step).
 //   scaling_bench [queries per scene (default 100)] [urdf] [srdf]
-#include <ompl/util/Console.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -59,7 +57,6 @@ int main(int argc, char** argv) {
   sixdof_core::bench::QueryArgs args;
   if (!args.parse(argc, argv, "scaling_bench")) return 2;
   const int queries = args.queries;
-  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   std::printf(
       "scaling_bench: the table-top world plus N boxes of clutter on the table, %d chained pose queries per "
       "scene (plan_bench's), 4096 random arm states for the checks\n",

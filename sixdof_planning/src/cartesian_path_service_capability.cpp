@@ -142,9 +142,7 @@ ErrorCode computePath(MoveGroupContext* context, const moveit_msgs::GetCartesian
 ErrorCode CartesianPathService::handle(const moveit_msgs::GetCartesianPathRequest& request,
                                   moveit_msgs::GetCartesianPathResponse& response) {
   response.fraction = 0.0;
-  const ErrorCode code = computePath(context_, request, &response);
-  response.error_code = code;
-  return code;
+  return answer(computePath(context_, request, &response), &response);
 }
 
 template class ServiceCapability<CartesianPathService>;

@@ -136,9 +136,7 @@ ErrorCode solveIk(MoveGroupContext* context, const moveit_msgs::PositionIKReques
 
 ErrorCode ForwardKinematicsService::handle(const moveit_msgs::GetPositionFKRequest& request,
                                            moveit_msgs::GetPositionFKResponse& response) {
-  const ErrorCode code = fk(request, &response);
-  response.error_code = code;
-  return code;
+  return answer(fk(request, &response), &response);
 }
 
 ErrorCode ForwardKinematicsService::fk(const moveit_msgs::GetPositionFKRequest& request,
@@ -169,9 +167,7 @@ ErrorCode ForwardKinematicsService::fk(const moveit_msgs::GetPositionFKRequest& 
 
 ErrorCode InverseKinematicsService::handle(const moveit_msgs::GetPositionIKRequest& request,
                                            moveit_msgs::GetPositionIKResponse& response) {
-  const ErrorCode code = solveIk(context_, request.ik_request, &response.solution);
-  response.error_code = code;
-  return code;
+  return answer(solveIk(context_, request.ik_request, &response.solution), &response);
 }
 
 template class ServiceCapability<ForwardKinematicsService>;

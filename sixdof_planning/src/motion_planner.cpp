@@ -265,9 +265,7 @@ ErrorCode checkRequestFields(const moveit_msgs::MotionPlanRequest& request, cons
 ErrorCode MotionPlanner::plan(const moveit_msgs::MotionPlanRequest& request, const std::string& source,
                               moveit_msgs::MotionPlanResponse* response,
                               std::shared_ptr<const SceneStore> base_scene) const {
-  const ErrorCode code = planRequest(request, source, response, std::move(base_scene));
-  response->error_code = code;
-  return code;
+  return answer(planRequest(request, source, response, std::move(base_scene)), response);
 }
 
 ErrorCode MotionPlanner::planRequest(const moveit_msgs::MotionPlanRequest& request, const std::string& source,

@@ -181,9 +181,8 @@ ErrorCode QueryRobotModelService::handle(const sixdof_msgs::GetRobotModelRequest
     const std::string error = describeCollisionGeometry(*context_->model(), &response.link_geometries);
     if (!error.empty()) code = makeError(ErrorCode::FAILURE, "collision geometry: " + error, service_);
   }
-  response.error_code = code;
   response.error_message = code.message;
-  return code;
+  return answer(code, &response);
 }
 
 template class ServiceCapability<QueryRobotModelService>;

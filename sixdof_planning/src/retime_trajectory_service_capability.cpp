@@ -46,8 +46,7 @@ ErrorCode validatePath(const sixdof_core::RobotModel& model, const trajectory_ms
 
 ErrorCode RetimeTrajectoryService::handle(const sixdof_msgs::RetimeTrajectoryRequest& request,
                                           sixdof_msgs::RetimeTrajectoryResponse& response) {
-  const ErrorCode code = retime(request, &response);
-  response.error_code = code;
+  const ErrorCode code = answer(retime(request, &response), &response);
   response.error_message = isSuccess(code) ? "" : code.message;
   return code;
 }

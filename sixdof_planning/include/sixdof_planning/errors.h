@@ -21,6 +21,12 @@ inline bool isSuccess(const ErrorCode& code) { return code.val == ErrorCode::SUC
 // `code` with a generic FAILURE replaced by `val`: a check shared by several fields (a pose, a number) fails with
 // FAILURE, and the caller knows which code its field's failure is (INVALID_GOAL_CONSTRAINTS for a goal ...).
 ErrorCode recode(ErrorCode code, int val);
+// `code`, stored in the response's error_code too: what a service handler whose response carries one returns.
+template <class Response>
+ErrorCode answer(const ErrorCode& code, Response* response) {
+  response->error_code = code;
+  return code;
+}
 
 // The symbolic name of a code ("GOAL_IN_COLLISION"), for log lines: sixdof_msgs' one table of the names.
 using sixdof_msgs::errorCodeName;

@@ -85,8 +85,8 @@ def generate_package(robot: str, description: str, workspace: Path, xacro_args: 
     expanded with xacro_args) written into workspace without answers: (package name `<robot>_sixdof_config`, its
     folder)."""
     name = f"{robot}_sixdof_config"
-    command = ["rosrun", "sixdof_core", "setup_assistant", "--urdf", str(FIXTURES / description), "--package-out",
-               str(workspace), "--name", name]
+    command = ["rosrun", "sixdof_setup_assistant", "setup_assistant", "--urdf", str(FIXTURES / description),
+               "--package-out", str(workspace), "--name", name]
     if xacro_args:
         command += ["--xacro-args", xacro_args]
     generated = subprocess.run(command, capture_output=True, text=True, timeout=STARTUP_TIMEOUT)

@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 
 import yaml
-from sixdof_setup_assistant.real_robot import hardware_yaml
 
 from sixdof_description.core_model import joint_space_inertia
 from sixdof_description.formatting import HEADER, fmt
 from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, Robot
 from sixdof_description.urdf_writer import GRASP_FIX
+from sixdof_setup_assistant.real_robot import hardware_yaml
 
 
 def _yaml(data: dict, note: str = "") -> str:
@@ -107,7 +107,7 @@ def render_hardware(robot: Robot) -> str:
 
 def render_setup_answers(robot: Robot) -> str:
     """The setup assistant's answers for this arm: with them, `setup_assistant --urdf urdf/sixdof.urdf` generates
-    the SRDF, kinematics, joint limits, controllers and grasping.yaml of this package (sixdof_core's
+    the SRDF, kinematics, joint limits, controllers and grasping.yaml of this package (sixdof_setup_assistant's
     test_sixdof_config.py; generator.py writes grasping.yaml with the setup assistant's own code)."""
     d = robot.design
     arm_states = {name: {j: float(fmt(v)) for j, v in zip(ARM_JOINTS, q, strict=True)}
@@ -124,7 +124,7 @@ def render_setup_answers(robot: Robot) -> str:
         # The grasp fix the URDF's gazebo_grasp_fix block has, for config/grasping.yaml (the TCP is the link tcp).
         "grasping": {"grasp_fix": dict(GRASP_FIX)},
     }
-    return _yaml(data, "Answers for `rosrun sixdof_core setup_assistant --answers` (docs/your_own_arm.md).")
+    return _yaml(data, "Answers for `rosrun sixdof_setup_assistant setup_assistant --answers` (docs/your_own_arm.md).")
 
 
 # The collision matrix of the committed SRDF is sampled at MoveIt's low density.

@@ -12,8 +12,6 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from sixdof_setup_assistant.generator import grasping_file
-
 from sixdof_description import cad
 from sixdof_description.config_writer import (
     render_controllers,
@@ -26,6 +24,7 @@ from sixdof_description.core_model import solve_named_states
 from sixdof_description.robot_design import LINKS, Robot, design_robot, load_design, stl_bytes
 from sixdof_description.srdf_writer import render_srdf
 from sixdof_description.urdf_writer import render_urdf
+from sixdof_setup_assistant.generator import grasping_file
 
 GENERATED_FILES = (
     "urdf/sixdof.urdf",

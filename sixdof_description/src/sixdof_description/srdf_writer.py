@@ -63,5 +63,5 @@ def render_srdf(robot: Robot, previous: str | None) -> str:
 
 def _srdf_xml(element: ET.Element) -> str:
     """An element as one SRDF line, with empty elements closed as `/>` like every other line of the file (and
-    like sixdof_core's setup_assistant writes them), so that either tool leaves the other's output unchanged."""
+    like sixdof_setup_assistant writes them), so that either tool leaves the other's output unchanged."""
     return ET.tostring(element, encoding="unicode").strip().replace(" />", "/>")

@@ -94,8 +94,10 @@ int main(int argc, char** argv) {
     core_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
   }
 
-  // The front end installed beside this executable (lib/sixdof_core).
-  const fs::path script = fs::canonical("/proc/self/exe").parent_path() / "setup_assistant";
+  // The front end, sixdof_setup_assistant, installed in the same prefix (lib/sixdof_setup_assistant beside this
+  // executable's lib/sixdof_core).
+  const fs::path script =
+      fs::canonical("/proc/self/exe").parent_path().parent_path() / "sixdof_setup_assistant" / "setup_assistant";
   std::vector<double> package_seconds;
   bool package_ok = fs::exists(script);
   for (int r = 0; package_ok && r < runs; ++r) {

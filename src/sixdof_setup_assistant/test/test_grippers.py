@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 import yaml
-from conftest import CORE_DIR, FIXTURES, ROBOTS, environment, run, srdf
+from conftest import FIXTURES, PACKAGE, ROBOTS, environment, run, srdf
 
 GRIPPERS = {
     "seven_dof_hand": (ROBOTS / "urdf" / "seven_dof_hand.urdf.xacro", ""),
@@ -134,7 +134,7 @@ def test_computed_inertias_are_in_the_urdf_and_nothing_else_changes(packages: di
                       flags=re.S)
     stripped = re.sub(r"  <link name=\"tcp\"/>\n  <joint name=\"tcp_joint\".*?</joint>\n", "", stripped, flags=re.S)
     monkeypatch.setenv("ROS_PACKAGE_PATH", environment()["ROS_PACKAGE_PATH"])
-    monkeypatch.syspath_prepend(str(CORE_DIR / "python"))
+    monkeypatch.syspath_prepend(str(PACKAGE / "src"))
     from sixdof_setup_assistant.xacro_loader import load_description
 
     assert stripped == load_description(str(GRIPPERS["six_r_adaptive"][0]))

@@ -1,4 +1,4 @@
-"""`rosrun sixdof_core setup_assistant`: the command line (run it with --help)."""
+"""`rosrun sixdof_setup_assistant setup_assistant`: the command line (run it with --help)."""
 
 from __future__ import annotations
 
@@ -106,7 +106,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.srdf_out:
             _srdf_only(args, mappings)
             return 0
-        command = "rosrun sixdof_core setup_assistant " + " ".join(shlex.quote(a) for a in argv)
+        command = "rosrun sixdof_setup_assistant setup_assistant " + " ".join(shlex.quote(a) for a in argv)
         result = generate(Options(urdf=args.urdf, package_out=args.package_out, name=args.name, answers=args.answers,
                                   density=args.density, seed=args.seed, xacro_args=mappings, command=command))
     except (UsageError, DescriptionError, AnswersError, InferenceError, GenerationError) as error:

@@ -13,7 +13,6 @@ import re
 import shlex
 import shutil
 import subprocess
-import sys
 import tempfile
 from dataclasses import dataclass, field
 from typing import Any
@@ -34,9 +33,9 @@ class GenerationError(Exception):
 
 
 def find_core() -> str:
-    """The setup_assistant_core executable: $SIXDOF_SETUP_ASSISTANT_CORE, beside this script, or in a prefix."""
+    """sixdof_core's setup_assistant_core executable: $SIXDOF_SETUP_ASSISTANT_CORE, else lib/sixdof_core of the first
+    prefix on CMAKE_PREFIX_PATH (a sourced workspace) that has it."""
     candidates = [os.environ.get("SIXDOF_SETUP_ASSISTANT_CORE", "")]
-    candidates.append(os.path.join(os.path.dirname(os.path.realpath(sys.argv[0])), "setup_assistant_core"))
     for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
         if prefix:
             candidates.append(os.path.join(prefix, "lib", "sixdof_core", "setup_assistant_core"))
@@ -294,7 +293,7 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         _write(os.path.join(staged, rel), text)
         new_hashes[rel] = _sha(text)
         (result.regenerated if os.path.isfile(existing) else result.created).append(rel)
-    manifest_data = {"generator": "sixdof_core setup_assistant", "command": command,
+    manifest_data = {"generator": "sixdof_setup_assistant", "command": command,
                      "inputs": {"urdf": os.path.abspath(options.urdf), "xacro_args": options.xacro_args,
                                 "answers": os.path.abspath(options.answers) if options.answers else None,
                                 "density": density, "seed": seed},

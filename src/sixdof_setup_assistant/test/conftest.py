@@ -1,4 +1,5 @@
-"""Helpers of the setup assistant's tests: run `setup_assistant` from the source tree against the built core."""
+"""Helpers of the setup assistant's tests: run `setup_assistant` from the source tree against the sourced workspace's
+setup_assistant_core."""
 
 from __future__ import annotations
 
@@ -10,10 +11,9 @@ from pathlib import Path
 
 import pytest
 
-HERE = Path(__file__).resolve().parent
-CORE_DIR = HERE.parent.parent
-REPO = CORE_DIR.parent.parent
-SCRIPT = CORE_DIR / "scripts" / "setup_assistant"
+PACKAGE = Path(__file__).resolve().parents[1]
+REPO = PACKAGE.parents[1]
+SCRIPT = PACKAGE / "scripts" / "setup_assistant"
 ROBOTS = REPO / "test" / "robots"
 SIXDOF_DESCRIPTION = REPO / "sixdof_description"
 FIXTURES = {

@@ -1,15 +1,13 @@
 """The SRDF: well-formed, consistent with the URDF, named states within limits and where they were meant to be."""
 
 import math
-from pathlib import Path
 
-import numpy as np
 import pytest
 import trimesh
 
 import sixdof_core
 from sixdof_description import cad
-from sixdof_description.generator import build_robot, load_design, render_srdf
+from sixdof_setup_assistant.generator import config_files
 
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ARM_STATES = ["home pose", "pick pose", "after pick pose", "place pose", "after place pose"]
@@ -99,21 +97,24 @@ def test_pick_and_place_poses_point_down_over_their_places(srdf, core_model):
 
 
 def test_regeneration_keeps_hand_written_entries(pkg):
-    robot = build_robot(load_design(Path(pkg) / "config" / "design.yaml"))
-    base = render_srdf(robot, None)
+    def regenerate(previous):
+        files = config_files(str(pkg / "urdf" / "sixdof.urdf"), str(pkg / "config" / "setup_answers.yaml"), previous)
+        return files["config/sixdof.srdf"]
+
+    base = (pkg / "config" / "sixdof.srdf").read_text(encoding="utf-8")
     hand_written = base.replace(
         "</robot>",
         '  <group_state name="wave" group="arm"><joint name="joint1" value="0.5"/></group_state>\n'
-        '  <disable_collisions link1="link1" link2="link3" reason="Never"/>\n'
-        '  <disable_collisions link1="base_link" link2="link2" reason="Adjacent"/>\n</robot>')
-    regenerated = render_srdf(robot, hand_written)
+        '  <disable_collisions link1="link1" link2="link4" reason="User"/>\n'
+        '  <disable_collisions link1="base_link" link2="link6" reason="Adjacent"/>\n</robot>')
+    regenerated = regenerate(hand_written)
     assert 'name="wave"' in regenerated
-    assert 'link1="link1" link2="link3" reason="Never"' in regenerated
-    # Adjacent pairs are always recomputed, generated states are not duplicated.
-    assert 'link1="base_link" link2="link2" reason="Adjacent"' not in regenerated
+    assert 'link1="link1" link2="link4" reason="User"' in regenerated
+    # The collision matrix is always recomputed, generated states are not duplicated.
+    assert 'link1="base_link" link2="link6" reason="Adjacent"' not in regenerated
     assert regenerated.count('name="home pose"') == 1
-    assert render_srdf(robot, regenerated) == regenerated
-    np.testing.assert_equal(render_srdf(robot, base), base)
+    assert regenerate(regenerated) == regenerated
+    assert regenerate(base) == base
 
 
 def _link_poses(core_model, q_arm, finger):

@@ -1,4 +1,4 @@
-"""The YAML files of the designed arm: kinematics, joint limits, controllers and the setup assistant's answers."""
+"""The YAML the setup assistant does not write for the arm: its answers, and the controllers' PID gains."""
 
 from __future__ import annotations
 
@@ -10,35 +10,11 @@ from sixdof_description.core_model import joint_space_inertia
 from sixdof_description.formatting import HEADER, fmt
 from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, Robot
 from sixdof_description.urdf_writer import GRASP_FIX
-from sixdof_setup_assistant.real_robot import hardware_yaml
 
 
 def _yaml(data: dict, note: str = "") -> str:
     comment = "".join(f"# {line}\n" for line in note.splitlines())
     return f"# {HEADER}\n{comment}" + yaml.safe_dump(data, sort_keys=False, default_flow_style=False, width=120)
-
-
-def render_kinematics(robot: Robot) -> str:
-    return _yaml({"arm": {
-        "kinematics_solver": "analytic",
-        "kinematics_solver_search_resolution": 0.005,
-        "kinematics_solver_timeout": 0.005,
-        "kinematics_solver_attempts": 3,
-        "position_only_ik": False,
-    }})
-
-
-def render_joint_limits(robot: Robot) -> str:
-    limits = {}
-    for name in (*ARM_JOINTS, *GRIPPER_JOINTS):
-        p = robot.joint_params[name]
-        limits[name] = {
-            "has_velocity_limits": True,
-            "max_velocity": float(p["velocity"]),
-            "has_acceleration_limits": True,
-            "max_acceleration": float(p["acceleration"]),
-        }
-    return _yaml({"joint_limits": limits})
 
 
 def arm_gains(robot: Robot) -> dict:
@@ -55,60 +31,25 @@ def arm_gains(robot: Robot) -> dict:
     return gains
 
 
-def render_controllers(robot: Robot) -> str:
+def render_controllers(robot: Robot, generated: str) -> str:
+    """The setup assistant's controllers.yaml (`generated`) with the design's PID gains after each controller's
+    joints (for effort-controlled hardware; the simulator's position servos and move_group do not read them)."""
     c = robot.design["controllers"]
-    arm_constraints = {"goal_time": float(c["goal_time"]),
-                       "stopped_velocity_tolerance": float(c["stopped_velocity_tolerance"])}
-    for name in ARM_JOINTS:
-        arm_constraints[name] = {"trajectory": float(c["trajectory_tolerance"]), "goal": float(c["goal_tolerance"])}
-    gripper_constraints = {"goal_time": float(c["goal_time"]),
-                           "stopped_velocity_tolerance": float(c["stopped_velocity_tolerance"])}
-    for name in GRIPPER_JOINTS:
-        gripper_constraints[name] = {"trajectory": 0.0, "goal": float(c["gripper_goal_tolerance"])}
-    gripper_gains = {name: dict(c["gripper_gains"]) for name in GRIPPER_JOINTS}
-    data = {
-        "joint_state_controller": {"type": "joint_state_controller/JointStateController", "publish_rate": 100},
-        "arm_controller": {
-            "type": "position_controllers/JointTrajectoryController",
-            "joints": list(ARM_JOINTS),
-            "gains": arm_gains(robot),
-            "constraints": arm_constraints,
-            "state_publish_rate": 50,
-            "action_monitor_rate": 20,
-            "stop_trajectory_duration": 0.5,
-        },
-        "gripper_controller": {
-            "type": "position_controllers/JointTrajectoryController",
-            "joints": list(GRIPPER_JOINTS),
-            "gains": gripper_gains,
-            "constraints": gripper_constraints,
-            "state_publish_rate": 50,
-            "action_monitor_rate": 20,
-            "stop_trajectory_duration": 0.2,
-        },
-        "controller_list": [
-            {"name": "arm_controller", "action_ns": "follow_joint_trajectory", "type": "FollowJointTrajectory",
-             "default": True, "joints": list(ARM_JOINTS)},
-            {"name": "gripper_controller", "action_ns": "follow_joint_trajectory", "type": "FollowJointTrajectory",
-             "default": True, "joints": list(GRIPPER_JOINTS)},
-        ],
-    }
+    gains = {"arm_controller": arm_gains(robot),
+             "gripper_controller": {name: dict(c["gripper_gains"]) for name in GRIPPER_JOINTS}}
+    data = yaml.safe_load(generated)
+    for name, controller_gains in gains.items():
+        items = list(data[name].items())
+        after_joints = [key for key, _ in items].index("joints") + 1
+        data[name] = dict([*items[:after_joints], ("gains", controller_gains), *items[after_joints:]])
     return _yaml(data, CONTROLLERS_NOTE)
 
 
-def render_hardware(robot: Robot) -> str:
-    """sixdof_control's hardware.yaml: the setup assistant's, for the joints the controllers command (the arm and
-    the first finger; the second finger mimics it)."""
-    actuated = (*ARM_JOINTS, GRIPPER_JOINTS[0])
-    joints = [{"name": j.name, "type": j.joint_type, "bounded": True, "lower": j.lower, "upper": j.upper}
-              for j in robot.joints if j.name in actuated]
-    return hardware_yaml(joints, f"# {HEADER}")
-
-
 def render_setup_answers(robot: Robot) -> str:
-    """The setup assistant's answers for this arm: with them, `setup_assistant --urdf urdf/sixdof.urdf` generates
-    the SRDF, kinematics, joint limits, controllers and grasping.yaml of this package (sixdof_setup_assistant's
-    test_sixdof_config.py; generator.py writes grasping.yaml with the setup assistant's own code)."""
+    """The setup assistant's answers for this arm: with them it writes the SRDF, kinematics, joint limits,
+    controllers (gains aside), hardware.yaml and grasping.yaml of this package (generator.py runs it;
+    `setup_assistant --urdf urdf/sixdof.urdf --answers` generates the same: sixdof_setup_assistant's
+    test_sixdof_config.py)."""
     d = robot.design
     arm_states = {name: {j: float(fmt(v)) for j, v in zip(ARM_JOINTS, q, strict=True)}
                   for name, q in robot.states.items()}

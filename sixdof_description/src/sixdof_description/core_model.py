@@ -3,7 +3,6 @@ closed-form IK solves, and the joint-space inertia the controller gains come fro
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -11,16 +10,18 @@ import numpy as np
 import sixdof_core
 from sixdof_description import cad
 from sixdof_description.robot_design import GRIPPER_JOINTS, ROOT_LINK, Robot
-from sixdof_description.srdf_writer import render_srdf
 from sixdof_description.urdf_writer import render_urdf
 
 ARM_GROUP = "arm"
+ARM_TIP = "link6"
 
 
 def robot_model(robot: Robot) -> sixdof_core.RobotModel:
-    """The URDF and SRDF the generator writes, without the meshes (not written yet) and the named arm states."""
-    without_states = dataclasses.replace(robot, states={})
-    return sixdof_core.RobotModel(render_urdf(robot, meshes=False), render_srdf(without_states, None))
+    """The URDF the generator writes, without the meshes (not written yet), and the arm group (the setup
+    assistant writes the package's SRDF later, from the named states solved on this model)."""
+    arm = f'<group name="{ARM_GROUP}"><chain base_link="{ROOT_LINK}" tip_link="{ARM_TIP}"/></group>'
+    srdf = f'<robot name="{robot.design["robot_name"]}">{arm}</robot>'
+    return sixdof_core.RobotModel(render_urdf(robot, meshes=False), srdf)
 
 
 def solve_named_states(robot: Robot) -> dict:

@@ -3,8 +3,9 @@
 Deterministic: the same design.yaml (and previous SRDF) always gives byte-identical files.
 
 The parts: robot_design.py (solids, joints), core_model.py (the arm as sixdof_core reads it: named states by IK, joint-
-space inertia), urdf_writer.py, srdf_writer.py, config_writer.py (YAML) and formatting.py. config/grasping.yaml is the
-setup assistant's (sixdof_setup_assistant.generator.grasping_file) for the generated URDF, meshes and answers.
+space inertia), urdf_writer.py, config_writer.py (the setup assistant's answers, the controllers' gains) and
+formatting.py. The SRDF, kinematics, joint limits, controllers, hardware.yaml and grasping.yaml are the setup
+assistant's (sixdof_setup_assistant.generator.config_files) for the generated URDF, meshes and answers.
 """
 
 from __future__ import annotations
@@ -13,18 +14,11 @@ import tempfile
 from pathlib import Path
 
 from sixdof_description import cad
-from sixdof_description.config_writer import (
-    render_controllers,
-    render_hardware,
-    render_joint_limits,
-    render_kinematics,
-    render_setup_answers,
-)
+from sixdof_description.config_writer import render_controllers, render_setup_answers
 from sixdof_description.core_model import solve_named_states
 from sixdof_description.robot_design import LINKS, Robot, design_robot, load_design, stl_bytes
-from sixdof_description.srdf_writer import render_srdf
 from sixdof_description.urdf_writer import render_urdf
-from sixdof_setup_assistant.generator import grasping_file
+from sixdof_setup_assistant.generator import config_files
 
 GENERATED_FILES = (
     "urdf/sixdof.urdf",
@@ -55,31 +49,30 @@ def generate_files(design_path: Path, previous_srdf: str | None) -> dict:
         raise cad.DesignError(f"{design_path}: missing design parameter {missing}") from missing
     files = {
         "urdf/sixdof.urdf": render_urdf(robot).encode(),
-        "config/sixdof.srdf": render_srdf(robot, previous_srdf).encode(),
-        "config/kinematics.yaml": render_kinematics(robot).encode(),
-        "config/joint_limits.yaml": render_joint_limits(robot).encode(),
-        "config/controllers.yaml": render_controllers(robot).encode(),
-        "config/hardware.yaml": render_hardware(robot).encode(),
         "config/setup_answers.yaml": render_setup_answers(robot).encode(),
     }
     for name in LINKS:
         files[f"meshes/visual/{name}.stl"] = stl_bytes(robot.links[name].visual)
         files[f"meshes/collision/{name}.stl"] = stl_bytes(robot.links[name].collision)
-    files["config/grasping.yaml"] = render_grasping(files)
+    config = render_config(files, previous_srdf)
+    config["config/controllers.yaml"] = render_controllers(robot, config["config/controllers.yaml"])
+    files.update({rel: text.encode() for rel, text in config.items()})
     return files
 
 
-def render_grasping(files: dict) -> bytes:
-    """config/grasping.yaml as the setup assistant writes it for these files (the URDF, its meshes and the answers),
+def render_config(files: dict, previous_srdf: str | None) -> dict:
+    """The config files the setup assistant writes for these files (the URDF, its meshes and the answers),
     read from a copy of the package in a temporary folder so that the URDF's package:// meshes are these ones."""
     with tempfile.TemporaryDirectory(prefix="sixdof_description.") as tmp:
         package = Path(tmp) / "sixdof_description"
         write_files(files, package)
         (package / "package.xml").write_text('<package format="3"><name>sixdof_description</name></package>\n')
-        text = grasping_file(str(package / "urdf" / "sixdof.urdf"), str(package / "config" / "setup_answers.yaml"))
-    if text is None:
-        raise cad.DesignError("the setup assistant found no gripper in the generated URDF")
-    return text.encode()
+        config = config_files(str(package / "urdf" / "sixdof.urdf"), str(package / "config" / "setup_answers.yaml"),
+                              previous_srdf)
+    missing = sorted(set(GENERATED_FILES) - set(files) - set(config))
+    if missing:
+        raise cad.DesignError(f"the setup assistant wrote no {', '.join(missing)} for the generated URDF")
+    return config
 
 
 def write_files(files: dict, out_dir: Path) -> None:

@@ -169,17 +169,58 @@ def _analyze(urdf_text: str, answers: dict[str, Any], env: dict[str, str], work:
     return Analysis(model=model, plan=plan, repairs=repairs, urdf=repaired_urdf)
 
 
-def grasping_file(urdf: str, answers: str = "") -> str | None:
-    """The config/grasping.yaml `generate` writes for this description and answers file (None: no gripper), without
-    sampling the collision matrix: for a description package that keeps its own config (sixdof_description).
-    Raises what `generate` raises on bad input."""
+def config_files(urdf: str, answers: str = "", previous_srdf: str | None = None) -> dict[str, str]:
+    """The config files `generate` writes for this description and answers file ({package-relative path: text}:
+    config/<robot>.srdf, kinematics.yaml, joint_limits.yaml, controllers.yaml, hardware.yaml and, with a gripper,
+    grasping.yaml), without a package around them: for a description package that keeps its own config
+    (sixdof_description). previous_srdf: an earlier SRDF of the robot, whose hand-written group states and
+    disabled pairs are kept (templates.srdf_skeleton). Raises what `generate` raises on bad input."""
     loaded = load_answers(answers)
     urdf_text = load_description(urdf, {})
+    env = core_environment(urdf)
     with tempfile.TemporaryDirectory(prefix="setup_assistant.") as work:
-        analysis = _analyze(urdf_text, loaded, core_environment(urdf), work)
-    if not templates.has_grasping(analysis.plan):
-        return None
-    return grasping.grasping_yaml(analysis.plan, analysis.repairs, loaded)
+        analysis = _analyze(urdf_text, loaded, env, work)
+        srdf_in = os.path.join(work, "skeleton.srdf")
+        _write(srdf_in, templates.srdf_skeleton(analysis.plan, previous_srdf))
+        srdf, report, _density, _seed = _collision_matrix(analysis, srdf_in, loaded, work, env, echo=False)
+    return _config(analysis, report, srdf, loaded)
+
+
+def _collision_matrix(analysis: Analysis, srdf_in: str, answers: dict[str, Any], work: str, env: dict[str, str],
+                      density: int | None = None, seed: int | None = None,
+                      echo: bool = True) -> tuple[str, dict[str, Any], int, int]:
+    """The core's SRDF (srdf_in with the disabled collision pairs) and its report of the model with it; the
+    density and seed it sampled with (the options', else the answers', else the defaults)."""
+    density = density or answers.get("density") or 10000
+    seed = seed if seed is not None else answers.get("seed", 0)
+    srdf_out = os.path.join(work, "out.srdf")
+    report_path = os.path.join(work, "report.yaml")
+    run_core(["--urdf", analysis.urdf, "--srdf-in", srdf_in, "--srdf-out", srdf_out, "--describe", report_path,
+              "--density", str(density), "--seed", str(seed)], echo=echo, env=env)
+    report = yaml.safe_load(_read(report_path))
+    plan = analysis.plan
+    arm_report = next((g for g in report["groups"] if g["name"] == plan.arm.name), None)
+    if plan.arm.solver and arm_report and plan.arm.solver == "analytic" and arm_report["solver"] != "analytic":
+        raise GenerationError(f"answers arm.solver: analytic does not fit group '{plan.arm.name}': "
+                              f"{arm_report['solver_reason']}")
+    return _read(srdf_out), report, density, seed
+
+
+def _config(analysis: Analysis, report: dict[str, Any], srdf: str, answers: dict[str, Any]) -> dict[str, str]:
+    """The config/ files of a package: the core's SRDF and the YAML rendered from the plan and the core's report."""
+    plan = analysis.plan
+    files = {
+        f"config/{plan.robot}.srdf": srdf,
+        "config/kinematics.yaml": templates.kinematics_yaml(plan, report),
+        "config/joint_limits.yaml": templates.joint_limits_yaml(report, answers),
+        "config/controllers.yaml": templates.controllers_yaml(plan),
+        "config/hardware.yaml": real_robot.hardware_yaml(
+            real_robot.hardware_joints([j for g in (plan.arm, plan.gripper) if g for j in g.joints], report["joints"]),
+            f"# {templates.HEADER}."),
+    }
+    if templates.has_grasping(plan):
+        files["config/grasping.yaml"] = grasping.grasping_yaml(plan, analysis.repairs, answers)
+    return files
 
 
 def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir: str, staging_root: str) -> Result:
@@ -189,7 +230,6 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
     analysis = _analyze(urdf_text, answers, env, work)
     model, plan, repairs = analysis.model, analysis.plan, analysis.repairs
     urdf_text = _read(analysis.urdf)
-    core_urdf = analysis.urdf
     name = options.name or answers.get("name") or f"{model['robot'].lower()}_sixdof_config"
     if not PACKAGE_NAME.match(name):
         raise GenerationError(f"package name '{name}' is not a valid ROS package name (^[a-z][a-z0-9_]*$)")
@@ -219,19 +259,10 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         result.srdf_hand_edits_kept = True
     else:
         _write(srdf_in, templates.srdf_skeleton(plan))
-    density = options.density or answers.get("density") or 10000
-    seed = options.seed if options.seed is not None else answers.get("seed", 0)
-    srdf_out = os.path.join(work, "out.srdf")
-    report_path = os.path.join(work, "report.yaml")
-    run_core(["--urdf", core_urdf, "--srdf-in", srdf_in, "--srdf-out", srdf_out, "--describe", report_path,
-              "--density", str(density), "--seed", str(seed)], env=env)
-    report = yaml.safe_load(_read(report_path))
+    srdf, report, density, seed = _collision_matrix(analysis, srdf_in, answers, work, env, options.density,
+                                                    options.seed)
     result.report = report
     result.warnings = grasping.warnings(model, repairs)
-    arm_report = next((g for g in report["groups"] if g["name"] == plan.arm.name), None)
-    if plan.arm.solver and arm_report and plan.arm.solver == "analytic" and arm_report["solver"] != "analytic":
-        raise GenerationError(f"answers arm.solver: analytic does not fit group '{plan.arm.name}': "
-                              f"{arm_report['solver_reason']}")
     if result.srdf_hand_edits_kept:
         _sync_plan_with_srdf(plan, report)
 
@@ -240,24 +271,16 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         "package.xml": templates.package_xml(name, plan),
         "CMakeLists.txt": templates.cmakelists(name),
         urdf_rel: urdf_text,
-        srdf_rel: _read(srdf_out),
-        "config/kinematics.yaml": templates.kinematics_yaml(plan, report),
-        "config/joint_limits.yaml": templates.joint_limits_yaml(report, answers),
-        "config/controllers.yaml": templates.controllers_yaml(plan),
+        **_config(analysis, report, srdf, answers),
         "config/world.yaml": templates.world_yaml(plan, report),
         "config/motion_planning.rviz": templates.rviz_config(plan, report),
         "launch/demo.launch": templates.demo_launch(name, plan),
         "launch/move_group.launch": templates.move_group_launch(name, plan),
         "launch/real.launch": real_robot.real_launch(name, plan.robot, templates.launch_files(name, plan),
                                                      templates.HEADER),
-        "config/hardware.yaml": real_robot.hardware_yaml(
-            real_robot.hardware_joints([j for g in (plan.arm, plan.gripper) if g for j in g.joints], report["joints"]),
-            f"# {templates.HEADER}."),
         "README.md": templates.readme(name, plan, report, command)
         + grasping.readme_sections(plan, model, repairs, answers),
     }
-    if templates.has_grasping(plan):
-        files["config/grasping.yaml"] = grasping.grasping_yaml(plan, repairs, answers)
     staged = os.path.join(staging_root, name)
     os.makedirs(staged)
     # Whatever the user added to the package is carried over untouched; a file generated before that is no

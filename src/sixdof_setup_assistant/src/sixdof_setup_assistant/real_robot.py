@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from .templates import include_args
+
 HARDWARE_HEADER = """\
 # sixdof_control's hardware.yaml (docs/real_robot.md): the control loop's settings, then one block of parameters per
 # hardware plugin. `real.launch driver:=<plugin>` runs the controllers of controllers.yaml on that plugin, which gets
@@ -69,7 +71,8 @@ dynamixel:
 
 def real_launch(name: str, robot: str, files: dict[str, str], header: str) -> str:
     """launch/real.launch of package `name`: sixdof_bringup's real.launch with the package's files."""
-    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in files.items())
+    passed = include_args({**files, "rviz_config": f"$(find {name})/config/motion_planning.rviz"},
+                          ("hardware_file", "driver", "port", "rviz"))
     return f"""<?xml version="1.0"?>
 <!-- {header}.
      The real {robot}: sixdof_bringup's real.launch with this package's files (robot_state_publisher, move_group,
@@ -93,11 +96,6 @@ def real_launch(name: str, robot: str, files: dict[str, str], header: str) -> st
 
   <include file="$(find sixdof_bringup)/launch/real.launch">
 {passed}
-    <arg name="rviz_config" value="$(find {name})/config/motion_planning.rviz"/>
-    <arg name="hardware_file" value="$(arg hardware_file)"/>
-    <arg name="driver" value="$(arg driver)"/>
-    <arg name="port" value="$(arg port)"/>
-    <arg name="rviz" value="$(arg rviz)"/>
   </include>
 </launch>
 """

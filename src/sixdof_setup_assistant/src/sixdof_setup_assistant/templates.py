@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ET
+from collections.abc import Iterable
 from typing import Any
 from xml.sax.saxutils import quoteattr
 
@@ -22,10 +24,14 @@ def _number(value: float) -> str:
     return text[:-2] if text.endswith(".0") else text
 
 
-def srdf_skeleton(plan: Plan) -> str:
-    """The SRDF the inferred/answered plan asks for, before the core adds the collision matrix."""
-    lines = ['<?xml version="1.0"?>', f"<!-- {HEADER}. Groups, states, end effector and virtual joint edited here",
-             "     are kept when it runs again; the Adjacent/Default/Always/Never/Gripper pairs are recomputed. -->",
+def srdf_skeleton(plan: Plan, previous: str | None = None) -> str:
+    """The SRDF the inferred/answered plan asks for, before the core adds the collision matrix. previous: an earlier
+    SRDF of the robot whose hand-written parts are kept: the group states the plan does not name, and the disabled
+    pairs (the core keeps those of a reason it does not compute, and recomputes the others)."""
+    kept_states, kept_pairs = _hand_written(plan, previous)
+    lines = ['<?xml version="1.0"?>', f"<!-- {HEADER}.",
+             "     Groups, states, end effector and virtual joint edited here are kept when it runs again;",
+             "     the Adjacent/Default/Always/Never/Gripper pairs are recomputed. -->",
              f"<robot name={quoteattr(plan.robot)}>"]
     for group in (plan.arm, plan.gripper):
         if group is None:
@@ -40,6 +46,7 @@ def srdf_skeleton(plan: Plan) -> str:
         lines.append(f"  <group_state name={quoteattr(name)} group={quoteattr(group)}>")
         lines += [f"    <joint name={quoteattr(j)} value={quoteattr(_number(v))}/>" for j, v in values.items()]
         lines.append("  </group_state>")
+    lines += kept_states
     if plan.end_effector:
         ee = plan.end_effector
         lines.append(f"  <end_effector name={quoteattr(ee['name'])} parent_link={quoteattr(ee['parent_link'])} "
@@ -47,8 +54,28 @@ def srdf_skeleton(plan: Plan) -> str:
     if plan.virtual_joint:
         lines.append(f'  <virtual_joint name="virtual_joint" type="fixed" '
                      f"parent_frame={quoteattr(plan.planning_frame)} child_link={quoteattr(plan.root_link)}/>")
+    lines += kept_pairs
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
+
+
+def _hand_written(plan: Plan, previous: str | None) -> tuple[list[str], list[str]]:
+    """The group_state and disable_collisions lines of `previous` that srdf_skeleton keeps."""
+    if not previous:
+        return [], []
+    root = ET.fromstring(previous)
+    planned = {(name, group) for name, group, _ in plan.states}
+    states = []
+    for element in root.findall("group_state"):
+        if (element.get("name"), element.get("group")) not in planned:
+            ET.indent(element, space="  ", level=1)
+            element.tail = None
+            states.append("  " + ET.tostring(element, encoding="unicode"))
+    pairs = []
+    for element in root.findall("disable_collisions"):
+        element.tail = None
+        pairs.append("  " + ET.tostring(element, encoding="unicode"))
+    return states, pairs
 
 
 def _dump(data: Any) -> str:
@@ -166,6 +193,13 @@ def has_grasping(plan: Plan) -> bool:
     return plan.gripper is not None and plan.end_effector is not None
 
 
+def include_args(values: dict[str, str], passed: Iterable[str] = ()) -> str:
+    """The <arg> lines of a launch file's <include>: `values` as given, then each arg of `passed` handed on."""
+    lines = [f'    <arg name="{arg}" value="{value}"/>' for arg, value in values.items()]
+    lines += [f'    <arg name="{arg}" value="$(arg {arg})"/>' for arg in passed]
+    return "\n".join(lines)
+
+
 def launch_files(name: str, plan: Plan) -> dict[str, str]:
     """The robot's files as the launch files' args (sixdof_bringup's demo.launch and real.launch take them);
     grasping "" loads no grasping information (the default would be the sixdof arm's)."""
@@ -177,7 +211,8 @@ def launch_files(name: str, plan: Plan) -> dict[str, str]:
 
 
 def demo_launch(name: str, plan: Plan) -> str:
-    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in launch_files(name, plan).items())
+    passed = include_args({**launch_files(name, plan), "rviz_config": f"$(find {name})/config/motion_planning.rviz"},
+                          ("rviz", "headless", "world", "real_time_factor", "use_sim_time", "grasp_fix"))
     return f"""<?xml version="1.0"?>
 <!-- {HEADER}.
      The whole stack for {plan.robot}: sixdof_bringup's demo.launch with this package's files (simulator,
@@ -198,20 +233,13 @@ def demo_launch(name: str, plan: Plan) -> str:
 
   <include file="$(find sixdof_bringup)/launch/demo.launch">
 {passed}
-    <arg name="rviz_config" value="$(find {name})/config/motion_planning.rviz"/>
-    <arg name="rviz" value="$(arg rviz)"/>
-    <arg name="headless" value="$(arg headless)"/>
-    <arg name="world" value="$(arg world)"/>
-    <arg name="real_time_factor" value="$(arg real_time_factor)"/>
-    <arg name="use_sim_time" value="$(arg use_sim_time)"/>
-    <arg name="grasp_fix" value="$(arg grasp_fix)"/>
   </include>
 </launch>
 """
 
 
 def move_group_launch(name: str, plan: Plan) -> str:
-    passed = "\n".join(f'    <arg name="{arg}" value="{path}"/>' for arg, path in launch_files(name, plan).items())
+    passed = include_args(launch_files(name, plan), ("load_description", "planner_id", "planning_time"))
     return f"""<?xml version="1.0"?>
 <!-- {HEADER}.
      move_group alone for {plan.robot} (e.g. with real hardware that serves controller_list's
@@ -224,9 +252,6 @@ def move_group_launch(name: str, plan: Plan) -> str:
 
   <include file="$(find sixdof_planning)/launch/move_group.launch">
 {passed}
-    <arg name="load_description" value="$(arg load_description)"/>
-    <arg name="planner_id" value="$(arg planner_id)"/>
-    <arg name="planning_time" value="$(arg planning_time)"/>
   </include>
 </launch>
 """

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 import rospy
 from e2e import STARTUP_TIMEOUT, settled_joint_state
-from generated import generate_package, launch_demo, session_workspace, stop, stop_demo
+from generated import generate_package, launch_demo, stop, stop_demo, workspace_fixture
 from geometry_msgs.msg import PoseStamped
 from moveit_msgs.msg import RobotState
 from moveit_msgs.srv import GetPositionFK, GetStateValidity
@@ -52,9 +52,7 @@ HARMLESS = ("no such package media_export", "error while executing command")
 GL_READY = "OpenGL device:"
 
 
-@pytest.fixture(scope="session")
-def workspace(request: pytest.FixtureRequest) -> Iterator[Path]:
-    yield from session_workspace(request, "any_arm")
+workspace = workspace_fixture("any_arm")
 
 
 @dataclass

@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 import rospy
 from e2e import STARTUP_TIMEOUT, planning_scene
-from generated import generate_package, launch_demo, session_workspace, stop_demo
+from generated import generate_package, launch_demo, stop_demo, workspace_fixture
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import PlanningSceneComponents
 from shape_msgs.msg import SolidPrimitive
@@ -52,9 +52,7 @@ TOLERANCE = 0.01  # m: where the released object rests, as bench/pick_bench.py's
 TILT = math.radians(10.0)
 
 
-@pytest.fixture(scope="session")
-def workspace(request: pytest.FixtureRequest) -> Iterator[Path]:
-    yield from session_workspace(request, "any_gripper")
+workspace = workspace_fixture("any_gripper")
 
 
 @dataclass

@@ -1,7 +1,8 @@
 """What the tests of generated config packages share (any_arm.py, any_gripper.py, external_driver.py,
-real_launch.py): a ROS master of the test's own, processes started in groups of their own, a temporary
-workspace on ROS_PACKAGE_PATH, a fixture robot's package written by the setup assistant, its demo.launch
-run headless until its services answer, and stopping launched process groups."""
+real_launch.py; real_robot.py uses the workspace): a ROS master of the test's own, processes started in groups of
+their own, a temporary workspace on ROS_PACKAGE_PATH, a fixture robot's package written by the setup assistant, its
+demo.launch run headless until its services answer, stopping launched process groups, and moveit_commander's
+plan and execute of a joint goal."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import socket
 import subprocess
 import tempfile
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
 import moveit_commander
@@ -20,6 +21,7 @@ import pytest
 import rosgraph
 import rospy
 from e2e import STARTUP_TIMEOUT
+from moveit_msgs.msg import MoveItErrorCodes
 from sensor_msgs.msg import JointState
 
 REPO = Path(__file__).resolve().parents[2]
@@ -96,13 +98,14 @@ def generate_package(robot: str, description: str, workspace: Path, xacro_args: 
     return name, package
 
 
-def session_workspace(request: pytest.FixtureRequest, test: str) -> Iterator[Path]:
+def session_workspace(request: pytest.FixtureRequest, test: str, sim_time: bool = True) -> Iterator[Path]:
     """For a session fixture: a temporary workspace on ROS_PACKAGE_PATH (with the fixture robots' package) and a ROS
-    master of the test's own, which every robot's stack uses in turn; this process's node `<test>_test` follows its
-    simulated clock. The workspace (with the logs) is kept when a test failed."""
+    master of the test's own, which every robot's stack uses in turn; this process's node `<test>_test` follows the
+    simulated clock (sim_time) or the wall clock. The workspace (with the logs) is kept when a test failed."""
     root = Path(tempfile.mkdtemp(prefix=f"{test}_"))
     core = start_master(root)
-    rosgraph.Master(f"/{test}").setParam("/use_sim_time", True)
+    if sim_time:
+        rosgraph.Master(f"/{test}").setParam("/use_sim_time", True)
     rospy.init_node(f"{test}_test", disable_signals=True)
     yield root
     stop(core)
@@ -110,6 +113,40 @@ def session_workspace(request: pytest.FixtureRequest, test: str) -> Iterator[Pat
         print(f"{test}: logs of the failed run kept in {root}")
     else:
         shutil.rmtree(root, ignore_errors=True)
+
+
+def workspace_fixture(test: str, sim_time: bool = True) -> Callable[..., Iterator[Path]]:
+    """The session fixture `workspace` of a test module (`workspace = workspace_fixture("any_arm")`):
+    session_workspace's workspace and master."""
+
+    @pytest.fixture(scope="session")
+    def workspace(request: pytest.FixtureRequest) -> Iterator[Path]:
+        yield from session_workspace(request, test, sim_time)
+
+    return workspace
+
+
+def arm_commander() -> tuple[moveit_commander.RobotCommander, moveit_commander.MoveGroupCommander]:
+    """move_group's robot once it serves it, and a commander of its group with the most active joints, at full
+    velocity and acceleration."""
+    robot = wait_for_move_group()
+    group = max(robot.get_group_names(), key=lambda g: len(robot.get_active_joint_names(g)))
+    arm = moveit_commander.MoveGroupCommander(group, wait_for_servers=STARTUP_TIMEOUT)
+    arm.set_max_velocity_scaling_factor(1.0)
+    arm.set_max_acceleration_scaling_factor(1.0)
+    return robot, arm
+
+
+def plan_and_execute_joint_goal(arm: moveit_commander.MoveGroupCommander) -> list[float]:
+    """Plans to the current joint values moved by 0.3 rad (alternating signs), checks the plan's outcome, executes
+    it; returns the goal."""
+    start = arm.get_current_joint_values()
+    goal = [value + (0.3 if i % 2 == 0 else -0.3) for i, value in enumerate(start)]
+    success, plan, _, error_code = arm.plan(goal)
+    assert success, f"plan: {arm.last_error}"
+    assert error_code.val == MoveItErrorCodes.SUCCESS
+    assert arm.execute(plan, wait=True), f"execute: {arm.last_error}"
+    return goal
 
 
 def launch_demo(name: str, robot: str, workspace: Path, services: Sequence[str]) -> subprocess.Popen:

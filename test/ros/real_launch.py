@@ -12,11 +12,8 @@ carry both fingers. Private ROS master; one launch at a time.
 
 from __future__ import annotations
 
-import shutil
 import sys
-import tempfile
 import time
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -26,8 +23,7 @@ import rosnode
 import rospy
 import yaml
 from e2e import STARTUP_TIMEOUT
-from generated import generate_package, start, start_master, stop, wait_for_move_group
-from moveit_msgs.msg import MoveItErrorCodes
+from generated import arm_commander, generate_package, plan_and_execute_joint_goal, start, stop, workspace_fixture
 from real_stack import Emulator, launch
 from sensor_msgs.msg import JointState
 
@@ -45,33 +41,17 @@ class Package:
     servos: list[int]  # hardware.yaml's dynamixel ids
 
 
+workspace = workspace_fixture("real_launch", sim_time=False)
+
+
 @pytest.fixture(scope="module")
-def package(request: pytest.FixtureRequest) -> Iterator[Package]:
-    root = Path(tempfile.mkdtemp(prefix="real_launch_"))
-    core = start_master(root)
-    try:
-        name, path = generate_package(ROBOT, DESCRIPTION, root)
-        config = yaml.safe_load((path / "config" / "controllers.yaml").read_text())
-        hardware = yaml.safe_load((path / "config" / "hardware.yaml").read_text())
-        servos = [entry["id"] for entry in hardware["dynamixel"]["joints"].values()]
-        moveit_commander.roscpp_initialize(sys.argv)
-        rospy.init_node("real_launch_test", disable_signals=True)
-        yield Package(name, path, root, {c["name"]: list(c["joints"]) for c in config["controller_list"]}, servos)
-    finally:
-        stop(core)
-    if request.session.testsfailed:
-        print(f"real_launch: logs of the failed run kept in {root}")
-    else:
-        shutil.rmtree(root, ignore_errors=True)
-
-
-def commander() -> tuple[moveit_commander.RobotCommander, moveit_commander.MoveGroupCommander]:
-    robot = wait_for_move_group()
-    group = max(robot.get_group_names(), key=lambda g: len(robot.get_active_joint_names(g)))
-    arm = moveit_commander.MoveGroupCommander(group, wait_for_servers=STARTUP_TIMEOUT)
-    arm.set_max_velocity_scaling_factor(1.0)
-    arm.set_max_acceleration_scaling_factor(1.0)
-    return robot, arm
+def package(workspace: Path) -> Package:
+    name, path = generate_package(ROBOT, DESCRIPTION, workspace)
+    config = yaml.safe_load((path / "config" / "controllers.yaml").read_text())
+    hardware = yaml.safe_load((path / "config" / "hardware.yaml").read_text())
+    servos = [entry["id"] for entry in hardware["dynamixel"]["joints"].values()]
+    moveit_commander.roscpp_initialize(sys.argv)
+    return Package(name, path, workspace, {c["name"]: list(c["joints"]) for c in config["controller_list"]}, servos)
 
 
 def joint_states(names: list[str]) -> list[float]:
@@ -89,14 +69,9 @@ def joint_states(names: list[str]) -> list[float]:
 def plan_and_execute() -> None:
     """The arm to a joint goal (plan, then execute) and to a named state (go); the gripper open and closed, both
     fingers following."""
-    robot, arm = commander()
+    robot, arm = arm_commander()
     names = arm.get_active_joints()
-    start = arm.get_current_joint_values()
-    goal = [value + (0.3 if i % 2 == 0 else -0.3) for i, value in enumerate(start)]
-    success, plan, _, error_code = arm.plan(goal)
-    assert success, f"plan: {arm.last_error}"
-    assert error_code.val == MoveItErrorCodes.SUCCESS
-    assert arm.execute(plan, wait=True), f"execute: {arm.last_error}"
+    goal = plan_and_execute_joint_goal(arm)
     time.sleep(0.5)  # the servos settle
     for joint, reached, wanted in zip(names, joint_states(names), goal, strict=True):
         assert abs(reached - wanted) < TOLERANCE, f"{joint} at {reached:.4f}, goal {wanted:.4f}"
@@ -139,7 +114,7 @@ def test_an_external_driver(package: Package) -> None:
     ]
     stack = launch([package.name, "real.launch", "rviz:=false"], package.root / "none.log")
     try:
-        _, arm = commander()
+        _, arm = arm_commander()
         begin = arm.get_current_joint_values()
         goal = [value + (0.3 if i % 2 == 0 else -0.3) for i, value in enumerate(begin)]
         assert arm.go(goal, wait=True), f"go: {arm.last_error}"

@@ -12,33 +12,19 @@ sixdof_control's driver.test. Private ROS master.
 from __future__ import annotations
 
 import contextlib
-import shutil
-import tempfile
 import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
 
-import pytest
-import rospy
-from generated import start_master, stop
+from generated import stop, workspace_fixture
 from real_stack import FAULT_BOUND, DriverServices, Emulator, arm_driver, launch, pick_sequence, run_script
 from sixdof_commander import ArmDriver
 
 SERVOS = list(range(1, 8))  # sixdof_description's hardware.yaml: joint1..6 and finger1_joint
 
 
-@pytest.fixture(scope="module")
-def workspace(request: pytest.FixtureRequest) -> Iterator[Path]:
-    root = Path(tempfile.mkdtemp(prefix="real_robot_"))
-    core = start_master(root)
-    rospy.init_node("real_robot_test", disable_signals=True)
-    yield root
-    stop(core)
-    if request.session.testsfailed:
-        print(f"real_robot: logs of the failed run kept in {root}")
-    else:
-        shutil.rmtree(root, ignore_errors=True)
+workspace = workspace_fixture("real_robot", sim_time=False)
 
 
 def slow_motion(arm: ArmDriver) -> tuple[list[float], threading.Thread, list[bool]]:

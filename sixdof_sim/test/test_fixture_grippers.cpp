@@ -1,4 +1,4 @@
-// The fixture grippers of test/robots - prismatic fingers (parallel_hand), revolute jaws (jaw_gripper) and a
+// The fixture grippers of sixdof_test_robots - prismatic fingers (parallel_hand), revolute jaws (jaw_gripper) and a
 // mimic linkage whose moving links have no inertias (adaptive_gripper) - each on a gantry, with the inertias and
 // the grasp geometry the setup assistant computes (sixdof_core's model layer) and the grasp fix configured from
 // grasping.yaml-style options, driven by the world's gripper controller: cubes, upright cylinders and spheres of 3
@@ -25,8 +25,8 @@
 namespace sixdof_sim {
 namespace {
 
-// A gripper URDF of test/robots with the setup assistant's computed inertias, hung from a gantry (three prismatic
-// joints x, y, z whose values are the TCP's position, the TCP pointing down and closing along world y).
+// A gripper URDF of sixdof_test_robots with the setup assistant's computed inertias, hung from a gantry (three
+// prismatic joints x, y, z whose values are the TCP's position, the TCP pointing down and closing along world y).
 struct GantryGripper {
   std::string urdf;
   std::string palm;  // the gripper's root link

@@ -1,4 +1,4 @@
-"""Any arm, end to end: for each fixture robot of test/robots, the setup assistant generates its config package
+"""Any arm, end to end: for each fixture robot of sixdof_test_robots, the setup assistant generates its config package
 into a temporary workspace, the package's demo.launch runs headless, a pose goal is planned and executed through
 sixdof_commander and the reached pose is checked by forward kinematics; then rviz opens the package's config (on
 the X display the test runs on: xvfb-run) and its Goal State marker solves a goal. One launched stack per robot.
@@ -33,7 +33,7 @@ from urdf_parser_py.urdf import URDF
 
 from sixdof_rviz.screenshots import marker_sphere_mask, settled_screenshot
 
-# robot name -> (description file in test/robots, has a gripper)
+# robot name -> (description file in sixdof_test_robots, has a gripper)
 ROBOTS = {
     "ur_like": ("urdf/ur_like.urdf.xacro", False),
     "seven_dof": ("urdf/seven_dof.urdf.xacro", True),

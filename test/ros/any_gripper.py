@@ -1,4 +1,4 @@
-"""Any gripper, end to end: for each fixture robot with a gripper of test/robots, the setup assistant generates its
+"""Any gripper, end to end: for each fixture robot with a gripper (sixdof_test_robots), the setup assistant writes its
 config package without answers into a temporary workspace, the package's demo.launch runs headless, and ArmDriver
 (the commander's pick and place, which takes the TCP, the gripper's states and widths, the arm group and the home
 state from the package through move_group) picks and places a cube, an upright cylinder and a sphere of 3 and 6 cm,
@@ -32,7 +32,7 @@ from sixdof_bringup.placement import placement
 from sixdof_msgs.msg import SimObject
 from sixdof_msgs.srv import DeleteObject, GetObjectState, SpawnObject
 
-# robot -> (description in test/robots, xacro arguments)
+# robot -> (description in sixdof_test_robots, xacro arguments)
 ROBOTS = {
     "seven_dof_hand": ("urdf/seven_dof_hand.urdf.xacro", ""),
     "six_r_jaw": ("urdf/six_r_adaptive.urdf.xacro", "gripper:=jaw"),

@@ -19,13 +19,13 @@ from pathlib import Path
 import moveit_commander
 import pytest
 import rosgraph
+import rospkg
 import rospy
 from e2e import STARTUP_TIMEOUT
 from moveit_msgs.msg import MoveItErrorCodes
 from sensor_msgs.msg import JointState
 
-REPO = Path(__file__).resolve().parents[2]
-FIXTURES = REPO / "test" / "robots"
+FIXTURES = Path(rospkg.RosPack().get_path("sixdof_test_robots"))
 
 
 def free_port() -> int:
@@ -53,11 +53,11 @@ def start(command: list[str], log: Path) -> subprocess.Popen:
 
 
 def start_master(root: Path) -> subprocess.Popen:
-    """A roscore on a free port for this process and its children (ROS_MASTER_URI), with root (and the fixture
-    robots' package) on ROS_PACKAGE_PATH and the logs under root; returns once the master answers."""
+    """A roscore on a free port for this process and its children (ROS_MASTER_URI), with root (where the generated
+    packages go) first on ROS_PACKAGE_PATH and the logs under root; returns once the master answers."""
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://localhost:{port}"
-    os.environ["ROS_PACKAGE_PATH"] = os.pathsep.join([str(root), str(FIXTURES), os.environ.get("ROS_PACKAGE_PATH", "")])
+    os.environ["ROS_PACKAGE_PATH"] = os.pathsep.join([str(root), os.environ.get("ROS_PACKAGE_PATH", "")])
     os.environ["ROS_LOG_DIR"] = str(root / "log")
     with open(root / "roscore.log", "w") as log:
         core = subprocess.Popen(
@@ -83,7 +83,7 @@ def wait_for_move_group() -> moveit_commander.RobotCommander:
 
 
 def generate_package(robot: str, description: str, workspace: Path, xacro_args: str = "") -> tuple[str, Path]:
-    """The setup assistant's config package of the fixture robot `robot` (description: its file in test/robots,
+    """The setup assistant's config package of the fixture robot `robot` (description: its file in sixdof_test_robots,
     expanded with xacro_args) written into workspace without answers: (package name `<robot>_sixdof_config`, its
     folder)."""
     name = f"{robot}_sixdof_config"
@@ -99,9 +99,9 @@ def generate_package(robot: str, description: str, workspace: Path, xacro_args: 
 
 
 def session_workspace(request: pytest.FixtureRequest, test: str, sim_time: bool = True) -> Iterator[Path]:
-    """For a session fixture: a temporary workspace on ROS_PACKAGE_PATH (with the fixture robots' package) and a ROS
-    master of the test's own, which every robot's stack uses in turn; this process's node `<test>_test` follows the
-    simulated clock (sim_time) or the wall clock. The workspace (with the logs) is kept when a test failed."""
+    """For a session fixture: a temporary workspace on ROS_PACKAGE_PATH and a ROS master of the test's own, which
+    every robot's stack uses in turn; this process's node `<test>_test` follows the simulated clock (sim_time) or
+    the wall clock. The workspace (with the logs) is kept when a test failed."""
     root = Path(tempfile.mkdtemp(prefix=f"{test}_"))
     core = start_master(root)
     if sim_time:

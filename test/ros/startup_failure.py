@@ -14,7 +14,8 @@ import subprocess
 import time
 from pathlib import Path
 
-from generated import REPO, free_port, stop
+import rospkg
+from generated import free_port, stop
 
 # Outcome bound only: a healthy stack's nodes are up in seconds; one that fails ends in about as long.
 END_TIMEOUT = 120.0
@@ -64,7 +65,7 @@ def test_a_bad_world_ends_the_launch_with_its_error(tmp_path: Path) -> None:
 
 def test_a_bad_urdf_ends_the_launch_with_its_error(tmp_path: Path) -> None:
     # The sixdof arm with a finger that has no <inertial>: move_group plans with it, the simulator refuses it.
-    urdf = (REPO / "sixdof_description" / "urdf" / "sixdof.urdf").read_text()
+    urdf = (Path(rospkg.RosPack().get_path("sixdof_description")) / "urdf" / "sixdof.urdf").read_text()
     finger = re.search(r'<link name="finger1">.*?</link>', urdf, re.DOTALL)
     assert finger is not None
     without = re.sub(r"<inertial>.*?</inertial>", "", finger.group(0), flags=re.DOTALL)

@@ -1,4 +1,4 @@
-// The grasp geometry of the fixture grippers (test/robots) and the sixdof arm against the dimensions they were
+// The grasp geometry of the fixture grippers (sixdof_test_robots) and the sixdof arm against the dimensions they were
 // built with; given values win; what cannot be inferred is a warning, a bad query an error.
 #include <gtest/gtest.h>
 

@@ -1,21 +1,21 @@
 """Helpers of the setup assistant's tests: run `setup_assistant` from the source tree against the sourced workspace's
-setup_assistant_core."""
+setup_assistant_core, on the installed fixture robots (sixdof_test_robots) and the sixdof arm (sixdof_description,
+found on ROS_PACKAGE_PATH at run time: it depends on this package, so it cannot be a declared dependency)."""
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+import rospkg
 
 PACKAGE = Path(__file__).resolve().parents[1]
-REPO = PACKAGE.parents[1]
 SCRIPT = PACKAGE / "scripts" / "setup_assistant"
-ROBOTS = REPO / "test" / "robots"
-SIXDOF_DESCRIPTION = REPO / "sixdof_description"
+ROBOTS = Path(rospkg.RosPack().get_path("sixdof_test_robots"))
+SIXDOF_DESCRIPTION = Path(rospkg.RosPack().get_path("sixdof_description"))
 FIXTURES = {
     "ur_like": ROBOTS / "urdf" / "ur_like.urdf.xacro",
     "seven_dof": ROBOTS / "urdf" / "seven_dof.urdf.xacro",
@@ -24,16 +24,8 @@ FIXTURES = {
 }
 
 
-def environment() -> dict[str, str]:
-    env = dict(os.environ)
-    # The fixture robots' package (for $(find sixdof_test_robots)) and sixdof_description's meshes.
-    env["ROS_PACKAGE_PATH"] = os.pathsep.join([str(ROBOTS), str(REPO), env.get("ROS_PACKAGE_PATH", "")])
-    return env
-
-
 def run(*args: str | Path, check: bool = False) -> subprocess.CompletedProcess:
-    result = subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], env=environment(), capture_output=True,
-                            text=True, timeout=300)
+    result = subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], capture_output=True, text=True, timeout=300)
     if check and result.returncode != 0:
         raise AssertionError(f"setup_assistant failed ({result.returncode}): {result.stderr}")
     return result

@@ -1,5 +1,5 @@
 """Grippers without answers: the grasp frame, open/close and inertias the setup assistant infers for the fixture
-robots of test/robots (issue #21), and the answers keys that override them."""
+robots of sixdof_test_robots (issue #21), and the answers keys that override them."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 import yaml
-from conftest import FIXTURES, PACKAGE, ROBOTS, environment, run, srdf
+from conftest import FIXTURES, PACKAGE, ROBOTS, run, srdf
 
 GRIPPERS = {
     "seven_dof_hand": (ROBOTS / "urdf" / "seven_dof_hand.urdf.xacro", ""),
@@ -133,7 +133,6 @@ def test_computed_inertias_are_in_the_urdf_and_nothing_else_changes(packages: di
     stripped = re.sub(r"\n *<!-- computed by sixdof setup_assistant[^\n]*\n *<inertial>.*?</inertial>", "", text,
                       flags=re.S)
     stripped = re.sub(r"  <link name=\"tcp\"/>\n  <joint name=\"tcp_joint\".*?</joint>\n", "", stripped, flags=re.S)
-    monkeypatch.setenv("ROS_PACKAGE_PATH", environment()["ROS_PACKAGE_PATH"])
     monkeypatch.syspath_prepend(str(PACKAGE / "src"))
     from sixdof_setup_assistant.xacro_loader import load_description
 

@@ -12,6 +12,9 @@ cd "$repo"
 # shellcheck source=scripts/env.sh
 . scripts/env.sh
 SIXDOF_BUILD_BENCHMARKS=ON scripts/build.sh
+# The install space as this build left it: the core's benchmarks find the sixdof arm on its ROS_PACKAGE_PATH.
+# shellcheck source=scripts/env.sh
+. scripts/env.sh
 out=bench/results.md
 mapfile -t benches < <(find install/lib -maxdepth 2 -type f -name '*_bench' -perm -u+x | sort)
 bindings=1

@@ -23,6 +23,10 @@ for arg in "$@"; do
 done
 echo "== build (tests enabled)"
 SIXDOF_BUILD_TESTS=ON scripts/build.sh "${build_args[@]}" || exit 1
+# The install space as this build left it (a fresh clone has none before): tests find packages they cannot depend
+# on (sixdof_core's and sixdof_setup_assistant's tests: the sixdof arm of sixdof_description) on its ROS_PACKAGE_PATH.
+# shellcheck source=scripts/env.sh
+. scripts/env.sh
 
 echo "== ruff"
 ruff check . || status=1

@@ -14,6 +14,7 @@
 
 #include "sixdof_core/collision.h"
 #include "test_collision_urdf_arm.h"
+#include "test_description.h"
 #include "test_shapes.h"
 
 namespace sixdof_core {
@@ -21,7 +22,7 @@ namespace collision_test {
 
 inline constexpr double kDistanceTolerance = 1e-4;
 
-inline std::string descriptionDir() { return SIXDOF_DESCRIPTION_DIR; }
+using sixdof_test::descriptionDir;
 
 inline sixdof_test::UrdfArm loadArm() {
   return sixdof_test::UrdfArm(descriptionDir() + "/urdf/sixdof.urdf", descriptionDir());

@@ -20,7 +20,7 @@ constexpr double kPoseTolerance = 1e-5;
 // The provisional URDF writes pi/2 as 1.5708, so its wrist axes meet only to 3e-7 m and the closed
 // form needs refinement; this variant has exact angles, where the closed form is exact.
 RobotModelConstPtr exactArmModel() {
-  std::string urdf = readTextFile(kArmUrdf);
+  std::string urdf = readTextFile(armUrdf());
   for (size_t at = urdf.find("1.5708"); at != std::string::npos; at = urdf.find("1.5708", at + 1)) {
     urdf.replace(at, 6, "1.5707963267948966");
   }
@@ -236,7 +236,7 @@ TEST(IkAnalytic, FailureReasons) {
   EXPECT_NE(far.message.find("out of reach"), std::string::npos);
 
   // joint1 limited to [-0.1, 0.1]: a pose needing joint1 = 1.0 (or 1.0 - pi) violates it.
-  std::string urdf = readTextFile(kArmUrdf);
+  std::string urdf = readTextFile(armUrdf());
   const size_t limit = urdf.find("<limit", urdf.find("<joint name=\"joint1\""));
   ASSERT_NE(limit, std::string::npos);
   urdf.replace(limit, urdf.find("/>", limit) + 2 - limit,

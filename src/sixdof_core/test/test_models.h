@@ -6,20 +6,21 @@
 #include <string>
 
 #include "sixdof_core/robot_model.h"
+#include "test_description.h"
 
 // In namespace sixdof_core, where the tests are, so that they name these without a using-declaration.
 namespace sixdof_core {
 
 inline const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
-inline const std::string kArmUrdf = std::string(SIXDOF_DESCRIPTION_DIR) + "/urdf/sixdof.urdf";
+inline std::string armUrdf() { return sixdof_test::descriptionDir() + "/urdf/sixdof.urdf"; }
 
 // The arm's meshes (in the generated URDF) are package://sixdof_description URIs.
 inline PackageResolver armResolver() {
-  return PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}});
+  return PackageResolver::fromMap({{"sixdof_description", sixdof_test::descriptionDir()}});
 }
 
 inline RobotModelConstPtr armModel() {
-  return RobotModel::fromFiles(kArmUrdf, kDataDir + "/sixdof.srdf", armResolver());
+  return RobotModel::fromFiles(armUrdf(), kDataDir + "/sixdof.srdf", armResolver());
 }
 
 // test/data -> sixdof_core -> src: the folder that holds the sixdof_core package (the UR-like meshes).

@@ -11,6 +11,7 @@
 #include "sixdof_core/collision.h"
 #include "sixdof_core/occupancy_map.h"
 #include "test_collision_urdf_arm.h"
+#include "test_description.h"
 #include "test_shapes.h"
 
 namespace sixdof_core {
@@ -143,7 +144,7 @@ TEST(ShapeMask, PrimitivesWithScaleAndPadding) {
 }
 
 sixdof_test::UrdfArm loadArm() {
-  const std::string dir = SIXDOF_DESCRIPTION_DIR;
+  const std::string dir = sixdof_test::descriptionDir();
   return sixdof_test::UrdfArm(dir + "/urdf/sixdof.urdf", dir);
 }
 

@@ -8,6 +8,7 @@
 #include <ompl/util/Console.h>
 
 #include "sixdof_core/planning_context.h"
+#include "test_description.h"
 #include "test_planning_table_top.h"
 
 namespace sixdof_core {
@@ -24,8 +25,9 @@ class PlanningContextTest : public ::testing::Test {
  protected:
   void SetUp() override {
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-    t_ = sixdof_test::makeTableTop(SIXDOF_DESCRIPTION_DIR "/urdf/sixdof.urdf", SIXDOF_TEST_DATA_DIR "/sixdof.srdf",
-                                   SIXDOF_DESCRIPTION_DIR, kPadding);
+    const std::string description = sixdof_test::descriptionDir();
+    t_ = sixdof_test::makeTableTop(description + "/urdf/sixdof.urdf", SIXDOF_TEST_DATA_DIR "/sixdof.srdf",
+                                   description, kPadding);
     options_.seed = 3;
     options_.allowed_planning_time = 2.0;
     options_.longest_valid_segment_length = 0.005;

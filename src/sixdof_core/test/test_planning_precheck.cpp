@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sixdof_core/planning_context.h"
+#include "test_description.h"
 #include "test_planning_table_top.h"
 
 namespace sixdof_core {
@@ -38,9 +39,9 @@ std::vector<WorldObject> clutter(std::mt19937* rng, int count) {
 // to each other than the spheres' overshoot (with the test SRDF, adjacent pairs only, the pre-check proves nothing
 // and plan() stops asking it).
 TableTop tableTop(const std::vector<WorldObject>& extra = {}) {
-  return sixdof_test::makeTableTop(SIXDOF_DESCRIPTION_DIR "/urdf/sixdof.urdf",
-                                   SIXDOF_DESCRIPTION_DIR "/config/sixdof.srdf", SIXDOF_DESCRIPTION_DIR, kPadding,
-                                   extra);
+  const std::string description = sixdof_test::descriptionDir();
+  return sixdof_test::makeTableTop(description + "/urdf/sixdof.urdf", description + "/config/sixdof.srdf", description,
+                                   kPadding, extra);
 }
 
 Eigen::VectorXd randomArm(const PlanningContext& context, std::mt19937* rng) {

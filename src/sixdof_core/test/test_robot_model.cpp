@@ -21,7 +21,7 @@ void expectModelError(const std::string& urdf, const std::string& srdf, const st
 }
 
 void expectSrdfError(const std::string& srdf, const std::string& needle) {
-  expectModelError(readTextFile(kArmUrdf), srdf, needle);
+  expectModelError(readTextFile(armUrdf()), srdf, needle);
 }
 
 std::string srdfWith(const std::string& body) { return "<robot name=\"sixdof\">" + body + "</robot>"; }

@@ -11,28 +11,28 @@
 
 #include "sixdof_core/collision.h"
 #include "sixdof_core/setup_assistant.h"
+#include "test_description.h"
 
 using namespace sixdof_core;
 
 namespace {
 
 const std::string kDataDir = SIXDOF_TEST_DATA_DIR;
-const std::string kDescriptionDir = SIXDOF_DESCRIPTION_DIR;
-const std::string kArmUrdf = kDescriptionDir + "/urdf/sixdof.urdf";
-const std::string kArmSrdf = kDescriptionDir + "/config/sixdof.srdf";
+std::string armUrdf() { return sixdof_test::descriptionDir() + "/urdf/sixdof.urdf"; }
+std::string armSrdf() { return sixdof_test::descriptionDir() + "/config/sixdof.srdf"; }
 const std::string kUrUrdf = kDataDir + "/ur_like.urdf";
 const std::string kUrSrdf = kDataDir + "/ur_like.srdf";
 // The density the committed SRDF was generated with (the paper's "low sampling density").
 constexpr std::size_t kCommittedDensity = 1000;
 
-PackageResolver armResolver() { return PackageResolver::fromSearchRoots({kDescriptionDir + "/.."}); }
+PackageResolver armResolver() { return PackageResolver::fromSearchRoots({sixdof_test::descriptionDir() + "/.."}); }
 PackageResolver urResolver() { return PackageResolver::fromSearchRoots({kDataDir + "/../.."}); }
 
 RobotModelConstPtr model(const std::string& urdf, const std::string& srdf, const PackageResolver& resolver) {
   return std::make_shared<const RobotModel>(urdf, srdf, resolver);
 }
 
-RobotModelConstPtr armModel() { return model(readTextFile(kArmUrdf), readTextFile(kArmSrdf), armResolver()); }
+RobotModelConstPtr armModel() { return model(readTextFile(armUrdf()), readTextFile(armSrdf()), armResolver()); }
 
 using NamePair = std::pair<std::string, std::string>;
 
@@ -232,8 +232,8 @@ TEST(SetupAssistant, DefaultPairsOfTheArmCollideAtTheDefaultState) {
 }
 
 TEST(SetupAssistant, SameSeedGivesTheSameBytesAndTheOutputIsAFixedPoint) {
-  const std::string urdf = readTextFile(kArmUrdf);
-  const std::string srdf = readTextFile(kArmSrdf);
+  const std::string urdf = readTextFile(armUrdf());
+  const std::string srdf = readTextFile(armSrdf());
   const auto first = runSetupAssistant(urdf, srdf, options(kCommittedDensity, 7), armResolver());
   const auto second = runSetupAssistant(urdf, srdf, options(kCommittedDensity, 7), armResolver());
   EXPECT_EQ(first.srdf, second.srdf);
@@ -265,8 +265,8 @@ TEST(SetupAssistant, CommittedArmSrdfHoldsTheComputedPairsAtLowDensity) {
 }
 
 TEST(SetupAssistant, KeepsHandWrittenPartsAndReplacesOnlyComputedReasons) {
-  const std::string urdf = readTextFile(kArmUrdf);
-  std::string srdf = readTextFile(kArmSrdf);
+  const std::string urdf = readTextFile(armUrdf());
+  std::string srdf = readTextFile(armSrdf());
   const std::string extra =
       "  <passive_joint name=\"finger2_joint\"/>\n"
       "  <disable_collisions link1=\"link1\" link2=\"link2\" reason=\"User\"/>\n"
@@ -355,7 +355,7 @@ TEST(SetupAssistant, SecondFixtureUrdfWithItsSrdfAndWithASkeleton) {
 TEST(SetupAssistant, SkeletonForOurArmMatchesTheDesign) {
   SetupAssistantOptions o = options(1000, 0);
   o.groups_skeleton = true;
-  const std::string urdf = readTextFile(kArmUrdf);
+  const std::string urdf = readTextFile(armUrdf());
   const auto result = runSetupAssistant(urdf, "", o, armResolver());
   const auto m = model(urdf, result.srdf, armResolver());
   ASSERT_NE(m->findGroup("arm"), nullptr);
@@ -366,7 +366,7 @@ TEST(SetupAssistant, SkeletonForOurArmMatchesTheDesign) {
   EXPECT_EQ(m->endEffectors()[0].parent_link, "link6");
   EXPECT_EQ(m->endEffectors()[0].group, "gripper");
   // An input with groups keeps them: no skeleton.
-  EXPECT_FALSE(runSetupAssistant(urdf, readTextFile(kArmSrdf), o, armResolver()).skeleton_written);
+  EXPECT_FALSE(runSetupAssistant(urdf, readTextFile(armSrdf()), o, armResolver()).skeleton_written);
 }
 
 TEST(SetupAssistant, BadInputsAreNamed) {
@@ -452,11 +452,11 @@ TEST(SetupAssistant, DescribesTheModelWithTheSolverThatFitsEachChain) {
   EXPECT_EQ(description.find("collisions:"), std::string::npos);
 
   // The same 6R arm with the wrist moved off the forearm's axis has no closed form: numeric, and why.
-  std::string urdf = readTextFile(kArmUrdf);
+  std::string urdf = readTextFile(armUrdf());
   const std::string joint5 = "<joint name=\"joint5\" type=\"revolute\">";
   const size_t at = urdf.find("<origin", urdf.find(joint5));
   urdf.replace(at, urdf.find("/>", at) + 2 - at, "<origin xyz=\"0.18 0.03 0\" rpy=\"0 0 0\"/>");
-  const RobotModel offset(urdf, readTextFile(kArmSrdf), armResolver());
+  const RobotModel offset(urdf, readTextFile(armSrdf()), armResolver());
   const std::string numeric = describeModel(offset);
   EXPECT_NE(numeric.find("  solver: numeric\n  solver_reason: \"no closed form: "), std::string::npos) << numeric;
 

@@ -14,12 +14,15 @@ if BUILD_PYTHONPATH:
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+import rospkg  # noqa: E402
 
 import sixdof_core  # noqa: E402
 
 CORE = Path(__file__).resolve().parents[2]
 DATA = CORE / "test" / "data"
-DESCRIPTION = CORE.parent.parent / "sixdof_description"
+# The sixdof arm of the sourced workspace: sixdof_description depends on this package, so it is found when the tests
+# run, not declared.
+DESCRIPTION = Path(rospkg.RosPack().get_path("sixdof_description"))
 
 
 def arm_model() -> sixdof_core.RobotModel:

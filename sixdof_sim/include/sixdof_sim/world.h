@@ -45,6 +45,9 @@ struct WorldOptions {
   // The grasp fix of a robot whose URDF has no gazebo_grasp_fix block (e.g. a config package's grasping.yaml,
   // parseGraspingYaml); the URDF's block wins where it has one.
   std::optional<GraspFixConfig> grasp_fix_config;
+  // The suction cup of a robot whose URDF has no sixdof_suction block (a grasping.yaml's `suction:`,
+  // parseSuctionYaml in sixdof_sim/suction.h); the URDF's block wins where it has one.
+  std::optional<SuctionConfig> suction_config;
 };
 
 class World {
@@ -127,6 +130,27 @@ class World {
   std::vector<GraspEvent> takeGraspEvents();
   // Objects currently attached by the grasp fix.
   std::vector<std::string> attachedObjects() const;
+
+  // ---- conveyors, sources, sinks (sixdof_sim/conveyor.h) ----
+  // Sets a belt's speed (m/s along its direction; 0 stops it) and wakes the objects. kUnknownObject for an unknown
+  // conveyor, kInvalidArgument for a speed that is not finite. reset() restores the world file's speeds.
+  Result setConveyorSpeed(const std::string& conveyor, double speed);
+  std::vector<ConveyorState> conveyorStates() const;  // WorldSpec order
+  std::vector<SourceState> sourceStates() const;
+  std::vector<SinkState> sinkStates() const;
+  // Objects deleted by sinks since the last call (oldest first), as "<sink>:<object>".
+  std::vector<std::string> takeSunkObjects();
+
+  // ---- suction cup (sixdof_sim/suction.h) ----
+  bool suctionAvailable() const;  // a configuration exists (URDF block or options)
+  const std::optional<SuctionConfig>& suctionConfig() const;
+  // Vacuum on: the cup holds the first object whose surface it touches (the rules in suction.h); off: releases
+  // it. kInvalidArgument without a suction configuration.
+  Result setVacuum(bool on);
+  bool vacuum() const;
+  std::string suctionHeld() const;     // the object the cup holds, empty if none
+  // The object the cup touches but refused as over max_payload while the vacuum is on, empty if none.
+  std::string suctionRefused() const;
 
   // ---- inspection ----
   std::vector<Contact> contacts() const;  // contact points of the last step (of bodies still in the world)

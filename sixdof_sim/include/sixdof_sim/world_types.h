@@ -139,6 +139,55 @@ struct BinSpec {
   double wall_thickness = 0.01;
 };
 
+// A conveyor (world file `conveyors:`): a static box whose top face is a moving belt. The belt moves what rests on
+// it through a surface velocity: its contacts with objects get friction directions along and across the belt and a
+// target slip of `speed` along it (Bullet's contact motion), so objects are carried by friction, never moved by the
+// simulator. The box is also an object of the world (static, named `name`), published like a table.
+struct ConveyorSpec {
+  std::string name;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();          // full extents: x along the conveyor, y across, z thick
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // the box centre; the belt is its top face (+z)
+  double speed = 0.0;                                      // m/s along direction; 0 stops it, < 0 runs backwards
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();    // unit vector in the belt plane, conveyor frame (x, y)
+  double friction = 0.8;                                   // Coulomb coefficient of the belt
+  Color color{0.2, 0.2, 0.2, 1.0};
+};
+
+// Where a source spawns: shapes, sizes, colours and timing (world file `sources:`).
+struct SourceSpec {
+  std::string name;      // spawned objects are named <name>_<n>, n = 1, 2, ...
+  std::string conveyor;  // the conveyor the objects are put on
+  // On the belt's top face, in the conveyor frame from its centre (m); each spawn adds a uniform offset across the
+  // belt (conveyor y) in [-lateral_jitter, lateral_jitter].
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  double lateral_jitter = 0.0;
+  std::vector<ShapeType> shapes{ShapeType::kBox};  // box: a cube of edge `size`; cylinder: diameter and height
+                                                   // `size`, upright; sphere: diameter `size`
+  double min_size = 0.03;                          // m: each object's size is uniform in [min_size, max_size]
+  double max_size = 0.06;
+  std::vector<Color> colors;  // each object's colour is one of these (uniform); empty: the default grey
+  double mass = 0.05;         // kg
+  double friction = 0.8;
+  // Timing in simulated time: the first spawn at `start`, then every `period` s (period > 0), or after intervals
+  // uniform in [min_interval, max_interval] (period = 0).
+  double start = 0.0;
+  double period = 0.0;
+  double min_interval = 0.0;
+  double max_interval = 0.0;
+  std::uint64_t seed = 0;  // of the choices (shape, size, colour, jitter, intervals)
+  long long max_count = 0;  // stop after this many spawns; 0: no limit
+};
+
+// A sink (world file `sinks:`): deletes every dynamic object whose origin is inside its box region, or below a
+// height, and counts them. Objects held by the grasp fix or the suction cup are not taken.
+struct SinkSpec {
+  std::string name;
+  bool below_only = false;                                 // true: the region is z < below (no box)
+  double below = 0.0;                                      // m
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();          // box region: full extents
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // box region: its centre
+};
+
 struct WorldSpec {
   std::string name;
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
@@ -146,6 +195,9 @@ struct WorldSpec {
   std::vector<ObjectSpec> objects;  // tables are static boxes; markers have collision = false
   std::vector<BinSpec> bins;
   std::vector<CameraSpec> cameras;
+  std::vector<ConveyorSpec> conveyors;  // their belts are objects too, made by the World
+  std::vector<SourceSpec> sources;
+  std::vector<SinkSpec> sinks;
 };
 
 // Grasp-fix configuration: the URDF's <gazebo><plugin name="gazebo_grasp_fix"><arm> block.
@@ -169,6 +221,35 @@ struct GraspEvent {
   std::string object;
   std::string palm_link;
   std::vector<std::string> gripper_links;
+};
+
+// The suction cup (a config package's grasping.yaml `suction:` or the URDF's <gazebo><plugin name="sixdof_suction">
+// block; sixdof_sim/suction.h). The cup's face is the plane through the cup link's origin, its outward normal the
+// link's +z axis.
+struct SuctionConfig {
+  std::string arm_name;
+  std::string cup_link;
+  double max_payload = 0.5;        // kg: heavier objects are refused (they stay where they are)
+  double tilt_tolerance = 0.2;     // rad: largest angle between the cup's axis and the object's surface normal
+  double contact_distance = 0.003;  // m: the object's surface within this of the cup's face counts as touching
+  std::string controller = "gripper_controller";  // the node serves <controller>/gripper_cmd for the vacuum
+};
+
+// The state of the conveyors, sources and sinks (World::conveyorStates and friends).
+struct ConveyorState {
+  std::string name;
+  double speed = 0.0;                                  // m/s
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // the belt surface's velocity in the world frame
+};
+
+struct SourceState {
+  std::string name;
+  long long spawned = 0;  // since construction / reset()
+};
+
+struct SinkState {
+  std::string name;
+  long long deleted = 0;  // since construction / reset()
 };
 
 // A robot/object contact point of the last step (for debugging, contact topics and tests).

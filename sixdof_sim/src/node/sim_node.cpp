@@ -17,7 +17,7 @@
 
 #include "conversions.h"
 #include "sixdof_control/controller_params.h"
-#include "sixdof_sim/grasp_fix.h"
+#include "sixdof_sim/suction.h"
 #include "sixdof_sim/world_file.h"
 #include "world_parameter.h"
 
@@ -87,12 +87,14 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
   WorldOptions world_options;
   world_options.time_step = options_.physics_step;
   world_options.package_search_roots = packageRoots();
-  // The grasp fix: the URDF's gazebo_grasp_fix block, else the grasp_fix of the config package's grasping.yaml
-  // (robot_description_grasping; the World lets the block win).
+  // The grasp fix and the suction cup: the URDF's gazebo_grasp_fix and sixdof_suction blocks, else the grasp_fix and
+  // suction of the config package's grasping.yaml (robot_description_grasping; the World lets the blocks win).
   std::string grasping;
   if (nh_.getParam("robot_description_grasping", grasping) && !grasping.empty()) {
-    world_options.grasp_fix_config =
-        parseGraspingYaml(grasping, "parameter " + nh_.resolveName("robot_description_grasping"));
+    const GraspingConfig config =
+        parseGraspingConfig(grasping, "parameter " + nh_.resolveName("robot_description_grasping"));
+    world_options.grasp_fix_config = config.grasp_fix;
+    world_options.suction_config = config.suction;
   }
   world_options.grasp_fix_enabled = false;
   world_ = std::make_unique<World>(urdf, spec, world_options);
@@ -142,6 +144,11 @@ SimNode::SimNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh), 
     publishState();  // steps run faster than the wall-clock bound on the state's rate: the last one goes out
   };
   control_services_ = std::make_unique<SimControlServices>(sim_nh, control);
+  if (world_->suctionAvailable() && setup.gripper && setup.gripper->name == world_->suctionConfig()->controller) {
+    throw std::runtime_error("suction: controller '" + setup.gripper->name +
+                             "' already serves gripper_cmd for a finger joint; give the suction another 'controller'");
+  }
+  conveyor_services_ = std::make_unique<ConveyorServices>(sim_nh, nh_, *world_);
 
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   joint_state_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
@@ -184,6 +191,7 @@ void SimNode::checkpointClock() {
 
 void SimNode::stepOnce() {
   world_->step(1);
+  conveyor_services_->afterStep();
   const ros::Time stamp(now());
   for (const GraspEvent& e : world_->takeGraspEvents()) {
     sixdof_msgs::GraspEvent msg;
@@ -252,6 +260,7 @@ void SimNode::publishState() {
     transforms.push_back(t);
   }
   object_state_pub_.publish(objects);
+  conveyor_services_->publish(stamp);
   if (!transforms.empty()) {
     tf_broadcaster_.sendTransform(transforms);
   }

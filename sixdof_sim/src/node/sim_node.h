@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "camera_publisher.h"
+#include "conveyor_services.h"
 #include "object_services.h"
 #include "sim_controllers.h"
 #include "sim_services.h"
@@ -77,6 +78,7 @@ class SimNode {
   std::unique_ptr<CameraPublisher> cameras_;
   std::unique_ptr<ObjectServices> object_services_;
   std::unique_ptr<SimControlServices> control_services_;
+  std::unique_ptr<ConveyorServices> conveyor_services_;
   ros::Publisher clock_pub_, joint_state_pub_, object_state_pub_, grasp_event_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_tf_broadcaster_;

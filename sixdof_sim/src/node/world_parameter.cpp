@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "sixdof_sim/conveyor.h"
+
 namespace sixdof_sim {
 namespace {
 
@@ -16,7 +18,7 @@ XmlRpc::XmlRpcValue list(const Vector& values) {
 
 XmlRpc::XmlRpcValue color(const Color& c) { return list(Eigen::Vector4d(c.r, c.g, c.b, c.a)); }
 
-XmlRpc::XmlRpcValue object(const ObjectSpec& spec) {
+XmlRpc::XmlRpcValue object(const ObjectSpec& spec, const std::string& conveyor) {
   XmlRpc::XmlRpcValue out;
   out["name"] = spec.name;
   switch (spec.shape.type) {
@@ -46,7 +48,34 @@ XmlRpc::XmlRpcValue object(const ObjectSpec& spec) {
   out["collision"] = spec.collision;
   out["table"] = spec.table;
   out["bin"] = spec.bin;
+  out["conveyor"] = conveyor;
   out["color"] = color(spec.color);
+  return out;
+}
+
+XmlRpc::XmlRpcValue conveyor(const ConveyorSpec& spec) {
+  XmlRpc::XmlRpcValue out;
+  const Eigen::Quaterniond q(spec.pose.linear());
+  out["name"] = spec.name;
+  out["size"] = list(spec.size);
+  out["position"] = list(spec.pose.translation());
+  out["orientation"] = list(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));
+  out["speed"] = spec.speed;
+  out["direction"] = list(beltVelocity(spec, 1.0));
+  out["friction"] = spec.friction;
+  return out;
+}
+
+XmlRpc::XmlRpcValue source(const SourceSpec& spec) {
+  XmlRpc::XmlRpcValue out;
+  out["name"] = spec.name;
+  out["conveyor"] = spec.conveyor;
+  return out;
+}
+
+XmlRpc::XmlRpcValue sink(const SinkSpec& spec) {
+  XmlRpc::XmlRpcValue out;
+  out["name"] = spec.name;
   return out;
 }
 
@@ -82,7 +111,16 @@ XmlRpc::XmlRpcValue array(const std::vector<Spec>& specs, const Convert& convert
 XmlRpc::XmlRpcValue worldParameter(const WorldSpec& world) {
   XmlRpc::XmlRpcValue out;
   out["name"] = world.name;
-  out["objects"] = array(world.objects, object);
+  std::vector<ObjectSpec> objects = world.objects;
+  for (const ConveyorSpec& c : world.conveyors) objects.push_back(beltObject(c));
+  XmlRpc::XmlRpcValue object_list = array(objects, [&](const ObjectSpec& spec) {
+    const bool belt = &spec - objects.data() >= static_cast<std::ptrdiff_t>(world.objects.size());
+    return object(spec, belt ? spec.name : "");
+  });
+  out["objects"] = object_list;
+  out["conveyors"] = array(world.conveyors, conveyor);
+  out["sources"] = array(world.sources, source);
+  out["sinks"] = array(world.sinks, sink);
   out["bins"] = array(world.bins, bin);
   out["cameras"] = array(world.cameras, camera);
   return out;

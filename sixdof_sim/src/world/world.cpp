@@ -2,6 +2,8 @@
 
 #include <set>
 
+#include "sixdof_sim/conveyor.h"
+
 namespace sixdof_sim {
 
 void World::Impl::build() {
@@ -11,12 +13,14 @@ void World::Impl::build() {
   addJointConstraints();
   addMimicConstraints();
   addEnvironment();
+  addConveyors();
   refreshKinematics();
 }
 
 void World::Impl::destroy() {
   if (world) {
     if (grasp_constraint) world->removeMultiBodyConstraint(grasp_constraint.get());
+    if (suction.constraint) world->removeMultiBodyConstraint(suction.constraint.get());
     for (auto& c : robot_constraints) world->removeMultiBodyConstraint(c.get());
     for (JointRuntime& j : joints) {
       if (j.friction_in_world) world->removeMultiBodyConstraint(j.friction.get());
@@ -28,6 +32,7 @@ void World::Impl::destroy() {
     if (multibody) world->removeMultiBody(multibody.get());
   }
   grasp_constraint.reset();
+  suction = SuctionRuntime();
   robot_constraints.clear();
   gears.clear();
   for (JointRuntime& j : joints) j.friction.reset();
@@ -131,6 +136,8 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
       throw WorldError("world '" + world.name + "': duplicate object '" + object.name + "'");
     }
   }
+  const Result conveyors = validateConveyors(world);
+  if (!conveyors.ok()) throw WorldError("world '" + world.name + "': " + conveyors.message);
   impl_->buildStructure();
   impl_->grasp_config = impl_->robot.grasp_fix ? impl_->robot.grasp_fix : options.grasp_fix_config;
   if (impl_->grasp_config) {
@@ -164,6 +171,7 @@ World::World(const std::string& urdf_xml, const WorldSpec& world, const WorldOpt
         "grasp_fix_config was given");
   }
   impl_->grasp_enabled = options.grasp_fix_enabled;
+  impl_->configureSuction(urdf_xml);
   try {
     impl_->build();
   } catch (const std::invalid_argument& e) {
@@ -202,6 +210,9 @@ void World::step(std::uint64_t n) {
       for (const std::string& object : decision.detach) d.detach(object);
       for (const std::string& object : decision.attach) d.attach(object);
     }
+    d.stepSuction();
+    if (!d.spec.sources.empty()) d.stepSources();
+    if (!d.spec.sinks.empty()) d.stepSinks();
   }
 }
 

@@ -135,8 +135,10 @@ std::vector<GraspEvent> World::takeGraspEvents() {
 }
 
 std::vector<std::string> World::attachedObjects() const {
-  if (!impl_->grasp_fix || impl_->grasp_fix->attached().empty()) return {};
-  return {impl_->grasp_fix->attached()};
+  std::vector<std::string> attached;
+  if (impl_->grasp_fix && !impl_->grasp_fix->attached().empty()) attached.push_back(impl_->grasp_fix->attached());
+  if (!impl_->suction.held.empty()) attached.push_back(impl_->suction.held);
+  return attached;
 }
 
 // Read from the collision dispatcher's manifolds, which hold the last step's contact points until the next step.

@@ -202,7 +202,8 @@ class Parser : public WorldFileReader {
 
   WorldSpec world(const YAML::Node& root) const {
     if (!root.IsDefined() || root.IsNull()) fail(root, "", "the file is empty");
-    checkKeys(root, "", {"name", "gravity", "ground", "tables", "objects", "bins", "cameras"});
+    checkKeys(root, "",
+              {"name", "gravity", "ground", "tables", "objects", "bins", "cameras", "conveyors", "sources", "sinks"});
     WorldSpec spec;
     if (root["name"]) spec.name = text(root["name"], "", "name");
     if (root["gravity"]) spec.gravity = vector3(root["gravity"], "", "gravity");
@@ -249,6 +250,7 @@ class Parser : public WorldFileReader {
       if (!camera_names.insert(camera.name).second) fail(item, context, "duplicate camera name '" + camera.name + "'");
       spec.cameras.push_back(camera);
     });
+    readConveyors(*this, root, &names, &spec);
     return spec;
   }
 

@@ -1,6 +1,7 @@
 #pragma once
-// Private: the checked YAML readers of the world file parser (world_file.cpp). Every failure throws WorldFileError
-// naming the file, the line, the entry and the problem.
+// Private: the checked YAML readers of the world file parser (world_file.cpp: objects, tables, bins, cameras;
+// world_file_conveyors.cpp: conveyors, sources, sinks). Every failure throws WorldFileError naming the file, the
+// line, the entry and the problem.
 
 #include <yaml-cpp/yaml.h>
 
@@ -126,5 +127,10 @@ class WorldFileReader {
   std::string source_;
   std::string base_dir_;
 };
+
+// The world file's conveyors, sources and sinks into spec (after its objects: belt names join `names`, the names
+// of tables, objects and bin walls).
+void readConveyors(const WorldFileReader& reader, const YAML::Node& root, std::set<std::string>* names,
+                   WorldSpec* spec);
 
 }  // namespace sixdof_sim

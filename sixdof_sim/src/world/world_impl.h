@@ -5,6 +5,8 @@
 //   world_joints.cpp   joint and link readings, joint commands
 //   world_objects.cpp  shapes, the ground, object validation, spawning and the object API
 //   world_contacts.cpp contacts of a step, the grasp fix's attach/detach and its API
+//   world_conveyors.cpp conveyor belts (surface velocity), sources and sinks
+//   suction.cpp        the suction cup: seal test, attach/release, its configuration
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
@@ -22,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 
 #include "sixdof_sim/grasp_fix.h"
 #include "sixdof_sim/urdf_loader.h"
@@ -137,6 +140,9 @@ class DynamicsWorld : public btMultiBodyDynamicsWorld {
  public:
   using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
   void predictUnconstraintMotion(btScalar time_step) override;
+  // Runs before_solve between collision detection and the solver (the conveyor belts' contact motion).
+  void solveConstraints(btContactSolverInfo& solver_info) override;
+  std::function<void()> before_solve;
 };
 
 struct ObjectRuntime {
@@ -144,6 +150,22 @@ struct ObjectRuntime {
   std::unique_ptr<btCollisionShape> shape;
   std::unique_ptr<btRigidBody> body;
   Eigen::Isometry3d frame_to_body = Eigen::Isometry3d::Identity();  // centre of mass frame in the object frame
+  int conveyor = -1;  // index into WorldSpec::conveyors when this is a conveyor's belt
+};
+
+// A source's schedule and random choices (world_conveyors.cpp).
+struct SourceRuntime {
+  std::mt19937_64 rng;
+  double next_spawn = 0.0;  // s of simulated time
+  long long spawned = 0;
+};
+
+// The suction cup's state (suction.cpp).
+struct SuctionRuntime {
+  bool vacuum = false;
+  std::string held;
+  std::string refused;
+  std::unique_ptr<btMultiBodyFixedConstraint> constraint;
 };
 
 
@@ -197,6 +219,14 @@ struct World::Impl {
   std::vector<GraspContact> grasp_contacts;  // of the last step; reused, so stepping allocates nothing
   std::vector<int> grasp_contact_points;     // contact points behind each of grasp_contacts
 
+  // Conveyors, sources and sinks (world_conveyors.cpp); the suction cup (suction.cpp).
+  std::vector<double> conveyor_speeds;
+  std::vector<SourceRuntime> sources;
+  std::vector<long long> sink_counts;
+  std::vector<std::string> sunk;
+  std::optional<SuctionConfig> suction_config;
+  SuctionRuntime suction;
+
   mutable btAlignedObjectArray<btQuaternion> scratch_rot;
   mutable btAlignedObjectArray<btVector3> scratch_pos;
 
@@ -212,6 +242,7 @@ struct World::Impl {
   std::unique_ptr<btCollisionShape> makeShape(const Shape& shape, Eigen::Vector3d* centre);
   Result addObject(const ObjectSpec& spec);
   ObjectRuntime* findObject(const std::string& name) const;
+  void removeObject(ObjectRuntime* object);  // releases it first if held; wakes the other objects
   void refreshKinematics();  // after teleporting joints: the colliders follow the links
   const btTransform& bodyWorld(int body) const;  // a body frame in the world (forward kinematics once a step)
   Eigen::Isometry3d objectPose(const ObjectRuntime& object) const;
@@ -225,6 +256,15 @@ struct World::Impl {
   void detach(const std::string& object);
   void pushEvent(GraspEvent::Type type, const std::string& object);
   void setArticulatedWarmstarting(bool on);
+  void addConveyors();
+  void applyBeltMotion();
+  Eigen::Vector3d beltVelocity(size_t conveyor) const;
+  void stepSources();
+  void stepSinks();
+  void configureSuction(const std::string& urdf_xml);  // the URDF block, else options; WorldError on a bad one
+  void pushSuctionEvent(GraspEvent::Type type);
+  void stepSuction();
+  void releaseSuction();
   Result checkJointCommand(const std::string& joint, int* index);
   double dt() const { return options.time_step; }
 };

@@ -198,17 +198,22 @@ void World::Impl::wakeObjects() {
 
 Result World::spawnObject(const ObjectSpec& spec) { return impl_->addObject(spec); }
 
-Result World::deleteObject(const std::string& name) {
-  Impl& d = *impl_;
-  ObjectRuntime* object = d.findObject(name);
-  if (object == nullptr) return {Status::kUnknownObject, "unknown " + describe(name)};
-  if (d.grasp_fix) {
-    if (d.grasp_fix->attached() == name) d.detach(name);
-    d.grasp_fix->forget(name);
+void World::Impl::removeObject(ObjectRuntime* object) {
+  const std::string name = object->spec.name;
+  if (grasp_fix) {
+    if (grasp_fix->attached() == name) detach(name);
+    grasp_fix->forget(name);
   }
-  d.world->removeRigidBody(object->body.get());
-  d.objects.erase(std::find_if(d.objects.begin(), d.objects.end(), [&](const auto& o) { return o.get() == object; }));
-  d.wakeObjects();  // what rested on it falls
+  if (suction.held == name) releaseSuction();
+  world->removeRigidBody(object->body.get());
+  objects.erase(std::find_if(objects.begin(), objects.end(), [&](const auto& o) { return o.get() == object; }));
+  wakeObjects();  // what rested on it falls
+}
+
+Result World::deleteObject(const std::string& name) {
+  ObjectRuntime* object = impl_->findObject(name);
+  if (object == nullptr) return {Status::kUnknownObject, "unknown " + describe(name)};
+  impl_->removeObject(object);
   return Result::success();
 }
 
@@ -228,6 +233,7 @@ Result World::objectState(const std::string& name, ObjectState* state) const {
   state->twist = impl_->objectTwist(*object);
   state->attached_to.clear();
   if (impl_->grasp_fix && impl_->grasp_fix->attached() == name) state->attached_to = impl_->grasp_config->palm_link;
+  if (impl_->suction.held == name) state->attached_to = impl_->suction_config->cup_link;
   return Result::success();
 }
 
@@ -245,6 +251,7 @@ Result World::setObjectState(const std::string& name, const Eigen::Isometry3d& p
     if (d.grasp_fix->attached() == name) d.detach(name);
     d.grasp_fix->forget(name);
   }
+  if (d.suction.held == name) d.releaseSuction();
   object->body->setWorldTransform(toBt(pose * object->frame_to_body));
   const Eigen::Vector3d com = pose * object->frame_to_body.translation();
   object->body->setLinearVelocity(toBt(twist.linear + twist.angular.cross(com - pose.translation())));

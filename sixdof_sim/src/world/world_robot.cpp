@@ -147,6 +147,7 @@ void DynamicsWorld::predictUnconstraintMotion(btScalar time_step) {
 }
 
 void World::Impl::setArticulatedWarmstarting(bool on) {
+  on = on && !grasp_constraint && !suction.constraint;  // off while the grasp fix or the suction cup holds
   btContactSolverInfo& info = world->getSolverInfo();
   info.m_solverMode = on ? info.m_solverMode | SOLVER_USE_ARTICULATED_WARMSTARTING
                          : info.m_solverMode & ~SOLVER_USE_ARTICULATED_WARMSTARTING;

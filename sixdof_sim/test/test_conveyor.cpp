@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "sixdof_sim/conveyor.h"
 #include "test_helpers.h"
@@ -181,6 +182,37 @@ TEST(Conveyor, RandomIntervalsAreSeeded) {
   EXPECT_GE(a.size(), 5u);   // 3 s / 0.6 s
   EXPECT_LE(a.size(), 11u);  // 3 s / 0.3 s + 1
   EXPECT_TRUE(a.size() != c.size() || a.front().y() != c.front().y());
+}
+
+// worlds/conveyor.yaml with the sixdof arm: parts ride the belt across the robot's front at its speed and the sink
+// at its end takes every one that arrives. (Cylinders rock by under 0.3 mrad on a running belt, enough to vary their
+// instantaneous velocity by a few per cent: their speed is measured over a second.)
+TEST(Conveyor, TheConveyorWorldFeedsAndEmptiesItsBelt) {
+  World world(test::robotUrdf(), loadWorldFile(std::string(SIXDOF_SIM_DIR) + "/worlds/conveyor.yaml"),
+              test::options(false));
+  auto parts = [&] {
+    std::map<std::string, Eigen::Vector3d> out;
+    for (const std::string& name : world.objectNames()) {
+      if (name.rfind("part_", 0) == 0) out[name] = position(world, name);
+    }
+    return out;
+  };
+  world.step(steps(world, 19.0));
+  const std::map<std::string, Eigen::Vector3d> before = parts();
+  world.step(steps(world, 1.0));
+  const std::map<std::string, Eigen::Vector3d> after = parts();
+  const long long spawned = world.sourceStates().at(0).spawned;
+  const long long deleted = world.sinkStates().at(0).deleted;
+  std::printf("conveyor.yaml, 20 s: %lld parts spawned, %lld taken by the sink, %zu on the belt\n", spawned, deleted,
+              after.size());
+  EXPECT_GE(spawned, 7);   // intervals of at most 3 s
+  EXPECT_LE(spawned, 14);  // and at least 1.5 s
+  EXPECT_GE(deleted, 1);   // 0.95 m at 0.1 m/s: the first part arrives after 9.5 s
+  EXPECT_EQ(spawned, deleted + static_cast<long long>(after.size()));
+  for (const auto& [name, p] : after) {
+    EXPECT_NEAR(p.x(), 0.45, 0.035) << name;  // on the belt, within the jitter
+    if (before.count(name)) EXPECT_NEAR(p.y() - before.at(name).y(), 0.1, 0.002) << name;  // at the belt's speed
+  }
 }
 
 }  // namespace

@@ -60,6 +60,15 @@ void ConveyorServices::afterStep() {
     vacuum_goal_->setSucceeded(vacuumResult(), world_.vacuum() ? "vacuum on" : "vacuum off");
     vacuum_goal_.reset();
   }
+  if (world_.suctionAvailable() && world_.suctionRefused() != refused_) {
+    refused_ = world_.suctionRefused();
+    ObjectState state;
+    if (!refused_.empty() && world_.objectState(refused_, &state).ok()) {
+      ROS_WARN_STREAM("[sixdof_sim] suction: '" << refused_ << "' (" << state.spec.mass << " kg) is over the cup's "
+                                                << "max_payload of " << world_.suctionConfig()->max_payload
+                                                << " kg: not held");
+    }
+  }
   for (const std::string& sunk : world_.takeSunkObjects()) {
     ROS_INFO_STREAM("[sixdof_sim] sink " << sunk.substr(0, sunk.find(':')) << " deleted '"
                                          << sunk.substr(sunk.find(':') + 1) << "'");

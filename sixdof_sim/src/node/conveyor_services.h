@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "sixdof_sim/world.h"
 
@@ -23,7 +24,7 @@ class ConveyorServices {
   // sim_nh: the simulator's namespace (sixdof_sim); nh: the controllers' namespace (the gripper_cmd action, served
   // only when the world has a suction cup).
   ConveyorServices(ros::NodeHandle sim_nh, ros::NodeHandle nh, World& world);
-  // After every physics step: ends a vacuum goal, logs the sinks' deletions.
+  // After every physics step: ends a vacuum goal, logs the sinks' deletions and an object the cup refuses.
   void afterStep();
   void publish(const ros::Time& stamp);
 
@@ -39,6 +40,7 @@ class ConveyorServices {
   ros::Publisher states_pub_;
   std::unique_ptr<Server> vacuum_server_;
   std::optional<Server::GoalHandle> vacuum_goal_;
+  std::string refused_;  // the object the cup last refused, logged once
 };
 
 }  // namespace sixdof_sim

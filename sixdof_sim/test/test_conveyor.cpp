@@ -92,7 +92,7 @@ TEST(Conveyor, RunsAlongItsDirectionAndBackwards) {
   EXPECT_LT(std::abs(b.x() - a.x()), 1e-3);
 }
 
-TEST(Conveyor, SetSpeedRefusesUnknownNamesAndNonFiniteSpeeds) {
+TEST(Conveyor, SetSpeedRefusesUnknownNamesAndNonFiniteSpeedsAndTheBeltStays) {
   WorldSpec spec;
   spec.conveyors.push_back(belt(0.1));
   World world(gantryUrdf(), spec, gantryOptions());
@@ -103,6 +103,11 @@ TEST(Conveyor, SetSpeedRefusesUnknownNamesAndNonFiniteSpeeds) {
   EXPECT_EQ(nan.status, Status::kInvalidArgument);
   EXPECT_NE(nan.message.find("speed must be finite"), std::string::npos) << nan.message;
   EXPECT_EQ(world.conveyorStates().at(0).speed, 0.1);  // unchanged
+  const Result deleted = world.deleteObject("belt");
+  EXPECT_EQ(deleted.status, Status::kInvalidArgument);
+  EXPECT_EQ(deleted.message, "object 'belt' is a conveyor's belt: it stays");
+  EXPECT_EQ(world.setObjectState("belt", Eigen::Isometry3d::Identity()).status, Status::kInvalidArgument);
+  EXPECT_TRUE(world.hasObject("belt"));
 }
 
 // A source feeding the belt every 0.5 s and a sink below the floor's edge: objects ride off the end, fall and are

@@ -112,7 +112,8 @@ class World {
 
   // ---- objects ----
   Result spawnObject(const ObjectSpec& spec);
-  Result deleteObject(const std::string& name);  // releases it first if grasped
+  // Releases it first if grasped. A conveyor's belt cannot be deleted or moved (kInvalidArgument).
+  Result deleteObject(const std::string& name);
   std::vector<std::string> objectNames() const;  // spawn order (world-file order first)
   bool hasObject(const std::string& name) const;
   Result objectState(const std::string& name, ObjectState* state) const;

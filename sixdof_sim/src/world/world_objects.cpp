@@ -213,6 +213,7 @@ void World::Impl::removeObject(ObjectRuntime* object) {
 Result World::deleteObject(const std::string& name) {
   ObjectRuntime* object = impl_->findObject(name);
   if (object == nullptr) return {Status::kUnknownObject, "unknown " + describe(name)};
+  if (object->conveyor >= 0) return {Status::kInvalidArgument, describe(name) + " is a conveyor's belt: it stays"};
   impl_->removeObject(object);
   return Result::success();
 }
@@ -244,6 +245,7 @@ Result World::setObjectState(const std::string& name, const Eigen::Isometry3d& p
   if (!finite(pose) || !twist.linear.allFinite() || !twist.angular.allFinite()) {
     return {Status::kInvalidArgument, describe(name) + ": pose or twist is not finite"};
   }
+  if (object->conveyor >= 0) return {Status::kInvalidArgument, describe(name) + " is a conveyor's belt: it stays"};
   if (object->spec.is_static && (!twist.linear.isZero(0.0) || !twist.angular.isZero(0.0))) {
     return {Status::kStaticObject, describe(name) + " is static: it cannot be given a twist"};
   }

@@ -17,6 +17,7 @@ def box(name: str, **flags) -> dict:
         "collision": True,
         "table": False,
         "bin": "",
+        "conveyor": "",
         "color": [0.7, 0.7, 0.7, 1.0],
     }
     entry.update(flags)
@@ -41,6 +42,17 @@ WORLD = {
     ],
     "bins": [BIN],
     "cameras": [{"name": "table_cam", "parent_link": ""}],
+    "conveyors": [
+        {
+            "name": "belt",
+            "size": [1.0, 0.16, 0.03],
+            "position": [0.45, 0.0, 0.015],
+            "orientation": [0.0, 0.0, 0.7071068, 0.7071068],
+            "speed": 0.1,
+            "direction": [0.0, 1.0, 0.0],
+            "friction": 0.8,
+        }
+    ],
 }
 
 
@@ -58,6 +70,8 @@ def test_world_from_the_parameter():
     # Turned by 90 degrees: the bin's x axis is the world's y axis.
     assert blue.to_world(0.05, 0.0) == pytest.approx((0.3, -0.25))
     assert blue.contains(0.3, -0.3) and not blue.contains(0.3, -0.395)
+    (belt,) = world.conveyors
+    assert (belt.name, belt.speed, belt.direction) == ("belt", 0.1, (0.0, 1.0, 0.0))
 
 
 @pytest.mark.parametrize(
@@ -69,6 +83,9 @@ def test_world_from_the_parameter():
         ({**WORLD, "objects": [box("t", position=[0, 0])]}, r"objects\[0\]: 'position' must be a list of 3"),
         ({**WORLD, "objects": [box("t", table=1)]}, r"objects\[0\]: 'table' has the wrong type"),
         ({k: v for k, v in WORLD.items() if k != "cameras"}, r"'cameras' is missing"),
+        ({k: v for k, v in WORLD.items() if k != "conveyors"}, r"'conveyors' is missing"),
+        ({**WORLD, "conveyors": [{"name": "belt"}]}, r"conveyors\[0\]: 'size' is missing"),
+        ({**WORLD, "objects": [{k: v for k, v in box("t").items() if k != "conveyor"}]}, r"'conveyor' is missing"),
     ],
 )
 def test_a_bad_parameter_names_the_key(world, message):

@@ -33,6 +33,7 @@ class WorldObject:
     collision: bool
     table: bool  # declared under tables:
     bin: str  # the bin this is a wall of; '' when none
+    conveyor: str = ""  # the conveyor this is the belt of; '' when none
 
 
 @dataclass(frozen=True)
@@ -66,11 +67,25 @@ class Bin:
 
 
 @dataclass(frozen=True)
+class Conveyor:
+    """A conveyor of the world file: its belt is the top face of a static box (also among the objects)."""
+
+    name: str
+    size: tuple[float, float, float]  # x along the conveyor, y across, z thick
+    position: tuple[float, float, float]  # of the box centre
+    orientation: tuple[float, float, float, float]  # x, y, z, w
+    speed: float  # m/s, the world file's (sixdof_sim/set_conveyor changes it; conveyor_states has the current one)
+    direction: tuple[float, float, float]  # unit, world frame: the belt moves objects along it at `speed`
+    friction: float
+
+
+@dataclass(frozen=True)
 class SimWorld:
     name: str
     objects: tuple[WorldObject, ...]
     bins: tuple[Bin, ...]
     cameras: tuple[str, ...]
+    conveyors: tuple[Conveyor, ...] = ()
 
     def non_colliding(self) -> set[str]:
         """Names of the objects declared `collision: false` (visual markers)."""
@@ -84,7 +99,10 @@ class SimWorld:
         objects = tuple(_object(reader, e, f"objects[{i}]") for i, e in enumerate(reader.items(world, "objects")))
         bins = tuple(_bin(reader, e, f"bins[{i}]") for i, e in enumerate(reader.items(world, "bins")))
         cameras = tuple(reader.text(e, f"cameras[{i}]", "name") for i, e in enumerate(reader.items(world, "cameras")))
-        return cls(reader.text(world, "", "name"), objects, bins, cameras)
+        conveyors = tuple(
+            _conveyor(reader, e, f"conveyors[{i}]") for i, e in enumerate(reader.items(world, "conveyors"))
+        )
+        return cls(reader.text(world, "", "name"), objects, bins, cameras, conveyors)
 
 
 def wait_for_world(parameter: str = WORLD_PARAMETER, timeout: float = 60.0) -> SimWorld:
@@ -149,6 +167,19 @@ def _object(reader: _Reader, entry: Mapping, context: str) -> WorldObject:
         collision=reader.flag(entry, context, "collision"),
         table=reader.flag(entry, context, "table"),
         bin=reader.text(entry, context, "bin"),
+        conveyor=reader.text(entry, context, "conveyor"),
+    )
+
+
+def _conveyor(reader: _Reader, entry: Mapping, context: str) -> Conveyor:
+    return Conveyor(
+        name=reader.text(entry, context, "name"),
+        size=reader.numbers(entry, context, "size", 3),
+        position=reader.numbers(entry, context, "position", 3),
+        orientation=reader.numbers(entry, context, "orientation", 4),
+        speed=reader.number(entry, context, "speed"),
+        direction=reader.numbers(entry, context, "direction", 3),
+        friction=reader.number(entry, context, "friction"),
     )
 
 

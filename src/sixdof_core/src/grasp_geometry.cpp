@@ -13,6 +13,9 @@ namespace sixdof_core {
 
 namespace {
 
+// Finger positions sampled between open and closed for the fingers' reach (a 2 % step of the travel).
+constexpr int kTravelSamples = 50;
+
 using Points = std::vector<Eigen::Vector3d>;
 
 // Surface points of a shape in its frame: a box's corners, a cylinder's rims, a sphere's points in 26
@@ -425,9 +428,11 @@ void Analyzer::findTcp() {
 }
 
 void Analyzer::findDepths() {
+  // Over the whole travel, not only its ends: a revolute linkage's fingertips swing out beyond both on their way.
   out_.reach = -std::numeric_limits<double>::infinity();
-  for (const auto* positions : {&out_.open, &out_.closed}) {
-    setPositions(*positions);
+  for (int step = 0; step <= kTravelSamples; ++step) {
+    const double s = static_cast<double>(step) / kTravelSamples;
+    for (const auto& [name, open] : out_.open) state_.setJointPosition(name, open + s * (out_.closed.at(name) - open));
     for (const auto& [finger, points] : fingers_) {
       for (const auto& p : pointsInParent(finger)) {
         out_.reach = std::max(out_.reach, (p - out_.tcp.translation()).dot(out_.approach_direction));

@@ -54,6 +54,9 @@ TEST(GraspGeometry, RevoluteJawsOpenAtTheirUpperLimit) {
   // Half closed (-0.075 rad) the jaws meet an object at their tips: 7.5 cm below their joints 5 cm into the palm.
   EXPECT_NEAR(g.tcp.translation().z(), 0.05 + 0.075 * std::cos(0.075), 1e-9);
   EXPECT_NEAR(g.open_width, 0.08, 1e-9);  // the inner faces at the joints, 4 cm either side
+  // A tip's outer edge (1.2 cm across, 7.5 cm down) reaches furthest at atan(0.012 / 0.075) = 0.16 rad, between
+  // open and closed (sampled in steps of 0.015 rad).
+  EXPECT_NEAR(g.reach, 0.05 + std::hypot(0.012, 0.075) - g.tcp.translation().z(), 1e-5);
 }
 
 TEST(GraspGeometry, AMimicLinkageClosingTowardsItsUpperLimit) {
@@ -70,6 +73,9 @@ TEST(GraspGeometry, AMimicLinkageClosingTowardsItsUpperLimit) {
   EXPECT_TRUE(g.tcp.linear().isIdentity(1e-9));
   EXPECT_NEAR(g.open_width, 2 * (0.0239 + 0.055 * std::sin(0.35)), 1e-9);
   EXPECT_NEAR(g.closed_width, 2 * (0.0239 - 0.055 * std::sin(0.45)), 1e-9);
+  // The pads reach furthest with the knuckles upright (0.35 rad, between open and closed): 3.3 mm beyond the
+  // open state's reach.
+  EXPECT_NEAR(g.reach, 0.06 + 0.055 + 0.04 - g.tcp.translation().z(), 1e-6);
 }
 
 TEST(GraspGeometry, ALinkNamedTcpWinsAndGivenValuesOverrideInference) {

@@ -62,8 +62,8 @@ struct GraspGeometry {
   std::map<std::string, double> closed;
   double open_width = 0.0;    // m between the pads' contact surfaces when open (0 without pads)
   double closed_width = 0.0;  // ... when closed (negative: the pads' geometry overlaps)
-  // How far the finger links reach beyond the TCP along the approach, open or closed (the further): how high above
-  // a table a top-down grasp must hold its TCP.
+  // How far the finger links reach beyond the TCP along the approach, anywhere between open and closed: how high
+  // above a table a top-down grasp must hold its TCP.
   double reach = 0.0;
   // How far an object between the pads may extend from the TCP back towards the palm: the distance along the
   // approach to the nearest shape of the parent link or a link fixed below it whose bounding box (in the TCP frame)

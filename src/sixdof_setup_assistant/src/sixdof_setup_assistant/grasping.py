@@ -106,7 +106,7 @@ def grasping_yaml(plan: Plan, repairs: dict[str, Any], answers: dict[str, Any]) 
             "# inferred from its links' shapes unless the answers give it (docs/your_own_arm.md \"Grippers\").\n"
             "# Positions in metres and radians; tcp, closing and approach directions in the frame of\n"
             f"# tcp.parent_link (the end effector's parent). The TCP is also the URDF link `{TCP_FRAME}`.\n"
-            "# finger_reach: how far the fingers reach beyond the TCP along the approach (open or closed);\n"
+            "# finger_reach: how far the fingers reach beyond the TCP along the approach (open, closed or between);\n"
             "# palm_depth: how far an object between the pads may reach back from the TCP before the palm.\n"
             "# grasp_fix: the simulator's grasp fix (gazebo_grasp_fix's parameters; a gazebo_grasp_fix block in the\n"
             "# URDF wins over it).\n"

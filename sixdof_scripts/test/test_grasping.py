@@ -125,6 +125,25 @@ def test_place_pose_puts_the_held_object_on_target():
     np.testing.assert_allclose(tcp[:3, 2], [0.0, 0.0, -1.0], atol=1e-12)
 
 
+def test_place_pose_stands_an_object_leaning_in_the_hand_upright():
+    # A cube held 12 mm below the tcp (whose z points down), leaning 20 deg about the closing axis (the tcp's y)
+    # and turned 30 deg.
+    upright_in_tcp = matrix_from_rpy(math.pi, 0.0, 0.0)
+    lean = homogeneous([0.0, 0.0, 0.012], upright_in_tcp @ matrix_from_rpy(0.0, math.radians(20.0), math.radians(30.0)))
+    target = np.array([0.40, 0.20, 0.02])
+    tcp = place_tcp_pose(target, lean, clearance=0.005)
+    held = tcp @ lean
+    np.testing.assert_allclose(held[:3, 3], target + [0.0, 0.0, 0.005], atol=1e-12)
+    np.testing.assert_allclose(held[:3, 2], [0.0, 0.0, 1.0], atol=1e-12)
+    # The tool leans by as much, at the wrist yaw preferred at the target.
+    assert math.degrees(math.acos(-tcp[2, 2])) == pytest.approx(20.0)
+    # Lying on a side face, it is stood on that face: the least turn.
+    side = homogeneous([0.0, 0.0, 0.0], upright_in_tcp @ matrix_from_rpy(math.radians(85.0), 0.0, 0.0))
+    tcp = place_tcp_pose(target, side, clearance=0.005)
+    assert abs((tcp @ side)[2, 1]) == pytest.approx(1.0)
+    assert math.degrees(math.acos(-tcp[2, 2])) == pytest.approx(5.0)
+
+
 def test_low_object_grasp_keeps_the_fingertips_above_the_support():
     # Fingertips 15 mm beyond the tcp: a 3 cm cube is gripped 10 mm deep, fingertips 5 mm above the table.
     spec = GraspSpec(tcp_in_tip=SPEC.tcp_in_tip, finger_axis=SPEC.finger_axis, max_width=0.08, reach=0.015)

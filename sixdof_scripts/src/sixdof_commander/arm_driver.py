@@ -310,10 +310,10 @@ class ArmDriver:
         # Leaving the support surface: the object starts in contact with it.
         if not self.move_straight(raised(self._current_tip(), self.approach_distance), "lift", avoid_collisions=False):
             return False
-        # Where the object really sits in the hand (it may have shifted while closing and lifting).
+        # Where and how the object really sits in the hand (it may have shifted or leaned while closing and lifting).
         obj = matrix_from_pose(self.get_object_state(held.name).object.pose)
         tcp = self._current_tip() @ spec.tcp_in_tip
-        self._object_in_tcp = np.linalg.inv(tcp) @ obj[:, 3]
+        self._object_in_tcp = np.linalg.inv(tcp) @ obj
         return True
 
     def _descend_to(self, tip: np.ndarray, what: str, where: str) -> bool:
@@ -335,7 +335,7 @@ class ArmDriver:
         return self.grasp(object_name) and self.lift()
 
     def release_at(self, position: Sequence[float]) -> bool:
-        """'place pose': carry the held object above position [x, y, z] (its centre), descend and open."""
+        """'place pose': carry the held object above position [x, y, z] (its centre), upright, descend and open."""
         _, spec = self._require_gripper("place")
         held = self._require_held("place")
         target = self._check_position(position, held)

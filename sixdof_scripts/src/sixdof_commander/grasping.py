@@ -180,9 +180,29 @@ def raised(pose: np.ndarray, height: float) -> np.ndarray:
     return result
 
 
+def uprighting(rotation: np.ndarray) -> np.ndarray:
+    """The least rotation (world frame) that turns the axis of `rotation` nearest the vertical (any of its six
+    directions: a box may stand on any face) onto +z."""
+    axes = np.hstack([rotation, -rotation])
+    up = axes[:, int(np.argmax(axes[2, :]))]
+    v = np.cross(up, [0.0, 0.0, 1.0])
+    s, c = np.linalg.norm(v), up[2]
+    if s < 1e-12:
+        return np.eye(3)
+    k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+    return np.eye(3) + k + k @ k * ((1.0 - c) / s**2)
+
+
 def place_tcp_pose(target: np.ndarray, object_in_tcp: np.ndarray, clearance: float) -> np.ndarray:
-    """tcp pose that puts the held object's centre at target (xyz) plus clearance above it, tool z down,
-    with the wrist yaw preferred at the target."""
+    """tcp pose that puts the held object's centre at target (xyz) plus clearance above it, tool z down, with the
+    wrist yaw preferred at the target. object_in_tcp: the object's centre (a homogeneous 4-vector) or its pose
+    (4x4) in the tcp frame; given a pose, the tool leans as the object leans in the hand, so that the object comes
+    down upright (MoveIt's place: the tool's pose is the object's place pose times the inverse of its pose in the
+    tool)."""
     rotation = top_down_rotation(preferred_yaw(target[0], target[1]))
-    position = np.asarray(target, dtype=float) + np.array([0.0, 0.0, clearance]) - rotation @ object_in_tcp[:3]
+    held = np.asarray(object_in_tcp, dtype=float)
+    if held.shape == (4, 4):
+        rotation = uprighting(rotation @ held[:3, :3]) @ rotation
+        held = held[:, 3]
+    position = np.asarray(target, dtype=float) + np.array([0.0, 0.0, clearance]) - rotation @ held[:3]
     return homogeneous(position, rotation)

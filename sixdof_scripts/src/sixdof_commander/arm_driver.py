@@ -11,6 +11,7 @@ import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import MoveItErrorCodes
+from shape_msgs.msg import SolidPrimitive
 
 from sixdof_msgs.srv import GetObjectState
 
@@ -60,6 +61,7 @@ def pose_from_matrix(matrix: np.ndarray) -> Pose:
 class _Held:
     name: str
     height: float
+    round: bool  # a sphere: no side to stand on, put down as it is held
 
 
 class ArmDriver:
@@ -300,7 +302,8 @@ class ArmDriver:
         self._wait_for_grasp_fix(object_name, attached=True)
         if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
             return False
-        self._held = _Held(name=object_name, height=geometry.height)
+        round_ = state.object.shape.type == SolidPrimitive.SPHERE
+        self._held = _Held(name=object_name, height=geometry.height, round=round_)
         return True
 
     def lift(self) -> bool:
@@ -310,10 +313,11 @@ class ArmDriver:
         # Leaving the support surface: the object starts in contact with it.
         if not self.move_straight(raised(self._current_tip(), self.approach_distance), "lift", avoid_collisions=False):
             return False
-        # Where and how the object really sits in the hand (it may have shifted or leaned while closing and lifting).
+        # Where and how the object really sits in the hand (it may have shifted or leaned while closing and lifting);
+        # a sphere's lean does not matter (place stands the others upright).
         obj = matrix_from_pose(self.get_object_state(held.name).object.pose)
         tcp = self._current_tip() @ spec.tcp_in_tip
-        self._object_in_tcp = np.linalg.inv(tcp) @ obj
+        self._object_in_tcp = np.linalg.inv(tcp) @ (obj[:, 3] if held.round else obj)
         return True
 
     def _descend_to(self, tip: np.ndarray, what: str, where: str) -> bool:
@@ -335,7 +339,8 @@ class ArmDriver:
         return self.grasp(object_name) and self.lift()
 
     def release_at(self, position: Sequence[float]) -> bool:
-        """'place pose': carry the held object above position [x, y, z] (its centre), upright, descend and open."""
+        """'place pose': carry the held object above position [x, y, z] (its centre), upright (a box or cylinder that
+        leans in the hand), descend and open."""
         _, spec = self._require_gripper("place")
         held = self._require_held("place")
         target = self._check_position(position, held)

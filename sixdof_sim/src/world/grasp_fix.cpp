@@ -96,26 +96,11 @@ void validateGraspFixConfig(const GraspFixConfig& config) {
 
 std::optional<GraspFixConfig> parseGraspFixConfig(const std::string& urdf_xml) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw std::invalid_argument(std::string("URDF is not valid XML: ") + doc.ErrorStr());
-  }
-  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
-  if (robot == nullptr) throw std::invalid_argument("URDF has no <robot> element");
-  return readGraspFixPlugin(*robot);
+  return readGraspFixPlugin(parseUrdfRobot(doc, urdf_xml));
 }
 
 std::optional<GraspFixConfig> readGraspFixPlugin(const tinyxml2::XMLElement& robot) {
-  const tinyxml2::XMLElement* plugin = nullptr;
-  for (const tinyxml2::XMLElement* gazebo = robot.FirstChildElement("gazebo"); gazebo != nullptr;
-       gazebo = gazebo->NextSiblingElement("gazebo")) {
-    for (const tinyxml2::XMLElement* p = gazebo->FirstChildElement("plugin"); p != nullptr;
-         p = p->NextSiblingElement("plugin")) {
-      const char* name = p->Attribute("name");
-      if (name == nullptr || std::string(name) != "gazebo_grasp_fix") continue;
-      if (plugin != nullptr) throw std::invalid_argument("URDF has more than one gazebo_grasp_fix plugin");
-      plugin = p;
-    }
-  }
+  const tinyxml2::XMLElement* plugin = findGazeboPlugin(robot, "gazebo_grasp_fix");
   if (plugin == nullptr) return std::nullopt;
 
   // gazebo-pkgs' newer format puts arm_name/palm_link/gripper_link in <arm>, the older one directly in

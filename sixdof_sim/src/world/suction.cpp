@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gazebo_extensions.h"
 #include "sixdof_sim/grasp_fix.h"
 #include "world_impl.h"
 
@@ -104,20 +105,7 @@ std::optional<SuctionConfig> parseSuctionYaml(const std::string& yaml_text, cons
 
 std::optional<SuctionConfig> parseSuctionPlugin(const std::string& urdf_xml) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw std::invalid_argument(std::string("URDF is not valid XML: ") + doc.ErrorStr());
-  }
-  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
-  if (robot == nullptr) throw std::invalid_argument("URDF has no <robot> element");
-  const tinyxml2::XMLElement* plugin = nullptr;
-  for (const auto* gazebo = robot->FirstChildElement("gazebo"); gazebo; gazebo = gazebo->NextSiblingElement("gazebo")) {
-    for (const auto* p = gazebo->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin")) {
-      const char* name = p->Attribute("name");
-      if (name == nullptr || std::string(name) != "sixdof_suction") continue;
-      if (plugin != nullptr) throw std::invalid_argument("URDF has more than one sixdof_suction plugin");
-      plugin = p;
-    }
-  }
+  const tinyxml2::XMLElement* plugin = findGazeboPlugin(parseUrdfRobot(doc, urdf_xml), "sixdof_suction");
   if (plugin == nullptr) return std::nullopt;
   SuctionConfig config;
   for (const auto* e = plugin->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {

@@ -91,19 +91,39 @@ RobotJoint describeJoint(const sixdof_core::JointModel& joint, const RobotLink& 
 
 }  // namespace
 
+const tinyxml2::XMLElement& parseUrdfRobot(tinyxml2::XMLDocument& doc, const std::string& urdf_xml) {
+  if (doc.Parse(urdf_xml.c_str()) != tinyxml2::XML_SUCCESS) {
+    throw std::invalid_argument(std::string("URDF is not valid XML: ") + doc.ErrorStr());
+  }
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) throw std::invalid_argument("URDF has no <robot> element");
+  return *robot;
+}
+
+const tinyxml2::XMLElement* findGazeboPlugin(const tinyxml2::XMLElement& robot, const std::string& name) {
+  const tinyxml2::XMLElement* plugin = nullptr;
+  for (const tinyxml2::XMLElement* gazebo = robot.FirstChildElement("gazebo"); gazebo != nullptr;
+       gazebo = gazebo->NextSiblingElement("gazebo")) {
+    for (const tinyxml2::XMLElement* p = gazebo->FirstChildElement("plugin"); p != nullptr;
+         p = p->NextSiblingElement("plugin")) {
+      const char* plugin_name = p->Attribute("name");
+      if (plugin_name == nullptr || plugin_name != name) continue;
+      if (plugin != nullptr) throw std::invalid_argument("URDF has more than one " + name + " plugin");
+      plugin = p;
+    }
+  }
+  return plugin;
+}
+
 RobotDescription describeRobot(const sixdof_core::RobotModel& model, const std::string& urdf_xml) {
   RobotDescription description;
   description.name = model.name();
   description.root_link = model.rootLink();
   // The <gazebo> extensions, all from one parse of the text.
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str()) != tinyxml2::XML_SUCCESS) {
-    throw std::invalid_argument(std::string("URDF is not valid XML: ") + doc.ErrorStr());
-  }
-  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
-  if (robot == nullptr) throw std::invalid_argument("URDF has no <robot> element");
-  description.grasp_fix = readGraspFixPlugin(*robot);
-  const std::map<std::string, double> friction = readLinkFriction(*robot);
+  const tinyxml2::XMLElement& robot = parseUrdfRobot(doc, urdf_xml);
+  description.grasp_fix = readGraspFixPlugin(robot);
+  const std::map<std::string, double> friction = readLinkFriction(robot);
   for (const auto& entry : friction) {
     if (model.linkIndex(entry.first) < 0) {
       throw std::invalid_argument("URDF <gazebo reference=\"" + entry.first + "\">: no such link");

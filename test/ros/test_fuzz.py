@@ -36,27 +36,15 @@ from faults import bounded_call, node_pid, wait_for_action
 from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
-    ExecuteTrajectoryAction,
-    ExecuteTrajectoryGoal,
     MotionPlanRequest,
-    MoveGroupAction,
-    MoveGroupGoal,
     MoveItErrorCodes,
     PlanningScene,
     PlanningSceneWorld,
 )
-from moveit_msgs.srv import (
-    ApplyPlanningScene,
-    GetCartesianPath,
-    GetMotionPlan,
-    GetPlanningScene,
-    GetPositionFK,
-    GetPositionIK,
-    GetStateValidity,
-)
 from sixdof_commander import MoveGroup
 from sixdof_commander.error_reports import ErrorReports
 from sixdof_commander.goals import joint_constraints
+from sixdof_commander.move_group_clients import MOVE_GROUP_ACTIONS, MOVE_GROUP_SERVICES
 from std_srvs.srv import Empty
 
 from sixdof_msgs.srv import DeleteObject, GetObjectState, SetObjectState, SpawnObject, StepSimulation
@@ -330,18 +318,20 @@ class Fuzz(unittest.TestCase):
         goal = joint_constraints(group.get_named_target_values("home pose"), 1e-4)
         valid_plan = MotionPlanRequest(group_name=arm, goal_constraints=[goal], allowed_planning_time=1.0)
         valid_plan.start_state.is_diff = True
-        plan = bounded_call(rospy.ServiceProxy("plan_kinematic_path", GetMotionPlan), valid_plan,
-                            timeout=CALL_TIMEOUT, what="a valid plan").motion_plan_response
+        planner = rospy.ServiceProxy("plan_kinematic_path", MOVE_GROUP_SERVICES["plan_kinematic_path"])
+        plan = bounded_call(planner, valid_plan, timeout=CALL_TIMEOUT, what="a valid plan").motion_plan_response
         trajectory = plan.trajectory
         counts = {}
+        valid_fields = {  # per move_group service, the fields of a valid request (the others keep their defaults)
+            "plan_kinematic_path": {"motion_plan_request": valid_plan},
+            "compute_cartesian_path": {"group_name": arm},
+            "compute_fk": {"fk_link_names": self.names[:2]},
+            "check_state_validity": {"group_name": arm},
+        }
         services = [
-            ("plan_kinematic_path", GetMotionPlan, GetMotionPlan._request_class(motion_plan_request=valid_plan)),
-            ("compute_cartesian_path", GetCartesianPath, GetCartesianPath._request_class(group_name=arm)),
-            ("compute_fk", GetPositionFK, GetPositionFK._request_class(fk_link_names=self.names[:2])),
-            ("compute_ik", GetPositionIK, GetPositionIK._request_class()),
-            ("check_state_validity", GetStateValidity, GetStateValidity._request_class(group_name=arm)),
-            ("get_planning_scene", GetPlanningScene, GetPlanningScene._request_class()),
-            ("apply_planning_scene", ApplyPlanningScene, ApplyPlanningScene._request_class()),
+            (name, srv_class, srv_class._request_class(**valid_fields.get(name, {})))
+            for name, srv_class in MOVE_GROUP_SERVICES.items()
+        ] + [
             ("sixdof_sim/spawn_object", SpawnObject, SpawnObject._request_class()),
             ("sixdof_sim/get_object_state", GetObjectState, GetObjectState._request_class()),
             ("sixdof_sim/set_object_state", SetObjectState, SetObjectState._request_class()),
@@ -356,10 +346,11 @@ class Fuzz(unittest.TestCase):
             "arm_controller/query_state", QueryTrajectoryState, QueryTrajectoryState._request_class(), rng, n, True
         )
         self.check_nodes()
+        valid_goals = {"move_group": {"request": valid_plan}, "execute_trajectory": {"trajectory": trajectory}}
         actions = [
-            ("move_group", MoveGroupAction, MoveGroupGoal, MoveGroupGoal(request=valid_plan)),
-            ("execute_trajectory", ExecuteTrajectoryAction, ExecuteTrajectoryGoal,
-             ExecuteTrajectoryGoal(trajectory=trajectory)),
+            (name, action_class, goal_class, goal_class(**valid_goals[name]))
+            for name, (action_class, goal_class) in MOVE_GROUP_ACTIONS.items()
+        ] + [
             ("arm_controller/follow_joint_trajectory", FollowJointTrajectoryAction, FollowJointTrajectoryGoal,
              FollowJointTrajectoryGoal(trajectory=trajectory.joint_trajectory)),
             ("gripper_controller/gripper_cmd", GripperCommandAction, GripperCommandGoal, GripperCommandGoal()),

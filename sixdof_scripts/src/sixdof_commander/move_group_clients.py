@@ -7,6 +7,7 @@ from __future__ import annotations
 import threading
 
 import rospy
+from moveit_msgs import srv as moveit_srv
 from moveit_msgs.msg import (
     ExecuteTrajectoryAction,
     ExecuteTrajectoryGoal,
@@ -16,13 +17,28 @@ from moveit_msgs.msg import (
     MoveItErrorCodes,
     RobotTrajectory,
 )
-from moveit_msgs.srv import GetCartesianPath, GetMotionPlan, GetPositionFK, GetPositionIK
 
 from sixdof_msgs.srv import RetimeTrajectory, RetimeTrajectoryRequest
 
 from ._ros import SERVICE_TIMEOUT, ActionClient, PersistentService, ServerWaiter, call_service, resolve, wait_for_done
 from .error_reports import SUCCESS, CallError, ErrorReports
 
+# move_group's moveit_msgs services and actions under MoveIt's names: {name: service type} and
+# {name: (action type, goal type)}.
+MOVE_GROUP_SERVICES = {
+    "plan_kinematic_path": moveit_srv.GetMotionPlan,
+    "compute_cartesian_path": moveit_srv.GetCartesianPath,
+    "compute_fk": moveit_srv.GetPositionFK,
+    "compute_ik": moveit_srv.GetPositionIK,
+    "check_state_validity": moveit_srv.GetStateValidity,
+    "get_planning_scene": moveit_srv.GetPlanningScene,
+    "apply_planning_scene": moveit_srv.ApplyPlanningScene,
+}
+MOVE_GROUP_ACTIONS = {
+    "move_group": (MoveGroupAction, MoveGroupGoal),
+    "execute_trajectory": (ExecuteTrajectoryAction, ExecuteTrajectoryGoal),
+}
+# The services a MoveGroup waits for.
 SERVICES = (
     "plan_kinematic_path",
     "compute_fk",
@@ -46,18 +62,18 @@ class MoveGroupClients:
         """Waits up to wait_for_servers seconds (0: forever) for the actions and services; SixdofCommanderError
         naming `who` and what is missing otherwise."""
         waiter = ServerWaiter(wait_for_servers)
-        self._move_action = ActionClient(resolve(ns, "move_group"), MoveGroupAction)
-        self._execute_action = ActionClient(resolve(ns, "execute_trajectory"), ExecuteTrajectoryAction)
-        waiter.action(self._move_action, resolve(ns, "move_group"))
-        waiter.action(self._execute_action, resolve(ns, "execute_trajectory"))
+        actions = {name: ActionClient(resolve(ns, name), types[0]) for name, types in MOVE_GROUP_ACTIONS.items()}
+        for name, client in actions.items():
+            waiter.action(client, resolve(ns, name))
+        self._move_action, self._execute_action = actions["move_group"], actions["execute_trajectory"]
         for name in SERVICES:
             waiter.service(resolve(ns, name))
         waiter.check(who)
         self._reports = ErrorReports(ns)
-        self._plan_service = PersistentService(resolve(ns, "plan_kinematic_path"), GetMotionPlan)
-        self._fk_service = PersistentService(resolve(ns, "compute_fk"), GetPositionFK)
-        self._ik_service = PersistentService(resolve(ns, "compute_ik"), GetPositionIK)
-        self._cartesian_service = PersistentService(resolve(ns, "compute_cartesian_path"), GetCartesianPath)
+        self._plan_service, self._fk_service, self._ik_service, self._cartesian_service = (
+            PersistentService(resolve(ns, name), MOVE_GROUP_SERVICES[name])
+            for name in ("plan_kinematic_path", "compute_fk", "compute_ik", "compute_cartesian_path")
+        )
         self._retime_service = PersistentService(resolve(ns, "retime_trajectory"), RetimeTrajectory)
         self.last_error: CallError = SUCCESS
 

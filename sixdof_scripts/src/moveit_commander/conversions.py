@@ -38,27 +38,29 @@ def _quaternion(values: list[float]) -> tuple[float, float, float, float]:
     return quaternion_from_rpy(*values[3:]) if len(values) == 6 else tuple(values[3:])
 
 
-# Pose (position, orientation) and Transform (translation, rotation) hold the same two parts under other names.
-def _to_list(vector: object, quaternion: object) -> list[float]:
+# Pose (position, orientation) and Transform (translation, rotation) hold the same two parts under other names: the
+# converters read and write a message's two fields in their order.
+def pose_to_list(pose_msg: Pose | Transform) -> list[float]:
+    """[x, y, z, qx, qy, qz, qw] of a Pose (or of a Transform: transform_to_list is this function)."""
+    vector, quaternion = (getattr(pose_msg, field) for field in pose_msg.__slots__)
     return [vector.x, vector.y, vector.z, quaternion.x, quaternion.y, quaternion.z, quaternion.w]
 
 
-def _from_list(values: Sequence[float], what: str, vector: object, quaternion: object) -> None:
+transform_to_list = pose_to_list
+
+
+def _from_list(values: Sequence[float], message_type: type, what: str) -> Pose | Transform:
     numbers = _numbers(values, (6, 7), what)
+    message = message_type()
+    vector, quaternion = (getattr(message, field) for field in message.__slots__)
     vector.x, vector.y, vector.z = numbers[:3]
     quaternion.x, quaternion.y, quaternion.z, quaternion.w = _quaternion(numbers)
-
-
-def pose_to_list(pose_msg: Pose) -> list[float]:
-    """[x, y, z, qx, qy, qz, qw] of a Pose."""
-    return _to_list(pose_msg.position, pose_msg.orientation)
+    return message
 
 
 def list_to_pose(pose_list: Sequence[float]) -> Pose:
     """Pose from [x, y, z, roll, pitch, yaw] or [x, y, z, qx, qy, qz, qw]."""
-    pose = Pose()
-    _from_list(pose_list, "list_to_pose", pose.position, pose.orientation)
-    return pose
+    return _from_list(pose_list, Pose, "list_to_pose")
 
 
 def list_to_pose_stamped(pose_list: Sequence[float], target_frame: str) -> PoseStamped:
@@ -69,13 +71,6 @@ def list_to_pose_stamped(pose_list: Sequence[float], target_frame: str) -> PoseS
     return stamped
 
 
-def transform_to_list(trf_msg: Transform) -> list[float]:
-    """[x, y, z, qx, qy, qz, qw] of a Transform."""
-    return _to_list(trf_msg.translation, trf_msg.rotation)
-
-
 def list_to_transform(trf_list: Sequence[float]) -> Transform:
     """Transform from [x, y, z, roll, pitch, yaw] or [x, y, z, qx, qy, qz, qw]."""
-    transform = Transform()
-    _from_list(trf_list, "list_to_transform", transform.translation, transform.rotation)
-    return transform
+    return _from_list(trf_list, Transform, "list_to_transform")

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 from geometry_msgs.msg import Pose, PoseStamped
@@ -168,6 +168,18 @@ def joint_constraints(values: Mapping[str, float], tolerance: float) -> Constrai
         constraint.weight = 1.0
         constraints.joint_constraints.append(constraint)
     return constraints
+
+
+def _checked_setter(attribute: str, check: Callable[[object, str], float], doc: str) -> Callable[..., None]:
+    """A method set_<attribute>(value) that sets the attribute to check(value, the attribute's name in words)."""
+
+    def setter(self: object, value: float) -> None:
+        setattr(self, attribute, check(value, attribute.replace("_", " ")))
+
+    setter.__name__ = f"set_{attribute}"
+    setter.__qualname__ = f"GoalBuilder.set_{attribute}"
+    setter.__doc__ = doc
+    return setter
 
 
 class GoalBuilder:
@@ -333,13 +345,26 @@ class GoalBuilder:
         return self._kind is not None
 
     # Parameters --------------------------------------------------------------------------------------
-    def set_max_velocity_scaling_factor(self, value: float) -> None:
-        """Scale the joints' maximum velocities by value in (0, 1]."""
-        self.max_velocity_scaling_factor = check_scaling_factor(value, "max velocity scaling factor")
-
-    def set_max_acceleration_scaling_factor(self, value: float) -> None:
-        """Scale the joints' maximum accelerations by value in (0, 1]."""
-        self.max_acceleration_scaling_factor = check_scaling_factor(value, "max acceleration scaling factor")
+    # set_<parameter>(value): the parameter becomes check(value), which raises naming the parameter.
+    set_max_velocity_scaling_factor = _checked_setter(
+        "max_velocity_scaling_factor", check_scaling_factor, "Scale the joints' maximum velocities by value in (0, 1]."
+    )
+    set_max_acceleration_scaling_factor = _checked_setter(
+        "max_acceleration_scaling_factor",
+        check_scaling_factor,
+        "Scale the joints' maximum accelerations by value in (0, 1].",
+    )
+    set_goal_joint_tolerance = _checked_setter(
+        "goal_joint_tolerance", check_positive, "Joint goal tolerance, radians or metres (default 1e-4)."
+    )
+    set_goal_position_tolerance = _checked_setter(
+        "goal_position_tolerance", check_positive, "Position goal tolerance, metres (default 1e-4)."
+    )
+    set_goal_orientation_tolerance = _checked_setter(
+        "goal_orientation_tolerance",
+        check_positive,
+        "Orientation goal tolerance about each axis, radians (default 1e-3).",
+    )
 
     def set_planning_time(self, seconds: float) -> None:
         """Time allowed to plan, seconds (> 0; default 5)."""
@@ -351,18 +376,6 @@ class GoalBuilder:
         if isinstance(attempts, bool) or not isinstance(attempts, numbers.Integral) or attempts < 1:
             raise SixdofCommanderError(f"number of planning attempts must be an integer >= 1, got {attempts!r}")
         self.num_planning_attempts = int(attempts)
-
-    def set_goal_joint_tolerance(self, value: float) -> None:
-        """Joint goal tolerance, radians or metres (default 1e-4)."""
-        self.goal_joint_tolerance = check_positive(value, "goal joint tolerance")
-
-    def set_goal_position_tolerance(self, value: float) -> None:
-        """Position goal tolerance, metres (default 1e-4)."""
-        self.goal_position_tolerance = check_positive(value, "goal position tolerance")
-
-    def set_goal_orientation_tolerance(self, value: float) -> None:
-        """Orientation goal tolerance about each axis, radians (default 1e-3)."""
-        self.goal_orientation_tolerance = check_positive(value, "goal orientation tolerance")
 
     def set_workspace(self, values: Sequence[float]) -> None:
         """The workspace box in the planning frame, as MoveIt's set_workspace: [] (all zero),

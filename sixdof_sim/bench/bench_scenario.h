@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sixdof_sim/world.h"
+#include "sixdof_sim/world_file.h"
 
 namespace sixdof_sim::bench {
 
@@ -166,20 +167,7 @@ class Json {
 };
 
 inline void writeShape(Json& json, const Shape& shape) {
-  switch (shape.type) {
-    case ShapeType::kBox:
-      json.key("shape").value("box").key("size").value(shape.box_size);
-      break;
-    case ShapeType::kCylinder:
-      json.key("shape").value("cylinder").key("radius").value(shape.radius).key("length").value(shape.length);
-      break;
-    case ShapeType::kSphere:
-      json.key("shape").value("sphere").key("radius").value(shape.radius);
-      break;
-    case ShapeType::kMesh:
-      json.key("shape").value("mesh").key("mesh").value(shape.mesh_resource).key("scale").value(shape.mesh_scale);
-      break;
-  }
+  forEachShapeField(shape, [&json](const char* key, const auto& value) { json.key(key).value(value); });
 }
 
 // The run as JSON: robot, package roots, physics settings of WorldOptions, ground, objects (the shape's centre and

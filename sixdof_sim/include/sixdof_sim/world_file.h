@@ -20,4 +20,21 @@ WorldSpec parseWorldYaml(const std::string& yaml_text, const std::string& source
 // Reads and parses a world file.
 WorldSpec loadWorldFile(const std::string& path);
 
+// A shape in the world file's keys: field(key, value) for "shape" (box, cylinder, sphere or mesh, a std::string),
+// then its dimensions: a box's "size", a mesh's "scale" (Eigen::Vector3d), a cylinder's "radius" and "length", a
+// sphere's "radius" (double), a mesh's "mesh" (the resource as written, std::string).
+template <class Field>
+void forEachShapeField(const Shape& shape, Field&& field) {
+  const bool box = shape.type == ShapeType::kBox, cylinder = shape.type == ShapeType::kCylinder;
+  const bool sphere = shape.type == ShapeType::kSphere, mesh = shape.type == ShapeType::kMesh;
+  field("shape", std::string(box ? "box" : cylinder ? "cylinder" : sphere ? "sphere" : "mesh"));
+  if (box) field("size", shape.box_size);
+  if (cylinder || sphere) field("radius", shape.radius);
+  if (cylinder) field("length", shape.length);
+  if (mesh) {
+    field("mesh", shape.mesh_resource);
+    field("scale", shape.mesh_scale);
+  }
+}
+
 }  // namespace sixdof_sim

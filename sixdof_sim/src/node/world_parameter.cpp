@@ -2,8 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <string>
+#include <type_traits>
 
 #include "sixdof_sim/conveyor.h"
+#include "sixdof_sim/world_file.h"
 
 namespace sixdof_sim {
 namespace {
@@ -21,26 +23,13 @@ XmlRpc::XmlRpcValue color(const Color& c) { return list(Eigen::Vector4d(c.r, c.g
 XmlRpc::XmlRpcValue object(const ObjectSpec& spec, const std::string& conveyor) {
   XmlRpc::XmlRpcValue out;
   out["name"] = spec.name;
-  switch (spec.shape.type) {
-    case ShapeType::kBox:
-      out["shape"] = "box";
-      out["size"] = list(spec.shape.box_size);
-      break;
-    case ShapeType::kCylinder:
-      out["shape"] = "cylinder";
-      out["radius"] = spec.shape.radius;
-      out["length"] = spec.shape.length;
-      break;
-    case ShapeType::kSphere:
-      out["shape"] = "sphere";
-      out["radius"] = spec.shape.radius;
-      break;
-    case ShapeType::kMesh:
-      out["shape"] = "mesh";
-      out["mesh"] = spec.shape.mesh_resource;
-      out["scale"] = list(spec.shape.mesh_scale);
-      break;
-  }
+  forEachShapeField(spec.shape, [&out](const char* key, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Eigen::Vector3d>) {
+      out[key] = list(value);
+    } else {
+      out[key] = value;
+    }
+  });
   const Eigen::Quaterniond q(spec.pose.linear());
   out["position"] = list(spec.pose.translation());
   out["orientation"] = list(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));

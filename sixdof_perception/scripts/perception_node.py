@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """perception_node: objects on the table from the camera's organized depth cloud, published as
-detected_objects (sixdof_msgs/DetectedObjectArray) and rviz markers, and kept in move_group's planning scene.
+detected_objects (sixdof_msgs/DetectedObjectArray, with each track's velocity) and rviz markers, and kept in
+move_group's planning scene.
 
 It never reads the simulator's object states: what it knows besides the cloud comes from the world the
 simulator loaded, its ~world parameter (the tables' top faces are the supports, the static scenery and the bins'
@@ -18,7 +19,10 @@ Private parameters:
   ~rate                frames processed per wall-clock second at most (5)
   ~hand_padding        m added around the box of each end effector's links (a held object is inside) (0.02)
   ~forget_after        frames a track may be missed before it is removed (5)
-  ~gate                m: the largest move between frames that keeps an object's id (0.04)
+  ~gate                m: the largest distance from a track's predicted position that keeps an object's id (0.04)
+  ~velocity_window     s of a track's detections its velocity is fitted to (1.0; detected_objects' velocity)
+  ~max_speed           m/s an object whose track has no velocity yet may move between frames (0.5 in a world
+                       with conveyors, else 0)
   ~update_scene        keep move_group's planning scene equal to what is seen (true)
   ~position_threshold  m: MOVE a scene object when its detection moved more than this (0.003)
   ~angle_threshold     rad: ... or turned more than this (0.05)
@@ -72,7 +76,12 @@ class PerceptionNode:
             camera = world.cameras[0]
         self.rate = number_param("~rate", 5.0, inclusive=False)
         forget_after = rospy.get_param("~forget_after", 5)
-        self.tracker = Tracker(gate=number_param("~gate", 0.04, inclusive=False), forget_after=forget_after)
+        self.tracker = Tracker(
+            gate=number_param("~gate", 0.04, inclusive=False),
+            forget_after=forget_after,
+            velocity_window=number_param("~velocity_window", 1.0, inclusive=False),
+            max_speed=number_param("~max_speed", 0.5 if world.conveyors else 0.0),
+        )
         self.update_scene = bool(rospy.get_param("~update_scene", True))
         self.params = DetectorParams()
         # Checked before waiting for move_group: a bad value fails at once.
@@ -173,12 +182,13 @@ class PerceptionNode:
             margin = self.params.self_padding + max(det.size) / 2.0 + 0.01
             return any(bool(shape.contains(p, margin)[0]) for shape in robot)
 
-        identified = self.tracker.update(detections, held, hidden, touching)
+        identified = self.tracker.update(detections, held, hidden, touching, cloud.header.stamp.to_sec())
         header = Header(stamp=cloud.header.stamp, frame_id=self.planning_frame)
         array = DetectedObjectArray(header=header)
         markers = MarkerArray(markers=[Marker(action=Marker.DELETEALL, ns="detected_objects")])
         for i, (object_id, det) in enumerate(identified):
-            array.objects.append(detected_object(object_id, det, header))
+            velocity = self.tracker.tracks[object_id].velocity
+            array.objects.append(detected_object(object_id, det, header, velocity))
             description = sim_object(object_id, det)
             marker = object_marker(description, description.pose, self.planning_frame, 2 * i)
             marker.ns = "detected_objects"

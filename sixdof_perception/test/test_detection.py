@@ -212,3 +212,35 @@ def test_tracker_keeps_ids_and_forgets_missing_objects():
     # A new object gets a new id.
     again = dict(tracker.update(detect_objects(*render(LAYOUT[1:2], width=320, height=240), [TABLE])))
     assert list(again) == ["red_sphere_2"]
+
+
+def test_tracker_estimates_the_velocity_of_a_moving_box():
+    """A box rendered 10 frames a second moving at 0.2 m/s along y: its id stays, and after a second of frames the
+    fitted velocity is within 5 % of the true one (the rostest moving_pick does the same on the simulator's belt)."""
+    tracker = Tracker(gate=0.01, forget_after=2, max_speed=0.5)
+    speed, rate = 0.2, 10.0
+    ids, velocity = set(), None
+    for k in range(15):
+        t = k / rate
+        box = ("box", (0.40, -0.15 + speed * t, 0.02), {"yaw": 0.0, "size": (0.04, 0.04, 0.04)}, (0.9, 0.1, 0.1))
+        identified = tracker.update(detect_objects(*render([box], width=320, height=240), [TABLE]), stamp=t)
+        assert len(identified) == 1
+        ids.add(identified[0][0])
+        velocity = tracker.tracks[identified[0][0]].velocity
+        if k < 5:
+            assert velocity is None  # under half the window of frames
+    assert ids == {"red_box_1"}
+    assert velocity is not None
+    assert velocity[1] == pytest.approx(speed, rel=0.05)
+    assert math.hypot(velocity[0], velocity[2]) < 0.05 * speed
+    # Without max_speed the 2 cm jump of the second frame is beyond the 1 cm gate: a new track.
+    still = Tracker(gate=0.01)
+    first = ("box", (0.40, -0.15, 0.02), {"yaw": 0.0, "size": (0.04, 0.04, 0.04)}, (0.9, 0.1, 0.1))
+    moved = ("box", (0.40, -0.13, 0.02), {"yaw": 0.0, "size": (0.04, 0.04, 0.04)}, (0.9, 0.1, 0.1))
+    still.update(detect_objects(*render([first], width=320, height=240), [TABLE]), stamp=0.0)
+    second = still.update(detect_objects(*render([moved], width=320, height=240), [TABLE]), stamp=0.1)
+    assert [i for i, _ in second] == ["red_box_2"]
+    with pytest.raises(ValueError, match="min_samples"):
+        Tracker(min_samples=1)
+    with pytest.raises(ValueError, match="velocity_window"):
+        Tracker(velocity_window=0.0)

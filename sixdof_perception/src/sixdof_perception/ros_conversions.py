@@ -81,7 +81,12 @@ def primitive(detection: Detection) -> SolidPrimitive:
     raise ValueError(f"unknown detected shape '{detection.shape}'")
 
 
-def detected_object(object_id: str, detection: Detection, header: Header) -> DetectedObject:
+def detected_object(
+    object_id: str,
+    detection: Detection,
+    header: Header,
+    velocity: tuple[float, float, float] | None = None,
+) -> DetectedObject:
     msg = DetectedObject()
     msg.id = object_id
     msg.label = detection.label
@@ -92,6 +97,9 @@ def detected_object(object_id: str, detection: Detection, header: Header) -> Det
     msg.pose = PoseStamped(header=header, pose=yaw_pose(detection.position, detection.yaw))
     msg.score = detection.score
     msg.point_count = detection.point_count
+    msg.velocity_valid = velocity is not None
+    if velocity is not None:
+        msg.velocity = Vector3(*velocity)
     return msg
 
 

@@ -1,6 +1,6 @@
 """What the perception node and the sorting script know of the world besides the cloud (never the simulator's
-object states): the tables' top faces (the supports), the static scenery (tables, static boxes, the bins'
-walls), the bins with their colour classes and the cameras, all from the simulator's ~world parameter
+object states): the tables' and conveyor belts' top faces (the supports), the static scenery (tables, belts, static
+boxes, the bins' walls), the bins with their colour classes and the cameras, all from the simulator's ~world parameter
 (sixdof_commander.sim_world)."""
 
 from __future__ import annotations
@@ -18,7 +18,8 @@ __all__ = ["SimWorldError", "StaticBox", "static_boxes", "supports"]
 
 @dataclass(frozen=True)
 class StaticBox:
-    """A static box of the scenery: name, centre, rotation (3x3), full size, and whether it is a table."""
+    """A static box of the scenery: name, centre, rotation (3x3), full size, and whether it is a support (a table or
+    a conveyor's belt)."""
 
     name: str
     centre: tuple[float, float, float]
@@ -30,10 +31,15 @@ class StaticBox:
         return Box(np.asarray(self.centre), self.rotation, np.asarray(self.size) / 2.0)
 
 
+def _is_support(obj: WorldObject) -> bool:
+    """Tables and conveyor belts: objects rest on their top faces."""
+    return obj.table or bool(obj.conveyor)
+
+
 def supports(world: SimWorld) -> list[Support]:
-    """The top faces of the world's tables (yaw-only tables)."""
+    """The top faces of the world's tables and conveyor belts (yaw-only boxes)."""
     out = []
-    for table in (o for o in world.objects if o.table):
+    for table in (o for o in world.objects if _is_support(o)):
         roll, pitch, yaw = rpy_from_quaternion(table.orientation)
         if abs(roll) > 1e-9 or abs(pitch) > 1e-9:
             raise SimWorldError(f"table '{table.name}': only yawed tables can be supports (roll and pitch must be 0)")
@@ -44,11 +50,10 @@ def supports(world: SimWorld) -> list[Support]:
 
 
 def _static_box(obj: WorldObject) -> StaticBox:
-    return StaticBox(obj.name, obj.position, matrix_from_quaternion(obj.orientation), obj.size, obj.table)
+    return StaticBox(obj.name, obj.position, matrix_from_quaternion(obj.orientation), obj.size, _is_support(obj))
 
 
 def static_boxes(world: SimWorld) -> list[StaticBox]:
-    """The static scenery as boxes: tables, and static box objects that collide (bin walls among them)."""
-    return [
-        _static_box(o) for o in world.objects if o.table or (o.static and o.collision and o.shape == "box")
-    ]
+    """The static scenery as boxes: tables and belts (`table` true: supports, never masked), and static box objects
+    that collide (bin walls among them)."""
+    return [_static_box(o) for o in world.objects if _is_support(o) or (o.static and o.collision and o.shape == "box")]

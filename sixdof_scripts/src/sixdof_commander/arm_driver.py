@@ -140,6 +140,11 @@ class ArmDriver:
     rad = staticmethod(rad)
 
     @property
+    def ns(self) -> str:
+        """The namespace of the planner and simulator nodes."""
+        return self._ns
+
+    @property
     def grasp_spec(self) -> GraspSpec:
         """The gripper's grasp geometry (tcp in the tip link, closing axis, opening, finger reach, palm depth) from
         the package's grasping information, for callers that grasp objects located by other means than the
@@ -367,6 +372,18 @@ class ArmDriver:
         """Put the held object down with its centre at [x, y, z] ([x, y]: resting on the table at z = 0)
         and retreat."""
         return self.release_at(position) and self.retreat()
+
+    def hold(self, object_name: str, height: float) -> bool:
+        """Take over an object the gripper holds and has lifted by other means than grasp() and lift() (e.g.
+        moving_pick.pick_moving): attach it in the planning scene and note where it sits in the hand, so that
+        place() can put it down."""
+        spec = self._require_gripper("hold")[1]
+        if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
+            return False
+        self._held = _Held(name=object_name, height=height)
+        obj = matrix_from_pose(self.get_object_state(object_name).object.pose)
+        self._object_in_tcp = np.linalg.inv(self._current_tip() @ spec.tcp_in_tip) @ obj[:, 3]
+        return True
 
     def forget_held(self) -> None:
         """Forget the held object without placing it (it was deleted or lost): the next grasp starts afresh."""

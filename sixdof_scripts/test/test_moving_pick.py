@@ -1,0 +1,50 @@
+"""The follow path of pick_moving: at rest at both ends, over the object (matching its velocity) from the end of the
+ramp to the end of the lift, down on it while the gripper closes; and the timing's checks."""
+
+import numpy as np
+import pytest
+from sixdof_commander import SixdofCommanderError
+from sixdof_commander.moving_pick import Timing, follow_path
+from sixdof_commander.transforms import homogeneous
+
+
+def test_follow_path_meets_the_object_and_matches_its_velocity():
+    velocity = np.array([0.0, 0.2, 0.0])
+    grasp0 = homogeneous([0.45, -0.2, 0.05], np.diag([1.0, -1.0, -1.0]))
+
+    def grasp_at(tau):
+        pose = grasp0.copy()
+        pose[:3, 3] += velocity * tau
+        return pose
+
+    timing = Timing(ramp=0.6, descend=1.0, close=1.5, lift=1.0, step=0.05)
+    times, poses = follow_path(grasp_at, velocity, 0.08, timing)
+    assert len(times) == len(poses) == round(timing.total / timing.step) + 1
+    assert times[0] == 0.0 and times[-1] == pytest.approx(timing.total)
+    xyz = np.array([p[:3, 3] for p in poses])
+    speed = np.diff(xyz, axis=0) / np.diff(times)[:, None]
+    # At rest at both ends: the first and last steps move by less than a step's worth of the ramp's acceleration.
+    assert np.linalg.norm(speed[0]) < 0.2 * timing.step / timing.ramp + 1e-9
+    assert np.linalg.norm(speed[-1]) < 0.2 * timing.step / timing.ramp + 1e-9
+    # The start is the approach height above where the ramp's middle meets the object.
+    assert xyz[0] == pytest.approx(grasp_at(timing.ramp / 2.0)[:3, 3] + [0.0, 0.0, 0.08])
+    end_lift = timing.ramp + timing.descend + timing.close + timing.lift
+    for tau, pose in zip(times, poses, strict=True):
+        if timing.ramp <= tau <= end_lift:
+            # Over the object, at the object's speed.
+            assert pose[:2, 3] == pytest.approx(grasp_at(tau)[:2, 3], abs=1e-9)
+        if timing.grasp_time <= tau <= timing.grasp_time + timing.close:
+            assert pose[:3, 3] == pytest.approx(grasp_at(tau)[:3, 3], abs=1e-9)  # down on it while closing
+        assert pose[:3, :3] == pytest.approx(grasp0[:3, :3])
+    assert xyz[:, 2].max() == pytest.approx(0.05 + 0.08)
+    assert xyz[:, 2].min() == pytest.approx(0.05)
+    # Matching the object's velocity on the final approach and while it closes.
+    during = (times[:-1] >= timing.ramp) & (times[1:] <= end_lift)
+    assert speed[during][:, 1] == pytest.approx(0.2, abs=1e-9)
+
+
+@pytest.mark.parametrize("name", ["ramp", "descend", "close", "lift", "step", "margin"])
+def test_timing_refuses_bad_durations(name):
+    for bad in (0.0, -1.0, float("nan"), True, "1"):
+        with pytest.raises(SixdofCommanderError, match=name):
+            Timing(**{name: bad})

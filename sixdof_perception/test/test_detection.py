@@ -244,3 +244,21 @@ def test_tracker_estimates_the_velocity_of_a_moving_box():
         Tracker(min_samples=1)
     with pytest.raises(ValueError, match="velocity_window"):
         Tracker(velocity_window=0.0)
+
+
+def test_an_object_on_a_belt_stands_on_the_belt():
+    """A cube on a 3 cm belt standing on the table: the belt's top is its support (its height is the cube's), the
+    belt itself is masked like other scenery and is no object."""
+    belt = ("box", (0.45, 0.0, 0.015), {"yaw": math.pi / 2, "size": (1.0, 0.16, 0.03)}, (0.15, 0.15, 0.17))
+    cube = ("box", (0.45, -0.2, 0.05), {"yaw": 0.0, "size": (0.04, 0.04, 0.04)}, (0.9, 0.1, 0.1))
+    points, colors = render([belt, cube], width=320, height=240)
+    top = Support(0.03, (0.45, 0.0), (0.5, 0.08), math.pi / 2)
+    mask = Box(
+        np.array([0.45, 0.0, 0.015]),
+        np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]),
+        np.array([0.5, 0.08, 0.015]),
+    )
+    detections = detect_objects(points, colors, [TABLE, top], [mask])
+    assert [d.label for d in detections] == ["red_box"]
+    assert detections[0].position == pytest.approx((0.45, -0.2, 0.05), abs=0.003)
+    assert detections[0].size[2] == pytest.approx(0.04, abs=0.003)

@@ -129,15 +129,14 @@ def foreground_mask(
     of the support under it (NaN where none)."""
     valid = np.all(np.isfinite(points), axis=-1)
     support_z = np.full(points.shape[:-1], np.nan)
-    mask = np.zeros(points.shape[:-1], dtype=bool)
     for support in supports:
-        height = points[..., 2] - support.z
-        above = valid & (height > params.min_height) & (height < params.max_height)
-        above &= support.contains(points[..., :2])
-        # The highest support under a point holds it (a box on a table on the ground).
-        better = above & ~(support_z > support.z)
+        # The highest support under a point holds it (a box on a belt on a table): a point on or above its top.
+        on = valid & (points[..., 2] - support.z > -params.min_height) & support.contains(points[..., :2])
+        better = on & ~(support_z > support.z)
         support_z[better] = support.z
-        mask |= above
+    held = np.isfinite(support_z)
+    height = np.where(held, points[..., 2] - np.where(held, support_z, 0.0), 0.0)
+    mask = held & (height > params.min_height) & (height < params.max_height)
     if not mask.any():
         return mask, support_z
     candidates = points[mask]

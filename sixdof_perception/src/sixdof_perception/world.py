@@ -1,6 +1,6 @@
 """What the perception node and the sorting script know of the world besides the cloud (never the simulator's
-object states): the tables' and conveyor belts' top faces (the supports), the static scenery (tables, belts, static
-boxes, the bins' walls), the bins with their colour classes and the cameras, all from the simulator's ~world parameter
+object states): the tables' and conveyor belts' top faces (the supports), the static scenery (tables, belts, bin
+walls), the bins with their colour classes and the cameras, all from the simulator's ~world parameter
 (sixdof_commander.sim_world)."""
 
 from __future__ import annotations
@@ -18,8 +18,7 @@ __all__ = ["SimWorldError", "StaticBox", "static_boxes", "supports"]
 
 @dataclass(frozen=True)
 class StaticBox:
-    """A static box of the scenery: name, centre, rotation (3x3), full size, and whether it is a support (a table or
-    a conveyor's belt)."""
+    """A static box of the scenery: name, centre, rotation (3x3), full size, and whether it is a table."""
 
     name: str
     centre: tuple[float, float, float]
@@ -50,10 +49,10 @@ def supports(world: SimWorld) -> list[Support]:
 
 
 def _static_box(obj: WorldObject) -> StaticBox:
-    return StaticBox(obj.name, obj.position, matrix_from_quaternion(obj.orientation), obj.size, _is_support(obj))
+    return StaticBox(obj.name, obj.position, matrix_from_quaternion(obj.orientation), obj.size, obj.table)
 
 
 def static_boxes(world: SimWorld) -> list[StaticBox]:
-    """The static scenery as boxes: tables and belts (`table` true: supports, never masked), and static box objects
-    that collide (bin walls among them)."""
-    return [_static_box(o) for o in world.objects if _is_support(o) or (o.static and o.collision and o.shape == "box")]
+    """The static scenery as boxes: tables, and static box objects that collide (conveyor belts and bin walls among
+    them: masked out of the cloud; a belt's top face is also a support)."""
+    return [_static_box(o) for o in world.objects if o.table or (o.static and o.collision and o.shape == "box")]

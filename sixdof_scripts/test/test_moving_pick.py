@@ -17,7 +17,7 @@ def test_follow_path_meets_the_object_and_matches_its_velocity():
         pose[:3, 3] += velocity * tau
         return pose
 
-    timing = Timing(ramp=0.6, descend=1.0, close=1.5, lift=1.0, step=0.05)
+    timing = Timing(ramp=0.6, descend=1.0, close=1.5, lift=1.0, step=0.05, margin=0.5)
     times, poses = follow_path(grasp_at, velocity, 0.08, timing)
     assert len(times) == len(poses) == round(timing.total / timing.step) + 1
     assert times[0] == 0.0 and times[-1] == pytest.approx(timing.total)

@@ -2,16 +2,19 @@
 
 The object moves at a constant velocity (the simulator's twist of it, or the perception tracker's estimate in a
 DetectedObject). pick_moving opens the gripper, plans the arm to a pre-grasp point `approach_distance` above where the
-object will be at a chosen start time, far enough ahead that the arm is there `Timing.margin` seconds early, and
-then runs one Cartesian path timed to the object: the tool accelerates from rest to the object's velocity while the
+object will be at the follow path's start: chosen so that the gripper closes where the object passes nearest the
+arm's base (or as soon as the arm can be there, `Timing.margin` seconds early, once the object has passed), and then
+runs one Cartesian path timed to the object: the tool accelerates from rest to the object's velocity while the
 object catches up with it (`ramp`), descends onto it moving with it (`descend`), stays on it while the gripper closes
 (`close`), lifts straight up still moving with it (`lift`) and comes to rest (`ramp`). Every point of that path is
-one inverse-kinematics point of move_group's compute_cartesian_path, timed here to the object's motion.
+one inverse-kinematics solution of move_group's compute_ik (seeded with the previous one), timed here to the
+object's motion.
 
 The gripper is the package's (ArmDriver's: its grasping information through move_group), closed with
 ArmDriver.gripper_close; whether the object is held is the simulator's `attached_to` of it.
 
-Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it),
+Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
+out of the arm's reach after passing its base),
 NOT_GRASPED (the gripper closed without holding it: no grasp, or no seal for a suction cup), DROPPED (held, then
 lost during the lift), UNREACHABLE (no grasp of the object's shape, or no arm pose for the approach or the follow
 path), FAILED (an execution or gripper command failed). Misuse raises SixdofCommanderError.
@@ -26,14 +29,15 @@ from dataclasses import dataclass
 
 import numpy as np
 import rospy
-from moveit_msgs.msg import MoveItErrorCodes, RobotState, RobotTrajectory
-from moveit_msgs.srv import GetCartesianPath, GetCartesianPathRequest
+from moveit_msgs.msg import MoveItErrorCodes, RobotTrajectory
+from moveit_msgs.srv import GetPositionIK, GetPositionIKRequest
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
+from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import DetectedObject
 
-from ._ros import SERVICE_TIMEOUT, call_service, resolve
+from ._ros import SERVICE_TIMEOUT, PersistentService, call_service, resolve
 from .arm_driver import FAILED, UNREACHABLE, ArmDriver, pose_from_matrix
 from .exceptions import SixdofCommanderError
 from .grasping import grasp_tcp_pose, object_geometry, raised, tip_pose
@@ -42,6 +46,8 @@ from .transforms import matrix_from_pose
 MISSED = "missed"
 NOT_GRASPED = "not grasped"
 DROPPED = "dropped"
+# rad: the largest change of a joint between two follow-path points (50 ms apart) that is not a jump to another branch.
+MAX_JUMP = 0.3
 __all__ = [
     "DROPPED",
     "FAILED",
@@ -100,12 +106,12 @@ class MovingObject:
 class Timing:
     """Durations (s) of the follow path's phases, its point spacing, and how early the arm waits at the pre-grasp."""
 
-    ramp: float = 0.6
-    descend: float = 1.0
-    close: float = 1.5
-    lift: float = 1.0
+    ramp: float = 0.4
+    descend: float = 0.6
+    close: float = 1.0
+    lift: float = 0.6
     step: float = 0.05
-    margin: float = 0.5
+    margin: float = 0.3
 
     def __post_init__(self) -> None:
         for name in ("ramp", "descend", "close", "lift", "step", "margin"):
@@ -198,6 +204,7 @@ class _MovingPick:
     def __init__(self, driver: ArmDriver, target: MovingObject, timing: Timing) -> None:
         self.driver, self.target, self.timing = driver, target, timing
         self.arm = driver.arm
+        self.ik_service = PersistentService(resolve(driver.ns, "compute_ik"), GetPositionIK)
         geometry = object_geometry(target.pose, target.shape)
         self.height = geometry.height
         try:
@@ -212,53 +219,76 @@ class _MovingPick:
         pose[:3, 3] += self.target.velocity * (t - self.target.stamp)
         return pose
 
+    def nearest_start(self) -> float:
+        """The follow start that puts the middle of the gripper's closing where the object passes nearest the planning
+        frame's origin (the arm's base), in the horizontal plane; -inf for an object at rest."""
+        p, v = self.target.pose[:2, 3], self.target.velocity[:2]
+        if float(v @ v) < 1e-12:
+            return -math.inf
+        nearest = self.target.stamp - float(p @ v) / float(v @ v)
+        return nearest - self.timing.grasp_time - self.timing.close / 2.0
+
     def plan_approach(self, lead: float) -> tuple[RobotTrajectory, float]:
-        """(approach plan, follow start time): the start is `lead` s ahead, later when the approach takes longer
-        (three tries)."""
+        """(approach plan, follow start time). The start puts the grasp where the object passes nearest the arm's
+        base, or `lead` s from now if that is sooner; later when the approach takes longer (three tries)."""
+        nearest = self.nearest_start()
+        start = max(rospy.get_time() + lead, nearest)
         for _ in range(3):
-            start = rospy.get_time() + lead
             pre = raised(self.grasp_at(start + self.timing.ramp / 2.0), self.driver.approach_distance)
             self.arm.set_start_state_to_current_state()
             self.arm.set_pose_target(pose_from_matrix(pre))
             ok, plan, _, error = self.arm.plan()
             if not ok:
                 where = f"({pre[0, 3]:.3f}, {pre[1, 3]:.3f}, {pre[2, 3]:.3f})"
-                if error.val in (MoveItErrorCodes.NO_IK_SOLUTION, MoveItErrorCodes.GOAL_IN_COLLISION):
-                    raise _Failed(UNREACHABLE, f"no arm pose at the pre-grasp point {where}: {self.arm.last_error}")
-                raise _Failed(FAILED, f"planning to the pre-grasp point {where} failed: {self.arm.last_error}")
+                if error.val not in (MoveItErrorCodes.NO_IK_SOLUTION, MoveItErrorCodes.GOAL_IN_COLLISION):
+                    raise _Failed(FAILED, f"planning to the pre-grasp point {where} failed: {self.arm.last_error}")
+                # Out of reach after the object passed the arm's base: it was missed.
+                kind = MISSED if start > nearest + 1e-9 else UNREACHABLE
+                raise _Failed(kind, f"no arm pose at the pre-grasp point {where}: {self.arm.last_error}")
             duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
             late = rospy.get_time() + duration + self.timing.margin - start
             if late <= 0.0:
                 return plan, start
-            lead += late + 0.5
+            start += late + 0.2
         raise _Failed(MISSED, "the arm cannot get ahead of the object (three approach plans were too slow)")
 
     def follow(self, plan: RobotTrajectory, start: float) -> RobotTrajectory:
-        """The follow path from the approach's last state, timed to the object."""
+        """The follow path from the approach's last state, timed to the object: one IK solution (move_group's
+        compute_ik, seeded with the previous point's) per point."""
         times, poses = follow_path(
             lambda tau: self.grasp_at(start + tau), self.target.velocity, self.driver.approach_distance, self.timing
         )
-        request = GetCartesianPathRequest()
-        request.header.frame_id = self.arm.get_planning_frame()
         last = plan.joint_trajectory
-        joints = JointState(name=last.joint_names, position=last.points[-1].positions)
-        request.start_state = RobotState(joint_state=joints, is_diff=True)
-        request.group_name = self.arm.get_name()
-        request.link_name = self.arm.get_end_effector_link()
-        request.waypoints = [pose_from_matrix(p) for p in poses[1:]]
-        request.max_step = 1.0  # longer than any step between the waypoints: one IK point per waypoint
-        request.jump_threshold = 0.0
-        request.avoid_collisions = False  # the tool meets the object, and the belt under it
-        service = rospy.ServiceProxy(resolve(self.driver.ns, "compute_cartesian_path"), GetCartesianPath)
-        try:
-            response = call_service(service, request, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"compute_cartesian_path failed: {err}") from err
-        solution = response.solution
-        if response.fraction < 1.0 - 1e-9 or len(solution.joint_trajectory.points) != len(times):
-            said = f" ({response.error_code.val})" if response.error_code.val != MoveItErrorCodes.SUCCESS else ""
-            raise _Failed(UNREACHABLE, f"the follow path is {max(response.fraction, 0.0) * 100:.0f}% feasible{said}")
-        return timed_trajectory(solution, times)
+        trajectory = RobotTrajectory()
+        trajectory.joint_trajectory.joint_names = list(last.joint_names)
+        positions = [np.asarray(last.points[-1].positions, dtype=float)]
+        request = GetPositionIKRequest()
+        request.ik_request.group_name = self.arm.get_name()
+        request.ik_request.ik_link_name = self.arm.get_end_effector_link()
+        request.ik_request.avoid_collisions = False  # the tool meets the object, and the belt under it
+        request.ik_request.robot_state.is_diff = True
+        request.ik_request.pose_stamped.header.frame_id = self.arm.get_planning_frame()
+        for k, pose in enumerate(poses[1:], start=1):
+            request.ik_request.robot_state.joint_state = JointState(name=last.joint_names, position=positions[-1])
+            request.ik_request.pose_stamped.pose = pose_from_matrix(pose)
+            try:
+                response = call_service(self.ik_service, request, SERVICE_TIMEOUT)
+            except (rospy.ServiceException, rospy.ROSException) as err:
+                raise SixdofCommanderError(f"compute_ik failed: {err}") from err
+            where = f"point {k}/{len(poses) - 1} ({pose[0, 3]:.3f}, {pose[1, 3]:.3f}, {pose[2, 3]:.3f})"
+            if response.error_code.val != MoveItErrorCodes.SUCCESS:
+                raise _Failed(UNREACHABLE, f"no IK solution for the follow path's {where}")
+            solution = dict(
+                zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True)
+            )
+            q = np.array([solution[name] for name in last.joint_names])
+            jump = float(np.max(np.abs(q - positions[-1])))
+            if jump > MAX_JUMP:
+                raise _Failed(UNREACHABLE, f"the follow path's IK jumps {jump:.2f} rad at its {where}")
+            positions.append(q)
+        for q in positions:
+            trajectory.joint_trajectory.points.append(JointTrajectoryPoint(positions=list(q)))
+        return timed_trajectory(trajectory, times)
 
     def attached(self) -> bool:
         return bool(self.driver.get_object_state(self.target.name).attached_to)
@@ -301,11 +331,12 @@ class _MovingPick:
 
 
 def pick_moving(
-    driver: ArmDriver, target: str | MovingObject | DetectedObject, timing: Timing | None = None, lead: float = 3.0
+    driver: ArmDriver, target: str | MovingObject | DetectedObject, timing: Timing | None = None, lead: float = 1.5
 ) -> MovingPickResult:
     """Grasp a moving object on the fly and lift it (module docstring). target: a simulator object's name (its
-    pose and velocity from the simulator), a MovingObject, or a DetectedObject with a tracked velocity. lead: s ahead
-    of now the follow path starts at first (later when the approach needs longer). On success the driver holds the
+    pose and velocity from the simulator), a MovingObject, or a DetectedObject with a tracked velocity. The follow path
+    starts so that the gripper closes where the object passes nearest the arm's base, or at the earliest `lead` s
+    from now (later when the approach needs longer). On success the driver holds the
     object (ArmDriver.place puts it down)."""
     if not isinstance(driver, ArmDriver):
         raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")

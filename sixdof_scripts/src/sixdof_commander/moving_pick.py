@@ -1,23 +1,23 @@
 """Picking a moving object (one a conveyor carries): `pick_moving(driver, object)`.
 
-The object moves at a constant velocity (the simulator's twist of it, or the perception tracker's estimate in a
-DetectedObject). pick_moving opens the gripper, plans the arm to a pre-grasp point `approach_distance` above where the
-object will be at the follow path's start: chosen so that the gripper closes where the object passes nearest the
-arm's base (or as soon as the arm can be there, `Timing.margin` seconds early, once the object has passed), and then
-runs one Cartesian path timed to the object: the tool accelerates from rest to the object's velocity while the
-object catches up with it (`ramp`), descends onto it moving with it (`descend`), stays on it while the gripper closes
-(`close`), lifts straight up still moving with it (`lift`) and comes to rest (`ramp`). Every point of that path is
-one inverse-kinematics solution of move_group's compute_ik (seeded with the previous one), timed here to the
-object's motion.
+The object moves at a constant horizontal velocity (the simulator's twist of it, or the perception tracker's estimate
+in a DetectedObject; the vertical part is not used). pick_moving opens the gripper, plans the arm to a pre-grasp point
+`approach_distance` above where the object will be at the follow path's start: chosen so that the gripper closes
+where the object passes nearest the arm's base (or as soon as the arm can be there, `Timing.margin` seconds early,
+once the object has passed), and then runs one Cartesian path timed to the object: the tool accelerates from rest to
+the object's velocity while the object catches up with it (`ramp`), descends onto it moving with it (`descend`),
+stays on it while the gripper closes (`close`), lifts straight up still moving with it (`lift`) and comes to rest
+(`ramp`). Every point of that path is one inverse-kinematics solution of move_group's compute_ik (seeded with the
+previous one), timed here to the object's motion.
 
 The gripper is the package's (ArmDriver's: its grasping information through move_group), closed with
 ArmDriver.gripper_close; whether the object is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
-out of the arm's reach after passing its base),
-NOT_GRASPED (the gripper closed without holding it: no grasp, or no seal for a suction cup), DROPPED (held, then
-lost during the lift), UNREACHABLE (no grasp of the object's shape, or no arm pose for the approach or the follow
-path), FAILED (an execution or gripper command failed). Misuse raises SixdofCommanderError.
+is out of the arm's reach after passing its base), NOT_GRASPED (the gripper closed without holding it: no grasp, or
+no seal for a suction cup), DROPPED (held, then lost during the lift), UNREACHABLE (no grasp of the object's shape,
+or no arm pose for the approach or the follow path), FAILED (an execution or gripper command failed). Misuse
+raises SixdofCommanderError.
 """
 
 from __future__ import annotations
@@ -204,6 +204,9 @@ class _MovingPick:
     def __init__(self, driver: ArmDriver, target: MovingObject, timing: Timing) -> None:
         self.driver, self.target, self.timing = driver, target, timing
         self.arm = driver.arm
+        # A conveyor moves objects horizontally: the vertical part of a velocity (a fresh object settling, bouncing)
+        # would be extrapolated into the belt.
+        self.velocity = np.array([target.velocity[0], target.velocity[1], 0.0])
         self.ik_service = PersistentService(resolve(driver.ns, "compute_ik"), GetPositionIK)
         geometry = object_geometry(target.pose, target.shape)
         self.height = geometry.height
@@ -216,13 +219,13 @@ class _MovingPick:
     def grasp_at(self, t: float) -> np.ndarray:
         """The tip's grasp pose over the object at ROS time t."""
         pose = self.grasp0.copy()
-        pose[:3, 3] += self.target.velocity * (t - self.target.stamp)
+        pose[:3, 3] += self.velocity * (t - self.target.stamp)
         return pose
 
     def nearest_start(self) -> float:
         """The follow start that puts the middle of the gripper's closing where the object passes nearest the planning
         frame's origin (the arm's base), in the horizontal plane; -inf for an object at rest."""
-        p, v = self.target.pose[:2, 3], self.target.velocity[:2]
+        p, v = self.target.pose[:2, 3], self.velocity[:2]
         if float(v @ v) < 1e-12:
             return -math.inf
         nearest = self.target.stamp - float(p @ v) / float(v @ v)
@@ -256,7 +259,7 @@ class _MovingPick:
         """The follow path from the approach's last state, timed to the object: one IK solution (move_group's
         compute_ik, seeded with the previous point's) per point."""
         times, poses = follow_path(
-            lambda tau: self.grasp_at(start + tau), self.target.velocity, self.driver.approach_distance, self.timing
+            lambda tau: self.grasp_at(start + tau), self.velocity, self.driver.approach_distance, self.timing
         )
         last = plan.joint_trajectory
         trajectory = RobotTrajectory()

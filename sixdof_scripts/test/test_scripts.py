@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1]
-SCRIPTS = ["scripts/pick_place.py", "scripts/move_to_pose.py", "scripts/move_to_named.py"]
+SCRIPTS = ["scripts/pick_place.py", "scripts/move_to_pose.py", "scripts/move_to_named.py", "scripts/pack_objects.py"]
 
 
 def run(script, *args):
@@ -32,6 +32,11 @@ def test_help(script):
         ("scripts/move_to_pose.py", ["0.3", "0", "0.3"], "the following arguments are required"),
         ("scripts/move_to_pose.py", ["0.3", "0", "0.3", "a", "0", "0"], "invalid float value: 'a'"),
         ("scripts/move_to_named.py", [], "give a named state or --list"),
+        ("scripts/pack_objects.py", [], "the following arguments are required: --box"),
+        ("scripts/pack_objects.py", ["--box", "b", "--pattern", "2by2"], "--pattern must be ROWSxCOLUMNS"),
+        ("scripts/pack_objects.py", ["--box", "b", "--pattern", "0x2"], "--pattern must be ROWSxCOLUMNS"),
+        ("scripts/pack_objects.py", ["--box", "b", "--timeout", "0"], "--timeout must be > 0"),
+        ("scripts/pack_objects.py", ["--box", "b", "--velocity-scaling", "2"], "--velocity-scaling must be in (0, 1]"),
     ],
 )
 def test_bad_arguments_exit_2(script, args, message):

@@ -318,12 +318,15 @@ class ArmDriver:
         # Leaving the support surface: the object starts in contact with it.
         if not self.move_straight(raised(self._current_tip(), self.approach_distance), "lift", avoid_collisions=False):
             return False
-        # Where and how the object really sits in the hand (it may have shifted or leaned while closing and lifting);
-        # a sphere's lean does not matter (place stands the others upright).
+        self._note_in_hand(held, spec)
+        return True
+
+    def _note_in_hand(self, held: _Held, spec: GraspSpec) -> None:
+        """Where and how the object really sits in the hand (it may have shifted or leaned while closing and
+        lifting); a sphere's lean does not matter (place stands the others upright)."""
         obj = matrix_from_pose(self.get_object_state(held.name).object.pose)
         tcp = self._current_tip() @ spec.tcp_in_tip
         self._object_in_tcp = np.linalg.inv(tcp) @ (obj[:, 3] if held.round else obj)
-        return True
 
     def _descend_to(self, tip: np.ndarray, what: str, where: str) -> bool:
         """Move the tip link the approach distance above `tip`, then straight down to it. Into contact: the
@@ -373,16 +376,15 @@ class ArmDriver:
         and retreat."""
         return self.release_at(position) and self.retreat()
 
-    def hold(self, object_name: str, height: float) -> bool:
+    def hold(self, object_name: str, height: float, round_: bool = False) -> bool:
         """Take over an object the gripper holds and has lifted by other means than grasp() and lift() (e.g.
-        moving_pick.pick_moving): attach it in the planning scene and note where it sits in the hand, so that
-        place() can put it down."""
+        moving_pick.pick_moving; round_: a sphere): attach it in the planning scene and note where it sits in the
+        hand, so that place() can put it down."""
         spec = self._require_gripper("hold")[1]
         if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
             return False
-        self._held = _Held(name=object_name, height=height)
-        obj = matrix_from_pose(self.get_object_state(object_name).object.pose)
-        self._object_in_tcp = np.linalg.inv(self._current_tip() @ spec.tcp_in_tip) @ obj[:, 3]
+        self._held = _Held(name=object_name, height=height, round=round_)
+        self._note_in_hand(self._held, spec)
         return True
 
     def forget_held(self) -> None:

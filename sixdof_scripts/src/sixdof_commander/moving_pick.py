@@ -328,7 +328,8 @@ class _MovingPick:
             raise _Failed(NOT_GRASPED, why)
         if not self.attached():
             raise _Failed(DROPPED, "held after closing, lost during the lift")
-        if not self.driver.hold(self.target.name, self.height):
+        round_ = self.target.shape.type == SolidPrimitive.SPHERE
+        if not self.driver.hold(self.target.name, self.height, round_):
             raise _Failed(FAILED, self.driver.last_failure)
         return grasp_time
 

@@ -102,29 +102,41 @@ bool pathValid(const ob::SpaceInformationPtr& si, const og::PathGeometric& path)
   return true;
 }
 
-// OMPL's simplifier (vertex reduction, shortcutting, better goals, B-spline smoothing) spends most of its
-// checks validating shortcuts that later shortcuts replace. It therefore runs first on a copy of the path
-// whose motions are checked simplify_coarse_factor times coarser, and the result is then checked at the
-// planning resolution; if any segment fails there, the simplifier runs again at the planning resolution.
-// The returned path is thus always valid at the planning resolution.
-og::PathGeometric simplifyPath(Session* session, const ob::GoalPtr& goal, const og::PathGeometric& raw,
-                               double time_limit, bool* fell_back) {
+// The simplification's bounds: rounds of vertex reduction, then of shortcutting, each stopping early at a round
+// that changes nothing.
+constexpr int kReduceRounds = 3;
+constexpr int kShortcutRounds = 5;
+
+// A bounded sequence of OMPL PathSimplifier's steps (in place of its simplify(), which repeats rounds while they
+// improve and time remains, and adds better-goal search, B-spline smoothing and a repair pass): vertex reduction
+// and then shortcutting, both trying connections anywhere along the path (range ratio 1), with close vertices
+// collapsed in between.
+void simplifySteps(const ob::SpaceInformationPtr& si, og::PathGeometric* path) {
+  og::PathSimplifier simplifier(si);
+  for (int r = 0; r < kReduceRounds && simplifier.reduceVertices(*path, 0, 0, 1.0); ++r) {
+  }
+  simplifier.collapseCloseVertices(*path);
+  for (int r = 0; r < kShortcutRounds && simplifier.shortcutPath(*path, 0, 0, 1.0); ++r) {
+  }
+}
+
+// The simplifier runs first on a copy of the path whose motions are checked simplify_coarse_factor times
+// coarser, and the result is then checked at the planning resolution; if any segment fails there, it runs
+// again at the planning resolution. The returned path is thus always valid at the planning resolution.
+og::PathGeometric simplifyPath(Session* session, const og::PathGeometric& raw, bool* fell_back) {
   const ob::SpaceInformationPtr& fine = session->si;
   *fell_back = false;
   if (session->coarse_si) {
     og::PathGeometric coarse(session->coarse_si);
     for (std::size_t k = 0; k < raw.getStateCount(); ++k) coarse.append(raw.getState(k));
-    og::PathSimplifier simplifier(session->coarse_si, goal);
-    simplifier.simplify(coarse, ob::timedPlannerTerminationCondition(time_limit));
+    simplifySteps(session->coarse_si, &coarse);
     og::PathGeometric out(fine);
     for (std::size_t k = 0; k < coarse.getStateCount(); ++k) out.append(coarse.getState(k));
     if (pathValid(fine, out)) return out;
     *fell_back = true;
   }
   og::PathGeometric out = raw;
-  // The simplifier's loops are bounded; the time limit only guards against pathological validity checkers.
-  og::PathSimplifier simplifier(fine, goal);
-  simplifier.simplify(out, ob::timedPlannerTerminationCondition(time_limit));
+  simplifySteps(fine, &out);
   return out;
 }
 
@@ -159,7 +171,7 @@ Attempt runAttempt(const PlanningProblem& p, Session* session, const PlannerFact
   og::PathGeometric path = *pdef->getSolutionPath()->as<og::PathGeometric>();
   if (p.options.simplify) {
     const Clock::time_point t0 = Clock::now();
-    path = simplifyPath(session, goal, path, p.options.allowed_planning_time, &attempt.simplify_fallback);
+    path = simplifyPath(session, path, &attempt.simplify_fallback);
     attempt.simplify_time = secondsSince(t0);
   }
   for (std::size_t k = 0; k < path.getStateCount(); ++k) {

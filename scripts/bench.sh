@@ -5,7 +5,7 @@
 # (scripts/plot_scaling.py).
 #   scripts/bench.sh                     all benchmarks
 #   scripts/bench.sh ik_bench bindings   only the named ones ("bindings": the bindings' section alone); their sections
-#                                        are replaced, every other section of bench/results.md stays
+#                                        are replaced where they stand, every other section of bench/results.md stays
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
@@ -78,6 +78,9 @@ if [ $bindings = 1 ]; then
   python3 scripts/results_section.py "$out" "$out.bindings"
   rm -f "$out.bindings"
 fi
-# The scaling curves (bench/scaling_*.png) and their section, from the tables just written.
-python3 scripts/plot_scaling.py "$out"
+# The scaling curves (bench/scaling_*.png) and their section, from the tables just written: after a full run, or
+# a named one that wrote one of their tables (scaling_bench, occupancy_bench); otherwise curves and section stay.
+if [ $# -eq 0 ] || printf '%s\n' "${benches[@]}" | grep -qE '/(scaling|occupancy)_bench$'; then
+  python3 scripts/plot_scaling.py "$out"
+fi
 echo "wrote $out"

@@ -4,8 +4,9 @@
     scripts/results_section.py bench/results.md report.md
 
 The report's first line is the section header (e.g. "## pick (scripts/bench_pick.sh)"); the section it
-replaces runs from that header to the next "## " header. Sections written by a script name it in their header,
-which is how scripts/bench.sh knows to keep them when it rewrites the executables' sections."""
+replaces runs from that header to the next "## " header, and the report takes its place (a new section goes at
+the end). Sections written by a script name it in their header, which is how scripts/bench.sh knows to keep them
+when it rewrites the executables' sections."""
 
 import sys
 from pathlib import Path
@@ -15,14 +16,21 @@ def replace_section(text: str, report: str) -> str:
     header = report.splitlines()[0].rstrip()
     if not header.startswith("## "):
         raise ValueError(f"the report must start with a '## ' header, got {header!r}")
-    kept: list[str] = []
-    skipping = False
+    # The text as sections: the part before the first "## " header, then one block per header.
+    blocks: list[list[str]] = [[]]
     for line in text.splitlines():
         if line.startswith("## "):
-            skipping = line.rstrip() == header
-        if not skipping:
-            kept.append(line)
-    return "\n".join(kept).rstrip("\n") + "\n\n" + report.rstrip("\n") + "\n"
+            blocks.append([])
+        blocks[-1].append(line)
+    parts = ["\n".join(block).strip("\n") for block in blocks]
+    new = report.strip("\n")
+    at = [k for k, block in enumerate(blocks) if k > 0 and block[0].rstrip() == header]
+    if at:
+        parts[at[0]] = new
+        parts = [part for k, part in enumerate(parts) if k not in at[1:]]
+    else:
+        parts.append(new)
+    return "\n\n".join(part for part in parts if part) + "\n"
 
 
 def main() -> int:

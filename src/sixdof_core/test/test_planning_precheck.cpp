@@ -136,42 +136,55 @@ TEST_F(PrecheckPlanningTest, ZeroStepProvesFreeStatesOnly) {
   EXPECT_GT(proven, free / 2) << proven << " of " << free << " free states proven";
 }
 
-// Seeded random problems (clutter, start, pose or joint goal): every path returned with the pre-check is free under
-// FCL at 0.001 rad, and planning without the pre-check returns the same path (it changes no motion's answer).
-TEST_F(PrecheckPlanningTest, RandomProblemsGiveFclValidPathsAndTheSamePathsAsWithoutIt) {
-  std::mt19937 rng(2024);
-  int solved = 0, compared = 0;
-  for (int problem = 0; problem < 40; ++problem) {
-    const TableTop t = tableTop(clutter(&rng, 6 + problem % 10));
-    RobotState start(t.model);
+// A seeded random problem: the table top with 6-15 boxes of clutter, a free start, and a pose goal (even problems)
+// or a joint goal (odd ones), planned at 0.005 rad with the pre-check.
+struct RandomProblem {
+  RandomProblem(int problem, std::mt19937* rng)
+      : index(problem), t(tableTop(clutter(rng, 6 + problem % 10))), start(t.model) {
     const JointValidityFn valid = t.context->validityFn(start);
-    Eigen::VectorXd q = randomArm(*t.context, &rng);
-    while (!valid(q)) q = randomArm(*t.context, &rng);
+    Eigen::VectorXd q = randomArm(*t.context, rng);
+    while (!valid(q)) q = randomArm(*t.context, rng);
     start.setGroupPositions("arm", q);
-
-    PlanningOptions options;
     options.seed = static_cast<std::uint32_t>(problem + 1);
     options.allowed_planning_time = 0.5;  // bounds the unsolvable ones
     options.longest_valid_segment_length = 0.005;
     options.max_joint_step = 0.05;
     std::uniform_real_distribution<double> x(0.2, 0.55), y(-0.4, 0.4), z(0.08, 0.35), yaw(-1.5, 1.5);
-    const Eigen::Isometry3d tcp = TableTop::topDown(x(rng), y(rng), z(rng), yaw(rng));
-    Eigen::VectorXd goal = randomArm(*t.context, &rng);
-    while (!valid(goal)) goal = randomArm(*t.context, &rng);
-    const auto plan = [&](const PlanningOptions& o) {
-      return problem % 2 == 0 ? t.context->planToPose(start, t.tipFor(tcp), PoseGoalOptions(), o)
-                              : t.context->planToJoints(start, goal, 0.0, o);
-    };
-    const PlanningResult r = plan(options);
+    tcp = TableTop::topDown(x(*rng), y(*rng), z(*rng), yaw(*rng));
+    goal = randomArm(*t.context, rng);
+    while (!valid(goal)) goal = randomArm(*t.context, rng);
+  }
+
+  PlanningResult plan(const PlanningOptions& o) const {
+    return index % 2 == 0 ? t.context->planToPose(start, t.tipFor(tcp), PoseGoalOptions(), o)
+                          : t.context->planToJoints(start, goal, 0.0, o);
+  }
+
+  int index;
+  TableTop t;
+  RobotState start;
+  PlanningOptions options;
+  Eigen::Isometry3d tcp;
+  Eigen::VectorXd goal;
+};
+
+// Seeded random problems: every path returned with the pre-check is free under FCL at 0.001 rad, and planning
+// without the pre-check returns the same path (it changes no motion's answer).
+TEST_F(PrecheckPlanningTest, RandomProblemsGiveFclValidPathsAndTheSamePathsAsWithoutIt) {
+  std::mt19937 rng(2024);
+  int solved = 0, compared = 0;
+  for (int problem = 0; problem < 40; ++problem) {
+    RandomProblem p(problem, &rng);
+    const PlanningResult r = p.plan(p.options);
     if (!r.ok()) continue;
     ++solved;
     EXPECT_GT(r.precheck_states, 0u) << "problem " << problem;
     std::string where;
-    EXPECT_TRUE(fclValid(t, r.path, 0.001, &where)) << "problem " << problem << ": " << where;
+    EXPECT_TRUE(fclValid(p.t, r.path, 0.001, &where)) << "problem " << problem << ": " << where;
 
     if (problem % 3 != 0) continue;
-    options.precheck = false;
-    const PlanningResult exact = plan(options);
+    p.options.precheck = false;
+    const PlanningResult exact = p.plan(p.options);
     ASSERT_TRUE(exact.ok()) << "problem " << problem << ": " << exact.message;
     ASSERT_EQ(exact.path.size(), r.path.size()) << "problem " << problem;
     for (std::size_t k = 0; k < r.path.size(); ++k) {
@@ -182,6 +195,34 @@ TEST_F(PrecheckPlanningTest, RandomProblemsGiveFclValidPathsAndTheSamePathsAsWit
   }
   EXPECT_GE(solved, 24) << "too few problems solved for the check to mean anything";
   EXPECT_GE(compared, 8);
+}
+
+// The simplification (vertex reduction and shortcutting, checked coarser first or at the planning resolution
+// throughout): the same seeded plan simplified either way is free under FCL at 0.001 rad and no longer than the
+// planner's unsimplified path, and simplification shortens most of them.
+TEST_F(PrecheckPlanningTest, SimplifiedPathsAreFclValidAndNoLongerThanTheRawPath) {
+  std::mt19937 rng(77);
+  int solved = 0, shortened = 0;
+  for (int problem = 0; problem < 20; ++problem) {
+    RandomProblem p(problem, &rng);
+    p.options.simplify = false;
+    const PlanningResult raw = p.plan(p.options);
+    if (!raw.ok()) continue;
+    ++solved;
+    p.options.simplify = true;
+    for (const double factor : {PlanningOptions().simplify_coarse_factor, 1.0}) {
+      p.options.simplify_coarse_factor = factor;
+      const PlanningResult r = p.plan(p.options);
+      ASSERT_TRUE(r.ok()) << "problem " << problem << ", factor " << factor << ": " << r.message;
+      std::string where;
+      EXPECT_TRUE(fclValid(p.t, r.path, 0.001, &where))
+          << "problem " << problem << ", factor " << factor << ": " << where;
+      EXPECT_LE(r.path_length, raw.path_length + 1e-9) << "problem " << problem << ", factor " << factor;
+      shortened += r.path_length < 0.95 * raw.path_length;
+    }
+  }
+  EXPECT_GE(solved, 12) << "too few problems solved for the check to mean anything";
+  EXPECT_GE(shortened, solved) << "simplification shortened too few paths";
 }
 
 }  // namespace

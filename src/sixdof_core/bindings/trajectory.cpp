@@ -1,4 +1,4 @@
-// Trajectories: points, sampling (joint_trajectory_controller's interpolation) and time-optimal parameterization.
+// Trajectories: points, sampling (joint_trajectory_controller's interpolation) and the time parameterizations.
 #include "sixdof_core/trajectory.h"
 
 #include "common.h"
@@ -21,6 +21,20 @@ py::array_t<double> column(const Trajectory& trajectory) {
 
 Eigen::VectorXd vectorOf(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+using Parameterization = TimeParameterizationResult (*)(const std::vector<std::string>&,
+                                                        const std::vector<std::vector<double>>&,
+                                                        const TimeParameterizationOptions&);
+
+// A time parameterization of (points, joints) waypoints, run without the GIL.
+template <Parameterization compute>
+TimeParameterizationResult parameterize(const std::vector<std::string>& joint_names, const Eigen::MatrixXd& waypoints,
+                                        const TimeParameterizationOptions& options) {
+  std::vector<std::vector<double>> rows;
+  for (const Eigen::VectorXd& row : toRows(waypoints)) rows.emplace_back(row.data(), row.data() + row.size());
+  py::gil_scoped_release release;
+  return compute(joint_names, rows, options);
 }
 
 void bindPoints(py::module_& m) {
@@ -81,7 +95,8 @@ void bindTrajectory(py::module_& m) {
 
   py::enum_<TimeParameterizationStatus>(m, "TimeParameterizationStatus")
       .value("SUCCESS", TimeParameterizationStatus::kSuccess)
-      .value("INVALID_INPUT", TimeParameterizationStatus::kInvalidInput);
+      .value("INVALID_INPUT", TimeParameterizationStatus::kInvalidInput)
+      .value("NOT_CONVERGED", TimeParameterizationStatus::kNotConverged);
 
   py::class_<TimeParameterizationOptions>(m, "TimeParameterizationOptions",
                                           "Limits per joint (in the joint names' order) and MoveIt's scaling factors.")
@@ -109,18 +124,16 @@ void bindTrajectory(py::module_& m) {
   bindResult<TimeParameterizationResult>(m, "TimeParameterizationResult", "status, message and the timed trajectory.")
       .def_readonly("trajectory", &TimeParameterizationResult::trajectory);
 
-  m.def(
-      "compute_time_optimal_trajectory",
-      [](const std::vector<std::string>& joint_names, const Eigen::MatrixXd& waypoints,
-         const TimeParameterizationOptions& options) {
-        std::vector<std::vector<double>> rows;
-        for (const Eigen::VectorXd& row : toRows(waypoints)) rows.emplace_back(row.data(), row.data() + row.size());
-        py::gil_scoped_release release;
-        return computeTimeOptimalTrajectory(joint_names, rows, options);
-      },
-      py::arg("joint_names"), py::arg("waypoints"), py::arg("options"),
-      "Time-optimal trajectory (Kunz & Stilman, with circular blends) through the (points, joints) waypoints, "
-      "e.g. a PlanningResult's path; starts and ends at rest. Bad input is a result (INVALID_INPUT).");
+  m.def("compute_time_optimal_trajectory", &parameterize<computeTimeOptimalTrajectory>, py::arg("joint_names"),
+        py::arg("waypoints"), py::arg("options"),
+        "Time-optimal trajectory (Kunz & Stilman, with circular blends) through the (points, joints) waypoints, "
+        "e.g. a PlanningResult's path; starts and ends at rest. Bad input is a result (INVALID_INPUT).");
+  m.def("compute_iterative_parabolic_trajectory", &parameterize<computeIterativeParabolicTrajectory>,
+        py::arg("joint_names"), py::arg("waypoints"), py::arg("options"),
+        "MoveIt's iterative parabolic parameterization (moveit_commander's retime_trajectory default): one point "
+        "per (points, joints) waypoint with its time, velocities and accelerations, at rest at both ends. Bad input "
+        "is a result (INVALID_INPUT); accelerations that do not settle within the limits are NOT_CONVERGED. "
+        "max_deviation, sample_period and path_resolution do not apply.");
 }
 
 }  // namespace sixdof_core::python

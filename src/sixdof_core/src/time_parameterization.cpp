@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include "time_parameterization_inputs.h"
+
 namespace sixdof_core {
 namespace {
 
@@ -404,15 +406,21 @@ void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation,
 
 }  // namespace
 
+std::optional<TimeParameterizationResult> rejectInvalidInput(const std::vector<std::string>& names,
+                                                             const std::vector<std::vector<double>>& waypoints,
+                                                             const TimeParameterizationOptions& options) {
+  const std::string invalid = checkInputs(names, waypoints, options);
+  if (invalid.empty()) return std::nullopt;
+  TimeParameterizationResult result;
+  result.fail(TimeParameterizationStatus::kInvalidInput, "time parameterization: " + invalid);
+  return result;
+}
+
 TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::string>& joint_names,
                                                         const std::vector<std::vector<double>>& waypoints,
                                                         const TimeParameterizationOptions& options) {
+  if (auto rejected = rejectInvalidInput(joint_names, waypoints, options)) return *rejected;
   TimeParameterizationResult result;
-  const std::string invalid = checkInputs(joint_names, waypoints, options);
-  if (!invalid.empty()) {
-    result.fail(TimeParameterizationStatus::kInvalidInput, "time parameterization: " + invalid);
-    return result;
-  }
   const std::size_t n = joint_names.size();
   std::vector<Eigen::VectorXd> points;
   for (const auto& w : waypoints) {

@@ -24,7 +24,7 @@ struct TimeParameterizationOptions {
   double path_resolution = 1e-3;
 };
 
-enum class TimeParameterizationStatus { kSuccess, kInvalidInput };
+enum class TimeParameterizationStatus { kSuccess, kInvalidInput, kNotConverged };
 
 struct TimeParameterizationResult : Result<TimeParameterizationStatus> {
   Trajectory trajectory;
@@ -44,5 +44,15 @@ struct TimeParameterizationResult : Result<TimeParameterizationStatus> {
 TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::string>& joint_names,
                                                         const std::vector<std::vector<double>>& waypoints,
                                                         const TimeParameterizationOptions& options);
+
+// Iterative parabolic parameterization (MoveIt's IterativeParabolicTimeParameterization scheme, moveit_commander's
+// retime_trajectory default): one output point per waypoint, at rest at the first and last. Each segment first gets
+// the shortest duration its velocity limits allow; then, pass after pass, every segment whose acceleration (from the
+// velocity at its start to the one at its end, interior velocities being the mean of the adjacent segments') exceeds
+// a limit is stretched, until none does (kNotConverged after 1000 passes). Repeated waypoints take 1 us.
+// max_deviation, sample_period and path_resolution are checked but not used.
+TimeParameterizationResult computeIterativeParabolicTrajectory(const std::vector<std::string>& joint_names,
+                                                               const std::vector<std::vector<double>>& waypoints,
+                                                               const TimeParameterizationOptions& options);
 
 }  // namespace sixdof_core

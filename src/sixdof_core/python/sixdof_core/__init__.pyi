@@ -448,6 +448,7 @@ class Trajectory:
 class TimeParameterizationStatus(_Enum):
     SUCCESS: ClassVar[TimeParameterizationStatus]
     INVALID_INPUT: ClassVar[TimeParameterizationStatus]
+    NOT_CONVERGED: ClassVar[TimeParameterizationStatus]
 
 class TimeParameterizationOptions:
     def __init__(self, max_velocity: Sequence[float], max_acceleration: Sequence[float], velocity_scaling: float = 1.0,
@@ -466,6 +467,8 @@ class TimeParameterizationResult(_Result[TimeParameterizationStatus]):
 
 def compute_time_optimal_trajectory(joint_names: Sequence[str], waypoints: ArrayLike,
                                     options: TimeParameterizationOptions) -> TimeParameterizationResult: ...
+def compute_iterative_parabolic_trajectory(joint_names: Sequence[str], waypoints: ArrayLike,
+                                           options: TimeParameterizationOptions) -> TimeParameterizationResult: ...
 
 class DisableReason(_Enum):
     ADJACENT: ClassVar[DisableReason]

@@ -121,6 +121,11 @@ def test_time_parameterization_and_sampling(arm, context):
     bad = sixdof_core.compute_time_optimal_trajectory(names, result.path,
                                                       sixdof_core.TimeParameterizationOptions([1.0] * 5, [2.0] * 6))
     assert bad.status == sixdof_core.TimeParameterizationStatus.INVALID_INPUT and bad.message
+    parabolic = sixdof_core.compute_iterative_parabolic_trajectory(names, result.path, limits)
+    assert parabolic.ok, parabolic.message
+    np.testing.assert_array_equal(parabolic.trajectory.positions, result.path)
+    assert not parabolic.trajectory.velocities[[0, -1]].any()
+    assert np.abs(parabolic.trajectory.velocities).max() <= 0.5 * (1 + 1e-9)
     handmade = sixdof_core.Trajectory(["a"], [sixdof_core.TrajectoryPoint([0.0], time_from_start=1.0),
                                              sixdof_core.TrajectoryPoint([1.0], time_from_start=0.5)])
     assert "increasing" in handmade.validate()

@@ -252,6 +252,15 @@ void bindModel(py::module_& m) {
         return "<RobotModel '" + r.name() + "': " + std::to_string(r.links().size()) + " links, " +
                std::to_string(r.variableCount()) + " variables, " + std::to_string(r.groups().size()) + " groups>";
       });
+
+  m.def(
+      "find_package",
+      [](const std::string& package, const std::optional<std::vector<std::string>>& search_roots) {
+        return makeResolver({}, search_roots).packageDirectory(package);
+      },
+      py::arg("package"), py::arg("search_roots") = py::none(),
+      "The directory of a ROS package (its package.xml names it) below the search roots (default: "
+      "ROS_PACKAGE_PATH), as package:// URIs resolve. Raises RobotModelError when none holds it.");
 }
 
 }  // namespace sixdof_core::python

@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """IK, a collision check and a plan with sixdof_core's Python bindings: the C++ core, no ROS master.
 
-    ik_collision_plan.py [--urdf URDF --srdf SRDF] [--package-dir DIR] [--seed N]
+    ik_collision_plan.py [--urdf URDF --srdf SRDF] [--package-dir DIR] [--search-root DIR] [--seed N]
 
-Loads the robot (default: the sixdof arm, sixdof_description found on ROS_PACKAGE_PATH), puts it on a table
-(top at z = 0), takes the first chain group of its SRDF from its first named state, solves IK for the tip pose
-of the group's last named state, checks that solution for collisions, plans to the pose and time-parameterizes
-the path with the URDF's velocity limits. Exits 0 when the plan succeeded, 1 when it did not, 2 on bad input.
+Loads the robot (default: the sixdof arm, sixdof_description found below the --search-root folders, else on
+ROS_PACKAGE_PATH, as package:// URIs resolve), puts it on a table (top at z = 0), takes the first chain group of its
+SRDF from its first named state, solves IK for the tip pose of the group's last named state, checks that solution
+for collisions, plans to the pose and time-parameterizes the path with the URDF's velocity limits. Exits 0 when the
+plan succeeded, 1 when it did not, 2 on bad input.
 """
 
 from __future__ import annotations
@@ -16,18 +17,18 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import rospkg
 
 import sixdof_core
 
 
 def load_model(args: argparse.Namespace) -> sixdof_core.RobotModel:
     if args.urdf is None:
-        description = Path(rospkg.RosPack().get_path("sixdof_description"))
+        description = Path(sixdof_core.find_package("sixdof_description", args.search_root))
         args.urdf = description / "urdf" / "sixdof.urdf"
         args.srdf = description / "config" / "sixdof.srdf"
     package_dirs = {args.package_dir.name: str(args.package_dir)} if args.package_dir else {}
-    return sixdof_core.RobotModel.from_files(str(args.urdf), str(args.srdf or ""), package_dirs=package_dirs)
+    return sixdof_core.RobotModel.from_files(str(args.urdf), str(args.srdf or ""), package_dirs=package_dirs,
+                                             search_roots=args.search_root)
 
 
 def table_scene(model: sixdof_core.RobotModel) -> sixdof_core.CollisionScene:
@@ -81,11 +82,13 @@ def main() -> int:
     parser.add_argument("--urdf", type=Path, help="default: sixdof_description's URDF (with --srdf)")
     parser.add_argument("--srdf", type=Path)
     parser.add_argument("--package-dir", type=Path, help="the package the URDF's package:// URIs name")
+    parser.add_argument("--search-root", action="append", help="where to look for sixdof_description and the "
+                        "packages of package:// URIs (default: ROS_PACKAGE_PATH); may be repeated")
     parser.add_argument("--seed", type=int, default=1, help="IK restarts and OMPL (repeatable runs)")
     args = parser.parse_args()
     try:
         model = load_model(args)
-    except (ValueError, rospkg.ResourceNotFound) as error:
+    except ValueError as error:
         print(f"ik_collision_plan.py: {error}", file=sys.stderr)
         return 2
     return run(model, args.seed)

@@ -14,7 +14,6 @@ if BUILD_PYTHONPATH:
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
-import rospkg  # noqa: E402
 
 import sixdof_core  # noqa: E402
 
@@ -22,7 +21,7 @@ CORE = Path(__file__).resolve().parents[2]
 DATA = CORE / "test" / "data"
 # The sixdof arm of the sourced workspace: sixdof_description depends on this package, so it is found when the tests
 # run, not declared.
-DESCRIPTION = Path(rospkg.RosPack().get_path("sixdof_description"))
+DESCRIPTION = Path(sixdof_core.find_package("sixdof_description"))
 
 
 def arm_model() -> sixdof_core.RobotModel:

@@ -34,6 +34,18 @@ def test_example_script_names_bad_input():
     assert run.returncode == 2 and "/nope.urdf" in run.stderr
 
 
+def test_example_script_finds_the_arm_below_a_search_root():
+    env = environment()
+    env["ROS_PACKAGE_PATH"] = ""
+    root = ["--search-root", str(DESCRIPTION.parent)]
+    run = subprocess.run([sys.executable, str(CORE / "examples" / "ik_collision_plan.py"), *root], env=env,
+                         capture_output=True, text=True, timeout=120, check=False)
+    assert run.returncode == 0, run.stdout + run.stderr
+    missing = subprocess.run([sys.executable, str(CORE / "examples" / "ik_collision_plan.py")], env=env,
+                             capture_output=True, text=True, timeout=120, check=False)
+    assert missing.returncode == 2 and "sixdof_description" in missing.stderr
+
+
 def test_readme_code_runs():
     readme = (CORE / "README.md").read_text(encoding="utf-8")
     section = readme[readme.index("## Python bindings"):]

@@ -60,14 +60,19 @@ namespace py = pybind11;
 // A RobotModel as Python holds it: pybind11's holder needs a non-const pointee; every bound method is const.
 using ModelPtr = std::shared_ptr<RobotModel>;
 
-// A result class with the members of every result (the core's Result<Code>): status, message, ok and its truth.
+// A result class with the members of every result (the core's Result<Code>): status, message, ok and its truth, and
+// its repr "<Name STATUS: message>".
 template <class ResultType>
 py::class_<ResultType> bindResult(py::module_& m, const char* name, const char* doc) {
   py::class_<ResultType> result(m, name, doc);
   result.def_readonly("status", &ResultType::status)
       .def_readonly("message", &ResultType::message)
       .def_property_readonly("ok", &ResultType::ok)
-      .def("__bool__", &ResultType::ok);
+      .def("__bool__", &ResultType::ok)
+      .def("__repr__", [type = std::string(name)](const ResultType& r) {
+        const std::string status = py::str(py::cast(r.status).attr("name"));
+        return "<" + type + " " + status + (r.message.empty() ? "" : ": " + r.message) + ">";
+      });
   return result;
 }
 

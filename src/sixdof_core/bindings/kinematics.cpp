@@ -111,10 +111,7 @@ void bindIkTypes(py::module_& m) {
       .def_readonly("position_error", &IkResult::position_error, "m, of the solution or the best configuration.")
       .def_readonly("orientation_error", &IkResult::orientation_error, "rad")
       .def_readonly("iterations", &IkResult::iterations)
-      .def_readonly("attempts", &IkResult::attempts)
-      .def("__repr__", [](const IkResult& r) {
-        return std::string("<IkResult ") + toString(r.status) + (r.message.empty() ? "" : ": " + r.message) + ">";
-      });
+      .def_readonly("attempts", &IkResult::attempts);
 
   bindResult<AnalyticSolutions>(m, "AnalyticSolutions", "Every solution of one pose; ok if any is within limits.")
       .def_property_readonly(

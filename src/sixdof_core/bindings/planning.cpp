@@ -111,10 +111,7 @@ void bindOptions(py::module_& m) {
       .def_readonly("precheck_calls", &PlanningResult::precheck_calls)
       .def_readonly("precheck_states", &PlanningResult::precheck_states, "Motion states proven without FCL.")
       .def_readonly("solved_attempts", &PlanningResult::solved_attempts)
-      .def_readonly("planner_id", &PlanningResult::planner_id)
-      .def("__repr__", [](const PlanningResult& r) {
-        return std::string("<PlanningResult ") + toString(r.status) + (r.message.empty() ? "" : ": " + r.message) + ">";
-      });
+      .def_readonly("planner_id", &PlanningResult::planner_id);
 
   py::enum_<CartesianStatus>(m, "CartesianStatus")
       .value("SUCCESS", CartesianStatus::kSuccess, "The whole path (fraction 1).")

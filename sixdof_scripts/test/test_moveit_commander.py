@@ -1,5 +1,5 @@
-"""moveit_commander and moveit_msgs without a ROS master: names, exceptions, conversions, argument forms,
-kinematics (Jacobian, bounds) and the iterative time parameterization, on the fixture robot."""
+"""moveit_commander and moveit_msgs without a ROS master: names, exceptions, conversions, argument forms and
+kinematics (the core's forward kinematics, Jacobian and random values; bounds), on the fixture robot."""
 
 import inspect
 import math
@@ -18,7 +18,7 @@ from moveit_commander import conversions
 from sixdof_commander import MoveItCommanderException, SixdofCommanderError
 from sixdof_commander.cartesian_path import _cartesian_arguments
 from sixdof_commander.exceptions import UnknownGroupError
-from sixdof_commander.kinematics import bounded, iterative_parabolic_times, jacobian, link_pose
+from sixdof_commander.kinematics import CoreKinematics, bounded
 from sixdof_commander.robot_model import resolve_group
 
 
@@ -139,54 +139,57 @@ def test_forget_joint_values(builder):
         builder.forget_joint_values("here")
 
 
-def test_jacobian_matches_finite_differences_of_forward_kinematics(urdf, arm):
+@pytest.fixture(scope="module")
+def kinematics():
+    data = Path(__file__).resolve().parent / "data"
+    return CoreKinematics((data / "fixture.urdf").read_text(), (data / "fixture.srdf").read_text())
+
+
+def test_jacobian_matches_finite_differences_of_forward_kinematics(kinematics, arm):
     rng = np.random.default_rng(7)
     point = [0.0, 0.0, 0.1]  # the tcp, 0.1 m along link6's z axis
     for _ in range(20):
         q = {j.name: rng.uniform(max(j.lower, -3.0), min(j.upper, 3.0)) for j in arm.joints}
-        jac = jacobian(urdf, arm, q, point)
+        jac = kinematics.jacobian(arm.name, arm.tip_link, q, point)
         assert jac.shape == (6, 6)
-        base = link_pose(urdf, "link6", q)
+        base = kinematics.link_pose("link6", q)
         origin = (base @ np.array(point + [1.0]))[:3]
         for column, joint in enumerate(arm.joints):
             shifted = dict(q)
             shifted[joint.name] += 1e-6
-            moved = link_pose(urdf, "link6", shifted)
+            moved = kinematics.link_pose("link6", shifted)
             velocity = ((moved @ np.array(point + [1.0]))[:3] - origin) / 1e-6
             np.testing.assert_allclose(jac[:3, column], velocity, atol=1e-5)
             skew = (moved[:3, :3] - base[:3, :3]) / 1e-6 @ base[:3, :3].T
             np.testing.assert_allclose(jac[3:, column], [skew[2, 1], skew[0, 2], skew[1, 0]], atol=1e-5)
 
 
-def test_tcp_pose_at_zero_is_along_x(urdf):
+def test_tcp_pose_at_zero_is_along_x(kinematics):
     # design.md: at all-zero joints link6's z axis points along +x; tcp is 0.1 m further out.
-    pose = link_pose(urdf, "tcp", {})
+    pose = kinematics.link_pose("tcp", {})
     np.testing.assert_allclose(pose[:3, 3], [0.12 + 0.18 + 0.08 + 0.1, 0.0, 0.6], atol=1e-9)
+
+
+def test_kinematics_errors_name_the_problem(kinematics, arm):
+    with pytest.raises(SixdofCommanderError, match="nowhere"):
+        kinematics.link_pose("nowhere", {})
+    with pytest.raises(SixdofCommanderError, match="no_joint"):
+        kinematics.link_pose("tcp", {"no_joint": 0.0})
+    with pytest.raises(SixdofCommanderError, match="get_jacobian_matrix: .*no_group"):
+        kinematics.jacobian("no_group", arm.tip_link, {})
+    with pytest.raises(SixdofCommanderError, match="cannot read the robot description"):
+        CoreKinematics("<robot name='x'>", "")
+
+
+def test_random_group_values_are_within_the_limits(kinematics, arm):
+    for _ in range(50):
+        values = kinematics.random_group_values(arm.name)
+        assert len(values) == len(arm.joints)
+        for joint, value in zip(arm.joints, values, strict=True):
+            assert joint.lower <= value <= joint.upper, (joint.name, value)
 
 
 def test_bounds_are_enforced(urdf):
     assert bounded(urdf.joints["joint2"], 5.0) == 1.92
     assert bounded(urdf.joints["joint2"], -5.0) == -1.92
     assert bounded(urdf.joints["joint2"], 0.5) == 0.5
-
-
-def test_iterative_time_parameterization_respects_the_limits():
-    rng = np.random.default_rng(3)
-    path = np.cumsum(rng.uniform(-0.2, 0.2, size=(30, 3)), axis=0)
-    vmax, amax = np.array([1.0, 0.5, 2.0]), np.array([2.0, 1.0, 0.5])
-    times, velocities, accelerations = iterative_parabolic_times(path, vmax, amax)
-    assert times[0] == 0.0 and np.all(np.diff(times) > 0.0)
-    np.testing.assert_allclose(velocities[0], 0.0)
-    np.testing.assert_allclose(velocities[-1], 0.0)
-    segment = np.diff(path, axis=0) / np.diff(times)[:, None]
-    assert np.all(np.abs(segment) <= vmax * (1 + 1e-9))
-    assert np.all(np.abs(velocities) <= vmax * (1 + 1e-9))
-    assert np.all(np.abs(np.diff(velocities, axis=0)) / np.diff(times)[:, None] <= amax * (1 + 1e-6))
-    # Halving the limits makes it slower, never faster.
-    slower, _, _ = iterative_parabolic_times(path, vmax / 2, amax / 2)
-    assert slower[-1] > times[-1]
-
-
-def test_single_point_path_is_at_rest():
-    times, velocities, accelerations = iterative_parabolic_times(np.zeros((1, 2)), np.ones(2), np.ones(2))
-    assert times.tolist() == [0.0] and not velocities.any() and not accelerations.any()

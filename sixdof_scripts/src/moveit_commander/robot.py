@@ -6,7 +6,7 @@ from geometry_msgs.msg import PoseStamped
 from moveit_msgs.msg import RobotState
 from sixdof_commander._ros import JointStateMonitor, load_robot_model, require_node, resolve
 from sixdof_commander.exceptions import SixdofCommanderError
-from sixdof_commander.kinematics import link_pose
+from sixdof_commander.kinematics import parameter_kinematics
 from sixdof_commander.robot_model import Group, resolve_group
 from sixdof_commander.transforms import quaternion_from_matrix
 
@@ -73,10 +73,11 @@ class RobotCommander:
             return self._name
 
         def pose(self) -> PoseStamped:
-            """The link's current pose in the URDF's root link (forward kinematics of joint_states)."""
+            """The link's current pose in the URDF's root link (the core's forward kinematics of joint_states)."""
             robot = self._robot
-            names = [j.name for j in robot._urdf.chain(robot._urdf.root_link, self._name) if j.type != "fixed"]
-            matrix = link_pose(robot._urdf, self._name, robot._values_of(names))
+            chain = robot._urdf.chain(robot._urdf.root_link, self._name)
+            names = list(dict.fromkeys(j.mimic or j.name for j in chain if j.type != "fixed"))
+            matrix = robot._kinematics().link_pose(self._name, robot._values_of(names))
             result = PoseStamped()
             result.header.frame_id = robot.get_planning_frame()
             p, o = result.pose.position, result.pose.orientation
@@ -92,6 +93,7 @@ class RobotCommander:
         self._robot_description = robot_description
         self._ns = ns
         self._urdf, self._srdf = load_robot_model(ns, robot_description)
+        self._kinematics = parameter_kinematics(ns)
         self._joint_states = JointStateMonitor(resolve(ns, "joint_states"))
         self._groups: dict[str, MoveGroupCommander] = {}
 

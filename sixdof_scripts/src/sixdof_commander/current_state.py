@@ -12,7 +12,7 @@ from moveit_msgs.srv import GetPositionFK
 
 from .exceptions import SixdofCommanderError
 from .goals import check_number
-from .kinematics import bounded, jacobian, random_value
+from .kinematics import bounded
 from .move_group_base import MoveGroupContext
 from .transforms import rpy_from_quaternion
 
@@ -23,7 +23,6 @@ class CurrentState:
 
     def __init__(self, context: MoveGroupContext) -> None:
         self._context = context
-        self._rng = np.random.default_rng()
 
     def get_current_joint_values(self) -> list[float]:
         """Current positions of the group's joints from joint_states, in get_active_joints() order."""
@@ -63,8 +62,8 @@ class CurrentState:
         return list(rpy_from_quaternion((q.x, q.y, q.z, q.w)))
 
     def get_random_joint_values(self) -> list[float]:
-        """Uniformly random joint values within the limits, in get_active_joints() order."""
-        return [random_value(joint, self._rng) for joint in self._context.group.joints]
+        """Uniformly random joint values within the limits, in get_active_joints() order (the core's sampler)."""
+        return self._context.kinematics().random_group_values(self._context.group.name)
 
     def get_random_pose(self, end_effector_link: str = "") -> PoseStamped:
         """Pose of the end-effector link at random joint values (compute_fk), in the planning frame."""
@@ -91,7 +90,8 @@ class CurrentState:
             raise SixdofCommanderError(f"get_jacobian_matrix: reference_point must be [x, y, z], got {point!r}")
         values = {n: check_number(v, f"joint value of '{n}'") for n, v in zip(names, joint_values, strict=True)}
         point = [check_number(v, f"reference_point element {i}") for i, v in enumerate(point)]
-        return jacobian(self._context.robot, self._context.group, values, point)
+        group = self._context.group
+        return self._context.kinematics().jacobian(group.name, group.tip_link, values, point)
 
     def enforce_bounds(self, robot_state_msg: RobotState) -> RobotState:
         """A copy of the RobotState with every known joint's value moved into its limits."""

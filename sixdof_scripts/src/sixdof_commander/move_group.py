@@ -23,6 +23,7 @@ from .current_state import CurrentState
 from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import GoalBuilder
+from .kinematics import parameter_kinematics
 from .move_group_base import MoveGroupContext, refuse, served_by
 from .move_group_clients import MoveGroupClients
 from .path_constraints import PathConstraints
@@ -81,7 +82,13 @@ class MoveGroup(Retiming):
         self._state = StateMonitor(resolve(ns, "joint_states"), self._urdf)
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
         context = MoveGroupContext(
-            self._group, self._urdf, self._planning_frame, self._goal, self._clients, self._state
+            self._group,
+            self._urdf,
+            self._planning_frame,
+            self._goal,
+            self._clients,
+            self._state,
+            parameter_kinematics(ns),
         )
         self._options = PlanningOptions(context)
         self._constraints = PathConstraints(context)

@@ -11,6 +11,7 @@ from moveit_msgs.msg import Constraints
 
 from .exceptions import MoveItCommanderException, SixdofCommanderError
 from .goals import GoalBuilder
+from .kinematics import CoreKinematics
 from .move_group_clients import MoveGroupClients
 from .robot_model import Group, RobotDescription
 from .state_monitor import StateMonitor
@@ -53,7 +54,8 @@ def served_by(**parts: type | tuple[type, tuple[str, ...]]) -> Callable[[type], 
 @dataclass(frozen=True)
 class MoveGroupContext:
     """What MoveGroup hands its parts: the group and the robot model, the planning frame, the request builder (targets
-    and parameters), the connections to move_group and the current joint values."""
+    and parameters), the connections to move_group, the current joint values and the core's kinematics (loaded on
+    the first call)."""
 
     group: Group
     robot: RobotDescription
@@ -61,6 +63,7 @@ class MoveGroupContext:
     goal: GoalBuilder
     clients: MoveGroupClients
     state: StateMonitor
+    kinematics: Callable[[], CoreKinematics]
 
 
 class MoveGroupBase:

@@ -1,5 +1,5 @@
-"""MoveGroup's time parameterization: retime_trajectory (iterative parabolic here, time-optimal through
-move_group's retime_trajectory service) and the joint limits it reads."""
+"""MoveGroup's time parameterization: retime_trajectory (the core's iterative parabolic parameterization through
+sixdof_core's bindings, time-optimal through move_group's retime_trajectory service) and the joint limits it reads."""
 
 from __future__ import annotations
 
@@ -10,10 +10,11 @@ import rospy
 from moveit_msgs.msg import RobotState, RobotTrajectory
 from trajectory_msgs.msg import JointTrajectoryPoint
 
+import sixdof_core
+
 from ._ros import resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
-from .kinematics import iterative_parabolic_times
 from .move_group_base import MoveGroupBase
 
 RETIME_ALGORITHMS = ("iterative_time_parameterization", "time_optimal_trajectory_generation")
@@ -31,8 +32,9 @@ class Retiming(MoveGroupBase):
         algorithm: str = "iterative_time_parameterization",
     ) -> RobotTrajectory:
         """The trajectory's path re-timed for these scaling factors of the joint limits (robot_description_planning,
-        else the URDF's velocity limits), starting and ending at rest. 'iterative_time_parameterization' is
-        computed here; 'time_optimal_trajectory_generation' is move_group's time-optimal parameterization (the one
+        else the URDF's velocity limits), starting and ending at rest. 'iterative_time_parameterization' is the
+        core's iterative parabolic parameterization (one point per input point), computed in this process;
+        'time_optimal_trajectory_generation' is move_group's time-optimal parameterization (the one
         every plan gets), through its retime_trajectory service. A failure raises SixdofCommanderError."""
         if algorithm not in RETIME_ALGORITHMS:
             raise SixdofCommanderError(
@@ -55,13 +57,15 @@ class Retiming(MoveGroupBase):
                 )
         path = np.array([[check_number(v, f"point {i} position") for v in p.positions] for i, p in enumerate(points)])
         max_velocity, max_acceleration = self._joint_limits(names)
-        times, velocities, accelerations = iterative_parabolic_times(
-            path, max_velocity * velocity, max_acceleration * acceleration
-        )
+        options = sixdof_core.TimeParameterizationOptions(max_velocity, max_acceleration, velocity, acceleration)
+        retimed = sixdof_core.compute_iterative_parabolic_trajectory(names, path, options)
+        if not retimed.ok:
+            raise SixdofCommanderError(f"retime_trajectory: {retimed.message}")
+        timed = retimed.trajectory
         result = RobotTrajectory()
         result.joint_trajectory.header = traj_in.joint_trajectory.header
         result.joint_trajectory.joint_names = names
-        for t, q, v, a in zip(times, path, velocities, accelerations, strict=True):
+        for t, q, v, a in zip(timed.times, path, timed.velocities, timed.accelerations, strict=True):
             result.joint_trajectory.points.append(
                 JointTrajectoryPoint(
                     positions=list(q),
@@ -80,7 +84,7 @@ class Retiming(MoveGroupBase):
             raise SixdofCommanderError(f"retime_trajectory: move_group's retime_trajectory failed: {outcome}")
         return retimed
 
-    def _joint_limits(self, names: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    def _joint_limits(self, names: list[str]) -> tuple[list[float], list[float]]:
         """Velocity and acceleration limits of the joints, as move_group reads them (MoveIt's joint_limits)."""
         param = resolve(self._ns, "robot_description_planning/joint_limits")
         limits = rospy.get_param(param, {})
@@ -100,4 +104,4 @@ class Retiming(MoveGroupBase):
                     )
             velocities.append(float(velocity))
             accelerations.append(float(acceleration))
-        return np.array(velocities), np.array(accelerations)
+        return velocities, accelerations

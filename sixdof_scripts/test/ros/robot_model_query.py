@@ -5,7 +5,8 @@ joint order, a continuous joint unbounded with the nominal -pi..pi, prismatic li
 mount link and the link without geometry or inertia, groups, named states and the end effector; the links'
 collision shapes when asked for (box, cylinder and sphere, posed in the link frame; links without geometry have
 none); and that the Jacobian computed from that model (get_jacobian_matrix) is the derivative of move_group's
-forward kinematics."""
+forward kinematics; and that retime_trajectory's iterative parabolic parameterization and the random joint values (the
+core's, through its bindings) keep to the joint limits move_group reads."""
 
 import math
 import unittest
@@ -14,13 +15,14 @@ import numpy as np
 import rospy
 import rostest
 from moveit_commander import RobotCommander
-from moveit_msgs.msg import RobotState
+from moveit_msgs.msg import RobotState, RobotTrajectory
 from moveit_msgs.srv import GetPositionFK
 from shape_msgs.msg import SolidPrimitive
-from sixdof_commander import MoveGroup
+from sixdof_commander import MoveGroup, SixdofCommanderError
 from sixdof_commander._ros import query_robot_model
 from sixdof_commander.robot_model import resolve_group
 from sixdof_commander.transforms import matrix_from_pose
+from trajectory_msgs.msg import JointTrajectoryPoint
 
 LINKS = ["mount", "base_link", "turntable", "carriage", "head", "sensor_frame", "left_finger", "right_finger"]
 
@@ -87,6 +89,37 @@ class RobotModelQuery(unittest.TestCase):
                 np.testing.assert_allclose(jacobian[:3, column], (moved @ point - base @ point)[:3] / step, atol=1e-5)
                 spin = (moved[:3, :3] - base[:3, :3]) / step @ base[:3, :3].T
                 np.testing.assert_allclose(jacobian[3:, column], [spin[2, 1], spin[0, 2], spin[1, 0]], atol=1e-5)
+
+    def test_iterative_retiming_and_random_values_keep_to_the_limits(self):
+        arm = MoveGroup("arm", wait_for_servers=60.0)
+        names = arm.get_active_joints()
+        limits = rospy.get_param("robot_description_planning/joint_limits")
+        velocity = np.array([self.urdf.joints[name].velocity for name in names])
+        acceleration = np.array([limits[name]["max_acceleration"] for name in names])
+        path = np.array([[0.0, 0.1, 0.0], [0.5, 0.2, 0.3], [1.0, 0.25, -0.2], [1.2, 0.05, 0.0]])
+        trajectory = RobotTrajectory()
+        trajectory.joint_trajectory.joint_names = names
+        trajectory.joint_trajectory.points = [JointTrajectoryPoint(positions=list(p)) for p in path]
+        durations = {}
+        for factor in (0.5, 1.0):
+            points = arm.retime_trajectory(RobotState(), trajectory, factor, factor).joint_trajectory.points
+            np.testing.assert_array_equal([p.positions for p in points], path)
+            times = np.array([p.time_from_start.to_sec() for p in points])
+            velocities = np.array([p.velocities for p in points])
+            self.assertEqual(times[0], 0.0)
+            self.assertTrue(np.all(np.diff(times) > 0.0))
+            self.assertFalse(velocities[[0, -1]].any())
+            steps = np.diff(times)[:, None]
+            self.assertTrue(np.all(np.abs(np.diff(path, axis=0)) / steps <= velocity * factor * 1.0001))
+            self.assertTrue(np.all(np.abs(np.diff(velocities, axis=0)) / steps <= acceleration * factor * 1.0001))
+            durations[factor] = times[-1]
+        self.assertGreater(durations[0.5], durations[1.0])
+        with self.assertRaisesRegex(SixdofCommanderError, "unknown algorithm 'fast'"):
+            arm.retime_trajectory(RobotState(), trajectory, algorithm="fast")
+        for _ in range(20):
+            for name, value in zip(names, arm.get_random_joint_values(), strict=True):
+                joint = self.urdf.joints[name]
+                self.assertTrue(joint.lower <= value <= joint.upper, (name, value))
 
     def test_collision_geometry_on_request(self):
         self.assertIsNone(self.urdf.collision)  # not asked for: the response stays small

@@ -1,8 +1,10 @@
 #include "world_parameter.h"
 
 #include <Eigen/Geometry>
+#include <initializer_list>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "sixdof_sim/conveyor.h"
 #include "sixdof_sim/world_file.h"
@@ -20,9 +22,34 @@ XmlRpc::XmlRpcValue list(const Vector& values) {
 
 XmlRpc::XmlRpcValue color(const Color& c) { return list(Eigen::Vector4d(c.r, c.g, c.b, c.a)); }
 
-XmlRpc::XmlRpcValue object(const ObjectSpec& spec, const std::string& conveyor) {
+// An entry's members after its name: key and value.
+using Members = std::initializer_list<std::pair<const char*, XmlRpc::XmlRpcValue>>;
+
+// An entry of a list: a struct with its name and these members.
+XmlRpc::XmlRpcValue named(const std::string& name, Members members = {}) {
   XmlRpc::XmlRpcValue out;
-  out["name"] = spec.name;
+  out["name"] = name;
+  for (const auto& [key, value] : members) out[key] = value;
+  return out;
+}
+
+// A named entry with its pose (position, orientation as a quaternion x, y, z, w): objects and conveyors.
+XmlRpc::XmlRpcValue placed(const std::string& name, const Eigen::Isometry3d& pose, Members members) {
+  const Eigen::Quaterniond q(pose.linear());
+  XmlRpc::XmlRpcValue out = named(name, members);
+  out["position"] = list(pose.translation());
+  out["orientation"] = list(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));
+  return out;
+}
+
+XmlRpc::XmlRpcValue object(const ObjectSpec& spec, const std::string& conveyor) {
+  XmlRpc::XmlRpcValue out = placed(spec.name, spec.pose,
+                                   {{"static", spec.is_static},
+                                    {"collision", spec.collision},
+                                    {"table", spec.table},
+                                    {"bin", spec.bin},
+                                    {"conveyor", conveyor},
+                                    {"color", color(spec.color)}});
   forEachShapeField(spec.shape, [&out](const char* key, const auto& value) {
     if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Eigen::Vector3d>) {
       out[key] = list(value);
@@ -30,62 +57,31 @@ XmlRpc::XmlRpcValue object(const ObjectSpec& spec, const std::string& conveyor) 
       out[key] = value;
     }
   });
-  const Eigen::Quaterniond q(spec.pose.linear());
-  out["position"] = list(spec.pose.translation());
-  out["orientation"] = list(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));
-  out["static"] = spec.is_static;
-  out["collision"] = spec.collision;
-  out["table"] = spec.table;
-  out["bin"] = spec.bin;
-  out["conveyor"] = conveyor;
-  out["color"] = color(spec.color);
   return out;
 }
 
 XmlRpc::XmlRpcValue conveyor(const ConveyorSpec& spec) {
-  XmlRpc::XmlRpcValue out;
-  const Eigen::Quaterniond q(spec.pose.linear());
-  out["name"] = spec.name;
-  out["size"] = list(spec.size);
-  out["position"] = list(spec.pose.translation());
-  out["orientation"] = list(Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));
-  out["speed"] = spec.speed;
-  out["direction"] = list(beltVelocity(spec, 1.0));
-  out["friction"] = spec.friction;
-  return out;
+  return placed(spec.name, spec.pose,
+                {{"size", list(spec.size)},
+                 {"speed", spec.speed},
+                 {"direction", list(beltVelocity(spec, 1.0))},
+                 {"friction", spec.friction}});
 }
 
-XmlRpc::XmlRpcValue source(const SourceSpec& spec) {
-  XmlRpc::XmlRpcValue out;
-  out["name"] = spec.name;
-  out["conveyor"] = spec.conveyor;
-  return out;
-}
+XmlRpc::XmlRpcValue source(const SourceSpec& spec) { return named(spec.name, {{"conveyor", spec.conveyor}}); }
 
-XmlRpc::XmlRpcValue sink(const SinkSpec& spec) {
-  XmlRpc::XmlRpcValue out;
-  out["name"] = spec.name;
-  return out;
-}
+XmlRpc::XmlRpcValue sink(const SinkSpec& spec) { return named(spec.name); }
 
 XmlRpc::XmlRpcValue bin(const BinSpec& spec) {
-  XmlRpc::XmlRpcValue out;
-  out["name"] = spec.name;
-  out["color"] = color(spec.color);
-  out["position"] = list(spec.position);
-  out["yaw"] = spec.yaw;
-  out["size"] = list(spec.size);
-  out["wall_height"] = spec.wall_height;
-  out["wall_thickness"] = spec.wall_thickness;
-  return out;
+  return named(spec.name, {{"color", color(spec.color)},
+                           {"position", list(spec.position)},
+                           {"yaw", spec.yaw},
+                           {"size", list(spec.size)},
+                           {"wall_height", spec.wall_height},
+                           {"wall_thickness", spec.wall_thickness}});
 }
 
-XmlRpc::XmlRpcValue camera(const CameraSpec& spec) {
-  XmlRpc::XmlRpcValue out;
-  out["name"] = spec.name;
-  out["parent_link"] = spec.parent_link;
-  return out;
-}
+XmlRpc::XmlRpcValue camera(const CameraSpec& spec) { return named(spec.name, {{"parent_link", spec.parent_link}}); }
 
 template <class Spec, class Convert>
 XmlRpc::XmlRpcValue array(const std::vector<Spec>& specs, const Convert& convert) {

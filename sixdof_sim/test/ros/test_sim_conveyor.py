@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""rostest: the simulator node's conveyor and suction interfaces. set_conveyor changes a belt's speed and names bad
-input; conveyor_states counts the source's spawns and the sink's deletions; the vacuum on gripper_cmd holds an object
+"""rostest: the simulator node's conveyor and suction interfaces. The ~world parameter describes the belt, its object,
+source and sink; set_conveyor changes a belt's speed and names bad input; conveyor_states counts the source's spawns
+and the sink's deletions; the vacuum on gripper_cmd holds an object
 under the cup (a grasp event and attached_to as the grasp fix gives) and lets it go."""
 
 import math
@@ -35,6 +36,24 @@ def wait_for(condition, what: str, topic: str, msg_type: type):
 
 
 class SimConveyor(unittest.TestCase):
+    def test_world_parameter_describes_the_belt(self):
+        world = rospy.get_param("sixdof_sim/world")
+        self.assertEqual(world["name"], "conveyor_test")
+        (belt,) = world["conveyors"]
+        (belt_object,) = (o for o in world["objects"] if o["conveyor"] == "belt")
+        self.assertEqual((belt["name"], belt_object["name"]), ("belt", "belt"))
+        for entry in (belt, belt_object):
+            for key, expected in (("position", [1.0, 0.0, 0.025]), ("orientation", [0.0, 0.0, 0.0, 1.0])):
+                for value, want in zip(entry[key], expected, strict=True):
+                    self.assertAlmostEqual(value, want, msg=key)
+        for value, want in zip(belt["size"], [1.0, 0.3, 0.05], strict=True):
+            self.assertAlmostEqual(value, want)
+        self.assertAlmostEqual(belt["speed"], 0.3)
+        self.assertEqual([s["name"] for s in world["sources"]], ["part"])
+        self.assertEqual(world["sources"][0]["conveyor"], "belt")
+        self.assertEqual([s["name"] for s in world["sinks"]], ["belt_end"])
+        self.assertEqual((world["bins"], world["cameras"]), ([], []))
+
     def test_set_conveyor(self):
         set_conveyor = sim_service("set_conveyor", SetConveyor, TIMEOUT)
         unknown = set_conveyor("band", 0.1)

@@ -5,7 +5,7 @@ This module: construction, introspection, plan/go/execute/stop and attached obje
 builder (goals.py: targets and parameters, from which the requests are built), its connections to move_group
 (move_group_clients.py) and the current joint values (state_monitor.py), and serves the rest of its methods from
 parts that get these collaborators, one concept a module: targets.py, planning_options.py, path_constraints.py,
-current_state.py, cartesian_path.py (served_by in move_group_base.py); retime_trajectory comes from retiming.py."""
+current_state.py, cartesian_path.py, retiming.py (served_by in move_group_base.py)."""
 
 from __future__ import annotations
 
@@ -42,8 +42,9 @@ from .targets import Targets
     _constraints=PathConstraints,
     _current=CurrentState,
     _cartesian=CartesianPath,
+    _retiming=Retiming,
 )
-class MoveGroup(Retiming):
+class MoveGroup:
     """Plans and moves one planning group (MoveGroupCommander's method names and semantics).
 
     Targets and parameters are kept in a GoalBuilder; plan() calls the plan_kinematic_path service, go() the
@@ -62,7 +63,6 @@ class MoveGroup(Retiming):
         """Waits up to wait_for_servers seconds (0: forever) for the move_group node's services and actions
         (SixdofCommanderError names what is missing), then gets the robot model from it (get_robot_model)."""
         require_node()
-        self._ns = ns
         self._clients = MoveGroupClients(ns, wait_for_servers, f"MoveGroup('{group_name}')")
         self._urdf, self._srdf = load_robot_model(ns, robot_description, wait_for_servers)
         self._group = resolve_group(self._urdf, self._srdf, group_name)
@@ -82,6 +82,7 @@ class MoveGroup(Retiming):
         self._state = StateMonitor(resolve(ns, "joint_states"), self._urdf)
         self._scene = PlanningScene(ns, wait_for_servers=wait_for_servers, robot_description=robot_description)
         context = MoveGroupContext(
+            ns,
             self._group,
             self._urdf,
             self._planning_frame,
@@ -95,6 +96,7 @@ class MoveGroup(Retiming):
         self._current = CurrentState(context)
         self._targets = Targets(context, self._current)
         self._cartesian = CartesianPath(context)
+        self._retiming = Retiming(context)
 
     # Introspection -----------------------------------------------------------------------------------
     @property

@@ -1,6 +1,5 @@
 """What MoveGroup and its parts share: the context MoveGroup hands its parts, serving a part's methods as
-MoveGroup's, the attributes the retiming mixin reads, and the refusal of the MoveGroupCommander methods sixdof does
-not offer."""
+MoveGroup's, and the refusal of the MoveGroupCommander methods sixdof does not offer."""
 
 from __future__ import annotations
 
@@ -53,10 +52,11 @@ def served_by(**parts: type | tuple[type, tuple[str, ...]]) -> Callable[[type], 
 
 @dataclass(frozen=True)
 class MoveGroupContext:
-    """What MoveGroup hands its parts: the group and the robot model, the planning frame, the request builder (targets
-    and parameters), the connections to move_group, the current joint values and the core's kinematics (loaded on
-    the first call)."""
+    """What MoveGroup hands its parts: the namespace of move_group and its parameters, the group and the robot model,
+    the planning frame, the request builder (targets and parameters), the connections to move_group, the current joint
+    values and the core's kinematics (loaded on the first call)."""
 
+    ns: str
     group: Group
     robot: RobotDescription
     planning_frame: str
@@ -64,14 +64,6 @@ class MoveGroupContext:
     clients: MoveGroupClients
     state: StateMonitor
     kinematics: Callable[[], CoreKinematics]
-
-
-class MoveGroupBase:
-    """The attributes of MoveGroup its retiming mixin (retiming.py) reads."""
-
-    _ns: str
-    _urdf: RobotDescription
-    _clients: MoveGroupClients  # move_group's actions and services, the last call's outcome
 
 
 def refuse(method: str, why: str) -> MoveItCommanderException:

@@ -15,13 +15,17 @@ import sixdof_core
 from ._ros import resolve
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
-from .move_group_base import MoveGroupBase
+from .move_group_base import MoveGroupContext
 
 RETIME_ALGORITHMS = ("iterative_time_parameterization", "time_optimal_trajectory_generation")
 
 
-class Retiming(MoveGroupBase):
-    """MoveGroupCommander.retime_trajectory."""
+class Retiming:
+    """MoveGroupCommander.retime_trajectory, on the context MoveGroup hands it (the robot model, the connections to
+    move_group, the namespace of its parameters)."""
+
+    def __init__(self, context: MoveGroupContext) -> None:
+        self._context = context
 
     def retime_trajectory(
         self,
@@ -79,22 +83,23 @@ class Retiming(MoveGroupBase):
     def _retime_time_optimal(
         self, trajectory: RobotTrajectory, velocity: float, acceleration: float
     ) -> RobotTrajectory:
-        retimed, outcome = self._clients.retime(trajectory, velocity, acceleration)
+        retimed, outcome = self._context.clients.retime(trajectory, velocity, acceleration)
         if retimed is None:
             raise SixdofCommanderError(f"retime_trajectory: move_group's retime_trajectory failed: {outcome}")
         return retimed
 
     def _joint_limits(self, names: list[str]) -> tuple[list[float], list[float]]:
         """Velocity and acceleration limits of the joints, as move_group reads them (MoveIt's joint_limits)."""
-        param = resolve(self._ns, "robot_description_planning/joint_limits")
+        param = resolve(self._context.ns, "robot_description_planning/joint_limits")
         limits = rospy.get_param(param, {})
         velocities, accelerations = [], []
         for name in names:
-            if name not in self._urdf.joints:
+            joints = self._context.robot.joints
+            if name not in joints:
                 raise SixdofCommanderError(f"retime_trajectory: '{name}' is not a joint of the robot")
             entry = limits.get(name, {}) if isinstance(limits, dict) else {}
             velocity = entry.get("max_velocity") if entry.get("has_velocity_limits", True) else None
-            velocity = velocity if velocity is not None else self._urdf.joints[name].velocity
+            velocity = velocity if velocity is not None else joints[name].velocity
             acceleration = entry.get("max_acceleration") if entry.get("has_acceleration_limits", False) else None
             for value, what in ((velocity, "velocity"), (acceleration, "acceleration")):
                 if value is None or not math.isfinite(float(value)) or float(value) <= 0.0:

@@ -450,6 +450,12 @@ TEST(SetupAssistant, DescribesTheModelWithTheSolverThatFitsEachChain) {
   EXPECT_NE(description.find("  solver: analytic\n"), std::string::npos);  // the arm: 6R, spherical wrist
   EXPECT_NE(description.find("  solver: none\n"), std::string::npos);      // the gripper: not a chain
   EXPECT_EQ(description.find("collisions:"), std::string::npos);
+  // Joint origins and link shapes (collision, else visual), for the front end's suction-cup inference.
+  EXPECT_NE(description.find("  rpy: [0, 1.5707963"), std::string::npos) << description;
+  EXPECT_NE(description.find("{name: \"link6\", parent_joint: \"joint6\", geometry: true, shapes: [{type: mesh, xyz: "
+                             "[0, 0, 0], rpy: [0, 0, 0]}]}"),
+            std::string::npos)
+      << description;
 
   // The same 6R arm with the wrist moved off the forearm's axis has no closed form: numeric, and why.
   std::string urdf = readTextFile(armUrdf());

@@ -152,7 +152,8 @@ std::string describeRepairs(const RepairResult& result);
 
 // What the setup assistant's front end (and a user) needs to know of a model, as YAML, read by the core so
 // that no other code parses URDF/SRDF: the robot name and root link; links in model order (whether they
-// have geometry); joints in model order (type, links, origin, axis, limits, mimic); the SRDF's groups (expanded
+// have collision geometry, and their collision shapes, else their visual ones: type, sizes, origin xyz/rpy);
+// joints in model order (type, links, origin xyz and rpy, axis, limits, mimic); the SRDF's groups (expanded
 // joints, active joints, chain ends, and the IK solver that fits a chain: `analytic` when the closed form
 // of AnalyticIkSolver applies, else `numeric`, with the reason); group states, end effectors and virtual
 // joints; the mimic joints whose own limits conflict with their master's range; and, when given, the

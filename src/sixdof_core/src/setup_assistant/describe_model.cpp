@@ -3,10 +3,53 @@
 #include <sstream>
 
 #include "sixdof_core/ik_analytic.h"
+#include "sixdof_core/kinematics.h"
 #include "sixdof_core/setup_assistant.h"
 #include "yaml_text.h"
 
 namespace sixdof_core {
+
+namespace {
+
+// rpy of a rotation, without negative zeros.
+Eigen::Vector3d rpyOf(const Eigen::Matrix3d& rotation) { return rpyFromRotation(rotation) + Eigen::Vector3d::Zero(); }
+
+// A link's shape as a YAML flow mapping: type, its sizes, and its origin in the link frame.
+std::string shapeYaml(const PlacedShape& placed) {
+  const Shape& shape = placed.shape;
+  std::ostringstream out;
+  switch (shape.type) {
+    case ShapeType::kBox:
+      out << "{type: box, size: " << yamlVector(shape.box_size);
+      break;
+    case ShapeType::kSphere:
+      out << "{type: sphere, radius: " << yamlNumber(shape.radius);
+      break;
+    case ShapeType::kCylinder:
+      out << "{type: cylinder, radius: " << yamlNumber(shape.radius) << ", length: " << yamlNumber(shape.length);
+      break;
+    case ShapeType::kMesh:
+      out << "{type: mesh";
+      break;
+  }
+  out << ", xyz: " << yamlVector(placed.origin.translation())
+      << ", rpy: " << yamlVector(rpyOf(placed.origin.linear())) << "}";
+  return out.str();
+}
+
+// The link's collision shapes, else its visual ones.
+std::string shapesYaml(const LinkModel& link) {
+  std::vector<std::string> shapes;
+  for (const auto& placed : link.collision.shapes) shapes.push_back(shapeYaml(placed));
+  if (shapes.empty()) {
+    for (const auto& visual : link.visuals) shapes.push_back(shapeYaml(visual.placed));
+  }
+  std::string out = "[";
+  for (size_t i = 0; i < shapes.size(); ++i) out += (i ? ", " : "") + shapes[i];
+  return out + "]";
+}
+
+}  // namespace
 
 std::string describeModel(const RobotModel& model, const DisabledCollisions* collisions) {
   std::ostringstream out;
@@ -16,7 +59,8 @@ std::string describeModel(const RobotModel& model, const DisabledCollisions* col
   for (const auto& link : model.links()) {
     out << "- {name: " << yamlString(link.name) << ", parent_joint: "
         << (link.parent_joint < 0 ? std::string("null") : yamlString(model.joints()[link.parent_joint].name))
-        << ", geometry: " << (link.collision.shapes.empty() ? "false" : "true") << "}\n";
+        << ", geometry: " << (link.collision.shapes.empty() ? "false" : "true") << ", shapes: " << shapesYaml(link)
+        << "}\n";
   }
   out << "joints:\n";
   for (const auto& joint : model.joints()) {
@@ -25,6 +69,7 @@ std::string describeModel(const RobotModel& model, const DisabledCollisions* col
     out << "  parent: " << yamlString(joint.parent_link) << "\n";
     out << "  child: " << yamlString(joint.child_link) << "\n";
     out << "  xyz: " << yamlVector(joint.origin.translation()) << "\n";
+    out << "  rpy: " << yamlVector(rpyOf(joint.origin.linear())) << "\n";
     out << "  axis: " << yamlVector(joint.axis) << "\n";
     out << "  active: " << (joint.isActive() ? "true" : "false") << "\n";
     if (joint.type != JointType::kFixed) {

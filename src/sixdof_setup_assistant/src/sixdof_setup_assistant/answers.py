@@ -33,6 +33,9 @@ All keys are optional; an unknown key or a bad value is an error naming it (Answ
       grasp_fix: {palm_link: link6, gripper_links: [finger1, finger2], forces_angle_tolerance: 120,
                   update_rate: 5, grip_count_threshold: 5, max_grip_count: 10, release_tolerance: 0.005,
                   disable_collisions_on_attach: false}
+    suction:                        # a suction tool instead of a gripper (default: inferred, see suction.py)
+      cup_link: cup                 # the cup, fixed below the arm's tip; its TCP is at the cup's face
+      max_payload: 0.5              # kg; tilt_tolerance: rad in (0, pi/2]; contact_distance: m in (0, 0.02]
 """
 
 from __future__ import annotations
@@ -69,6 +72,7 @@ _SCHEMA: dict[str, Any] = {
                       "grip_count_threshold": int, "max_grip_count": int, "release_tolerance": float,
                       "disable_collisions_on_attach": bool},
     },
+    "suction": {"cup_link": str, "max_payload": float, "tilt_tolerance": float, "contact_distance": float},
 }
 
 
@@ -160,6 +164,7 @@ def _check_grasping(data: dict[str, Any], path: str) -> None:
         value = (data.get(section, {}) if section else data).get(name)
         if value is not None and value <= 0:
             raise AnswersError(f"{path}: '{key}' must be > 0, got {value}")
+    _check_suction(data, path)
     grasping = data.get("grasping", {})
     if data.get("gripper") == "none" and grasping:
         raise AnswersError(f"{path}: 'grasping' is given but 'gripper' is none")
@@ -181,3 +186,16 @@ def _check_grasping(data: dict[str, Any], path: str) -> None:
     merged = {**GRASP_FIX_DEFAULTS, **fix}
     if not 0 <= merged["grip_count_threshold"] < merged["max_grip_count"]:
         raise AnswersError(f"{path}: 'grasping.grasp_fix' needs 0 <= grip_count_threshold < max_grip_count")
+
+
+def _check_suction(data: dict[str, Any], path: str) -> None:
+    """The suction keys' ranges (the simulator's, sixdof_sim/suction.h)."""
+    if "suction" not in data:
+        return
+    suction = data["suction"]
+    if "grasping" in data:
+        raise AnswersError(f"{path}: 'grasping' is for a gripper with fingers; a suction tool's TCP is its cup's face")
+    bounds = {"max_payload": (0.0, math.inf), "tilt_tolerance": (0.0, math.pi / 2), "contact_distance": (0.0, 0.02)}
+    for key, (lower, upper) in bounds.items():
+        if key in suction and not lower < suction[key] <= upper:
+            raise AnswersError(f"{path}: 'suction.{key}' must be in ({lower:g}, {upper:g}], got {suction[key]}")

@@ -19,7 +19,7 @@ from typing import Any
 
 import yaml
 
-from . import grasping, real_robot, templates
+from . import grasping, real_robot, suction, templates
 from .answers import load_answers
 from .infer import Plan, complete_gripper_states, infer
 from .xacro_loader import load_description
@@ -159,6 +159,7 @@ def _analyze(urdf_text: str, answers: dict[str, Any], env: dict[str, str], work:
     run_core(["--urdf", urdf_in, "--describe", model_path], echo=False, env=env)
     model = yaml.safe_load(_read(model_path))
     plan = infer(model, answers)
+    suction.attach(plan, model, answers)
     repaired_urdf = os.path.join(work, "repaired.urdf")
     repairs_path = os.path.join(work, "repairs.yaml")
     run_core(["--urdf", urdf_in, "--urdf-out", repaired_urdf, "--repairs", repairs_path,
@@ -166,6 +167,8 @@ def _analyze(urdf_text: str, answers: dict[str, Any], env: dict[str, str], work:
     repairs = yaml.safe_load(_read(repairs_path))
     if repairs.get("grasp"):
         complete_gripper_states(plan, repairs["grasp"])
+    if plan.suction:
+        _write(repaired_urdf, suction.with_tcp_link(_read(repaired_urdf), plan.suction))
     return Analysis(model=model, plan=plan, repairs=repairs, urdf=repaired_urdf)
 
 
@@ -178,7 +181,11 @@ def config_files(urdf: str, answers: str = "", previous_srdf: str | None = None)
     loaded = load_answers(answers)
     urdf_text = load_description(urdf, {})
     env = core_environment(urdf)
-    with tempfile.TemporaryDirectory(prefix="setup_assistant.") as work:
+    with tempfile.TemporaryDirectory(prefix="setup_assistant.") as tmp:
+        # The core looks for packages in the three folders above the URDF it reads before ROS_PACKAGE_PATH: nested
+        # three deep, those hold this run's files only (not another checkout of the package beside the temp folder).
+        work = os.path.join(tmp, "run", "work")
+        os.makedirs(work)
         analysis = _analyze(urdf_text, loaded, env, work)
         srdf_in = os.path.join(work, "skeleton.srdf")
         _write(srdf_in, templates.srdf_skeleton(analysis.plan, previous_srdf))
@@ -218,7 +225,9 @@ def _config(analysis: Analysis, report: dict[str, Any], srdf: str, answers: dict
             real_robot.hardware_joints([j for g in (plan.arm, plan.gripper) if g for j in g.joints], report["joints"]),
             f"# {templates.HEADER}."),
     }
-    if templates.has_grasping(plan):
+    if plan.suction:
+        files["config/grasping.yaml"] = suction.grasping_yaml(plan)
+    elif templates.has_grasping(plan):
         files["config/grasping.yaml"] = grasping.grasping_yaml(plan, analysis.repairs, answers)
     return files
 

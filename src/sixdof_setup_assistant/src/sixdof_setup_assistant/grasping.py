@@ -12,6 +12,7 @@ from typing import Any
 
 import yaml
 
+from . import suction
 from .answers import GRASP_FIX_DEFAULTS
 from .infer import GRIPPER_STATES, Plan, given_gripper_positions
 
@@ -134,6 +135,8 @@ def readme_sections(plan: Plan, model: dict[str, Any], repairs: dict[str, Any], 
 - open: {data['open']['positions']}, closed: {data['closed']['positions']}
 - grasp fix: palm `{data['grasp_fix']['palm_link']}`, gripper links {', '.join(data['grasp_fix']['gripper_links'])}
 """
+    if plan.suction:
+        out += suction.readme_section(plan)
     found = warnings(model, repairs)
     out += "\n## Warnings\n\n" + ("\n".join(f"- {w}" for w in found) if found else "None.") + "\n"
     return out

@@ -51,6 +51,7 @@ class Plan:
     # (name, group, values); the gripper's open/close have values None until complete_gripper_states
     states: list[tuple[str, str, dict[str, float] | None]] = field(default_factory=list)
     planning_frame: str = "world"
+    suction: Any = None  # a suction tool (suction.SuctionTool) instead of a gripper; set by suction.attach
 
     @property
     def virtual_joint(self) -> bool:
@@ -197,15 +198,19 @@ def infer(model: dict[str, Any], answers: dict[str, Any]) -> Plan:
             gripper = GroupPlan(name=name, joints=joints,
                                 controller=gripper_answers.get("controller", f"{name}_controller"),
                                 controller_type=gripper_answers.get("controller_type", GroupPlan.controller_type))
-        elif gripper_answers:
+        elif gripper_answers and "suction" not in answers:
             raise InferenceError(f"answers gripper: no moving joint below the arm's tip '{tip}'")
+    if gripper and "suction" in answers:
+        raise InferenceError(f"answers suction: the arm's tip '{tip}' has moving joints below it "
+                             f"({', '.join(gripper.joints)}): a suction tool has none (answer gripper: none to "
+                             "leave them out)")
     if gripper and gripper.controller == arm.controller:
         raise InferenceError(f"answers: arm and gripper both use controller '{arm.controller}'")
 
     end_effector = None
     ee_answers = answers.get("end_effector", {})
-    if ee_answers and not gripper:
-        raise InferenceError("answers end_effector: there is no gripper group for it")
+    if ee_answers and not gripper and "suction" not in answers:
+        raise InferenceError("answers end_effector: there is no gripper group (nor a suction tool) for it")
     if gripper:
         end_effector = {"name": ee_answers.get("name", "hand"), "parent_link": ee_answers.get("parent_link", tip),
                         "group": gripper.name}

@@ -42,6 +42,9 @@ def srdf_skeleton(plan: Plan, previous: str | None = None) -> str:
         else:
             lines += [f"    <joint name={quoteattr(joint)}/>" for joint in group.joints]
         lines.append("  </group>")
+    if plan.suction:
+        lines += [f"  <group name={quoteattr(plan.suction.group)}>",
+                  f"    <link name={quoteattr(plan.suction.cup_link)}/>", "  </group>"]
     for name, group, values in plan.states:
         lines.append(f"  <group_state name={quoteattr(name)} group={quoteattr(group)}>")
         lines += [f"    <joint name={quoteattr(j)} value={quoteattr(_number(v))}/>" for j, v in values.items()]
@@ -189,8 +192,9 @@ install(DIRECTORY config launch urdf DESTINATION ${{CATKIN_PACKAGE_SHARE_DESTINA
 
 
 def has_grasping(plan: Plan) -> bool:
-    """Whether the package has a config/grasping.yaml: a gripper with an end effector (the core's grasp geometry)."""
-    return plan.gripper is not None and plan.end_effector is not None
+    """Whether the package has a config/grasping.yaml: a gripper (the core's grasp geometry) or a suction tool, with an
+    end effector."""
+    return (plan.gripper is not None or plan.suction is not None) and plan.end_effector is not None
 
 
 def include_args(values: dict[str, str], passed: Iterable[str] = ()) -> str:
@@ -276,7 +280,7 @@ def rviz_config(plan: Plan, report: dict[str, Any]) -> str:
     distance = round(min(max(1.5, 2.0 * size), 5.0), 2)
     # The grasp frame (config/grasping.yaml) as axes on its URDF link.
     tcp = ("    - Class: rviz/Axes\n      Enabled: true\n      Length: 0.08\n      Name: TCP\n      Radius: 0.004\n"
-           f"      Reference Frame: {TCP_FRAME}\n      Value: true\n") if plan.gripper else ""
+           f"      Reference Frame: {TCP_FRAME}\n      Value: true\n") if plan.gripper or plan.suction else ""
     return f"""# {HEADER}: the robot, the simulator's objects, the sixdof_rviz Motion Planning panel and
 # Planned Path display; Goal State and Planning Scene displays configured (enable them in the Displays panel).
 Panels:
@@ -447,7 +451,7 @@ first), or `driver:=<package>/<class>` (a hardware plugin of your own); see sixd
 | `config/joint_limits.yaml` | velocities from the URDF; accelerations marked `defaulted` where not given |
 | `config/controllers.yaml` | the simulator's controllers and move_group's `controller_list` |
 | `config/world.yaml` | a table under the robot, nothing on it |
-| `config/grasping.yaml` | with a gripper: its grasp frame (TCP), open/closed states, opening, pads, grasp fix |
+| `config/grasping.yaml` | a gripper's grasp frame (TCP), open/closed states, opening, pads, grasp fix; or a cup's |
 | `config/motion_planning.rviz` | rviz with the Motion Planning panel (and the TCP's axes) |
 | `launch/demo.launch` | the whole stack (sixdof_bringup's demo.launch with these files) |
 | `launch/move_group.launch` | move_group alone |

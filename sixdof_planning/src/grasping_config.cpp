@@ -18,7 +18,9 @@ namespace {
 const std::set<std::string> kKeys = {"group",        "end_effector",      "tcp",          "open",
                                      "closed",       "max_opening",       "closed_width", "finger_reach",
                                      "palm_depth",   "pad_links",         "grasp_fix",    "closing_direction",
-                                     "approach_direction"};
+                                     "approach_direction", "suction"};
+const std::set<std::string> kSuctionKeys = {"cup_link",         "max_payload", "tilt_tolerance",
+                                            "contact_distance", "controller",  "arm_name"};
 const std::set<std::string> kTcpKeys = {"frame", "parent_link", "xyz", "rpy", "source"};
 const std::set<std::string> kStateKeys = {"state", "positions"};
 
@@ -198,6 +200,17 @@ GraspingConfig parseGraspingConfig(const std::string& yaml_text, const sixdof_co
       }
     }
 
+    config.approach_direction =
+        read.direction(read.required(root, "", "approach_direction"), "approach_direction");
+    if (root["suction"]) {
+      const YAML::Node suction = read.map(root["suction"], "suction", kSuctionKeys);
+      config.suction_cup = read.link(read.required(suction, "suction.", "cup_link"), "suction.cup_link");
+      config.vacuum_controller =
+          suction["controller"] ? read.string(suction["controller"], "suction.controller") : "gripper_controller";
+      config.max_payload =
+          suction["max_payload"] ? read.finite(suction["max_payload"], "suction.max_payload", 0.0, false) : 0.5;
+      return config;
+    }
     config.open = read.state(read.required(root, "", "open"), "open", *group);
     config.closed = read.state(read.required(root, "", "closed"), "closed", *group);
     config.max_opening = read.finite(read.required(root, "", "max_opening"), "max_opening", 0.0, false);
@@ -222,8 +235,6 @@ GraspingConfig parseGraspingConfig(const std::string& yaml_text, const sixdof_co
     }
     config.closing_direction =
         read.direction(read.required(root, "", "closing_direction"), "closing_direction");
-    config.approach_direction =
-        read.direction(read.required(root, "", "approach_direction"), "approach_direction");
     return config;
   } catch (const YAML::Exception& e) {
     throw ConfigError(source + ": " + e.msg);

@@ -131,6 +131,9 @@ sixdof_msgs::RobotModelGripper describeGripper(const GraspingConfig& grasping) {
   msg.pad_links = grasping.pad_links;
   msg.closing_direction = vectorMsg(grasping.closing_direction);
   msg.approach_direction = vectorMsg(grasping.approach_direction);
+  msg.suction_cup = grasping.suction_cup;
+  msg.vacuum_controller = grasping.vacuum_controller;
+  msg.max_payload = grasping.max_payload;
   return msg;
 }
 

@@ -136,5 +136,41 @@ TEST(GraspingConfig, TextThatDoesNotFitTheModelNamesTheKey) {
          "'closing_direction' must not be zero");
 }
 
+// The sixdof arm's suction variant (sixdof_description's `tool: suction`): a `suction` mapping instead of fingers.
+TEST(GraspingConfig, ASuctionToolIsServedWithItsCupAndVacuum) {
+  const sixdof_core::RobotModel suction_model(
+      readFile(SIXDOF_DESCRIPTION_DIR "/urdf/sixdof_suction.urdf"),
+      readFile(SIXDOF_DESCRIPTION_DIR "/config/suction/sixdof_suction.srdf"),
+      sixdof_core::PackageResolver::fromMap({{"sixdof_description", SIXDOF_DESCRIPTION_DIR}}));
+  const std::string text = readFile(SIXDOF_DESCRIPTION_DIR "/config/suction/grasping.yaml");
+  const GraspingConfig c = parseGraspingConfig(text, suction_model, "grasping.yaml");
+  EXPECT_EQ(c.suction_cup, "tcp");
+  EXPECT_EQ(c.vacuum_controller, "gripper_controller");
+  EXPECT_DOUBLE_EQ(c.max_payload, 0.5);
+  EXPECT_EQ(c.parent_link, "link6");
+  const sixdof_msgs::RobotModelGripper msg = describeGripper(c);
+  EXPECT_EQ(msg.suction_cup, "tcp");
+  EXPECT_EQ(msg.vacuum_controller, "gripper_controller");
+  EXPECT_TRUE(msg.open.joint_names.empty());
+  // The fingered gripper's keys are not needed; a suction mapping without its cup, or naming no link, is refused.
+  const auto error = [&](const std::string& from, const std::string& to) {
+    std::string bad = text;
+    bad.replace(bad.find(from), from.size(), to);
+    try {
+      parseGraspingConfig(bad, suction_model, "grasping");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("cup_link: tcp", "cup_link: nozzle").find("'suction.cup_link' names link 'nozzle'"),
+            std::string::npos);
+  EXPECT_NE(error("cup_link: tcp,", "").find("'suction.cup_link' is missing"), std::string::npos);
+  EXPECT_NE(error("max_payload: 0.5", "max_payload: -1").find("'suction.max_payload' must be a finite number > 0"),
+            std::string::npos);
+  EXPECT_NE(error("max_payload: 0.5", "suction_force: 3").find("'suction.suction_force' is not a key"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace sixdof_planning

@@ -34,13 +34,19 @@ struct GraspingConfig {
   std::vector<std::string> pad_links;
   Eigen::Vector3d closing_direction = Eigen::Vector3d::UnitY();   // unit
   Eigen::Vector3d approach_direction = Eigen::Vector3d::UnitZ();  // unit
+  // A suction tool (the `suction` mapping): its cup frame, vacuum controller and payload; no fingers.
+  std::string suction_cup;  // empty: a gripper with fingers
+  std::string vacuum_controller;
+  double max_payload = 0.0;
 };
 
 // Reads grasping.yaml text against the model it is for. `source` names the text in messages (the parameter).
 // Required: group, tcp {parent_link, xyz, rpy}, open and closed {state, positions}, max_opening, closing_direction,
 // approach_direction; optional: end_effector (default: the SRDF end effector of the group), tcp.frame, tcp.source,
 // closed_width, finger_reach, palm_depth (default infinity), pad_links, and grasp_fix (the simulator's; not read
-// here). Throws ConfigError (config.h) naming `source` and the key on anything that does not fit the model: an
+// here). A suction tool has a `suction` mapping (cup_link required; controller, max_payload and the simulator's
+// tilt_tolerance, contact_distance, arm_name optional) instead of open, closed, max_opening and closing_direction.
+// Throws ConfigError (config.h) naming `source` and the key on anything that does not fit the model: an
 // unknown key, group, end effector, link or joint, a state position outside its joint's limits, a state of a mimic
 // or non-gripper joint, a state that disagrees with the SRDF's group state of the same name, a tcp.frame link
 // that is not rigidly fixed to parent_link at tcp, a width or reach that is not a finite number in range, a zero

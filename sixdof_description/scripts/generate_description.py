@@ -4,6 +4,8 @@
   generate_description.py                      write into the package (source tree when run from it)
   generate_description.py --check              exit 1 if a committed file differs from the generator's
   generate_description.py --output-dir DIR     write elsewhere (the previous SRDF is read from DIR)
+  generate_description.py --tool suction       the arm with the suction cup (default: the design's `tool`):
+                                               urdf/sixdof_suction.urdf, config/suction/, meshes/*/cup.stl
 """
 
 import argparse
@@ -13,7 +15,8 @@ from pathlib import Path
 import rospkg
 
 from sixdof_description.cad import DesignError
-from sixdof_description.generator import generate_files, write_files
+from sixdof_description.generator import generate_files, generated_files, write_files
+from sixdof_description.robot_design import TOOLS, load_design
 
 
 def package_dir() -> Path:
@@ -29,13 +32,16 @@ def main() -> int:
     parser.add_argument("--package-dir", type=Path, help="package whose config/design.yaml is read")
     parser.add_argument("--output-dir", type=Path, help="where to write (default: the package dir)")
     parser.add_argument("--check", action="store_true", help="compare instead of writing; exit 1 on a difference")
+    parser.add_argument("--tool", choices=TOOLS, help="the arm's tool (default: the design's `tool`)")
     args = parser.parse_args()
     pkg = args.package_dir or package_dir()
     out = args.output_dir or pkg
-    srdf = out / "config" / "sixdof.srdf"
-    previous = srdf.read_text(encoding="utf-8") if srdf.is_file() else None
     try:
-        files = generate_files(pkg / "config" / "design.yaml", previous)
+        design = pkg / "config" / "design.yaml"
+        tool = args.tool or load_design(design).get("tool", TOOLS[0])
+        srdf = out / generated_files(tool)[1]
+        previous = srdf.read_text(encoding="utf-8") if srdf.is_file() else None
+        files = generate_files(design, previous, tool)
     except DesignError as error:
         print(f"generate_description.py: {error}", file=sys.stderr)
         return 2

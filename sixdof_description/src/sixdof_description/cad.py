@@ -257,6 +257,11 @@ def finger(f: dict, pad: dict, res: Resolution) -> trimesh.Trimesh:
     return union([plate, carriage, pad_solid])
 
 
+def cup(p: dict, res: Resolution) -> trimesh.Trimesh:
+    """The suction cup: a short cylinder on link6's flange, from the flange (z = 0) to its face (z = length)."""
+    return rounded_cylinder(p["radius"], (0.0, p["length"]), "z", (0, 0, 0), p["fillet"], res)
+
+
 def pad_span(f: dict, pad: dict) -> tuple[float, float]:
     hi = f["length_z"] - pad["tip_gap_z"]
     return hi - pad["length_z"], hi

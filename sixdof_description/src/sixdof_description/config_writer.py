@@ -35,8 +35,9 @@ def render_controllers(robot: Robot, generated: str) -> str:
     """The setup assistant's controllers.yaml (`generated`) with the design's PID gains after each controller's
     joints (for effort-controlled hardware; the simulator's position servos and move_group do not read them)."""
     c = robot.design["controllers"]
-    gains = {"arm_controller": arm_gains(robot),
-             "gripper_controller": {name: dict(c["gripper_gains"]) for name in GRIPPER_JOINTS}}
+    gains = {"arm_controller": arm_gains(robot)}
+    if robot.tool_joints:
+        gains["gripper_controller"] = {name: dict(c["gripper_gains"]) for name in robot.tool_joints}
     data = yaml.safe_load(generated)
     for name, controller_gains in gains.items():
         items = list(data[name].items())
@@ -53,6 +54,8 @@ def render_setup_answers(robot: Robot) -> str:
     d = robot.design
     arm_states = {name: {j: float(fmt(v)) for j, v in zip(ARM_JOINTS, q, strict=True)}
                   for name, q in robot.states.items()}
+    if robot.tool == "suction":
+        return _yaml(suction_answers(robot, arm_states), ANSWERS_NOTE)
     gripper_states = {name: {GRIPPER_JOINTS[0]: float(fmt(value))} for name, value in d["gripper_states"].items()}
     data = {
         "density": COLLISION_DENSITY,
@@ -65,7 +68,24 @@ def render_setup_answers(robot: Robot) -> str:
         # The grasp fix the URDF's gazebo_grasp_fix block has, for config/grasping.yaml (the TCP is the link tcp).
         "grasping": {"grasp_fix": dict(GRASP_FIX)},
     }
-    return _yaml(data, "Answers for `rosrun sixdof_setup_assistant setup_assistant --answers` (docs/your_own_arm.md).")
+    return _yaml(data, ANSWERS_NOTE)
+
+
+def suction_answers(robot: Robot, arm_states: dict) -> dict:
+    """The answers of the suction variant: the cup link named, its payload and tolerances (the simulator's)."""
+    cup = robot.design["suction_cup"]
+    return {
+        "density": COLLISION_DENSITY,
+        "arm": {"group": "arm", "tip_link": "link6", "solver": "analytic", "controller": "arm_controller"},
+        "end_effector": {"name": "hand", "parent_link": "link6"},
+        "suction": {"cup_link": "cup", **{k: float(cup[k]) for k in SUCTION_KEYS if k in cup}},
+        "named_states": {"arm": arm_states},
+        "acceleration_limits": {name: float(robot.joint_params[name]["acceleration"]) for name in ARM_JOINTS},
+    }
+
+
+ANSWERS_NOTE = "Answers for `rosrun sixdof_setup_assistant setup_assistant --answers` (docs/your_own_arm.md)."
+SUCTION_KEYS = ("max_payload", "tilt_tolerance", "contact_distance")
 
 
 # The collision matrix of the committed SRDF is sampled at MoveIt's low density.

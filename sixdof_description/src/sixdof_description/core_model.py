@@ -20,7 +20,7 @@ def robot_model(robot: Robot) -> sixdof_core.RobotModel:
     """The URDF the generator writes, without the meshes (not written yet), and the arm group (the setup
     assistant writes the package's SRDF later, from the named states solved on this model)."""
     arm = f'<group name="{ARM_GROUP}"><chain base_link="{ROOT_LINK}" tip_link="{ARM_TIP}"/></group>'
-    srdf = f'<robot name="{robot.design["robot_name"]}">{arm}</robot>'
+    srdf = f'<robot name="{robot.name}">{arm}</robot>'
     return sixdof_core.RobotModel(render_urdf(robot, meshes=False), srdf)
 
 
@@ -51,12 +51,14 @@ def solve_named_states(robot: Robot) -> dict:
 
 
 def joint_space_inertia(robot: Robot, arm_positions: np.ndarray) -> np.ndarray:
-    """The arm's joint-space inertia matrix at arm_positions with the gripper open: the sum over the links of
-    m Jv^T Jv + Jw^T I Jw, with each link's Jacobian at its centre of mass and its inertia in the root frame."""
+    """The arm's joint-space inertia matrix at arm_positions with the gripper (if any) open: the sum over the
+    links of m Jv^T Jv + Jw^T I Jw, with each link's Jacobian at its centre of mass and its inertia in the root
+    frame."""
     model = robot_model(robot)
     state = sixdof_core.RobotState(model)
     state.set_group_positions(ARM_GROUP, arm_positions)
-    state.set_joint_position(GRIPPER_JOINTS[0], float(robot.design["gripper_states"]["open"]))
+    if robot.tool_joints:
+        state.set_joint_position(GRIPPER_JOINTS[0], float(robot.design["gripper_states"]["open"]))
     inertia_matrix = np.zeros((len(arm_positions), len(arm_positions)))
     for link in model.links:
         if link.inertial is None:

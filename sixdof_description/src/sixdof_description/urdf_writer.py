@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from sixdof_description.formatting import HEADER, exact, fmt, vec
-from sixdof_description.robot_design import ARM_JOINTS, GRIPPER_JOINTS, JOINT_LINKS, LINKS, ROOT_LINK, Robot
+from sixdof_description.robot_design import ARM_JOINTS, JOINT_LINKS, ROOT_LINK, Robot
 
 PACKAGE = "sixdof_description"
 
@@ -40,14 +40,14 @@ def render_urdf(robot: Robot, meshes: bool = True) -> str:
     sixdof_core reads before the meshes are written (core_model.py)."""
     d = robot.design
     colours = d["colours"]
-    out = ['<?xml version="1.0"?>', f"<!-- {HEADER} -->", f'<robot name="{d["robot_name"]}">']
+    out = ['<?xml version="1.0"?>', f"<!-- {HEADER} -->", f'<robot name="{robot.name}">']
     materials = []
-    for name in LINKS:
+    for name in robot.link_names:
         mat = _material_name(colours[name])
         if mat not in materials:
             materials.append(mat)
             out.append(f'  <material name="{mat}"><color rgba="{vec(colours[name])}"/></material>')
-    for name in LINKS:
+    for name in robot.link_names:
         link = robot.links[name]
         i = link.inertia
         mat = _material_name(colours[name])
@@ -89,7 +89,7 @@ def render_urdf(robot: Robot, meshes: bool = True) -> str:
         if spec.name == "finger2_joint":
             out.append('    <mimic joint="finger1_joint" multiplier="1" offset="0"/>')
         out.append("  </joint>")
-    for name in (*ARM_JOINTS, *GRIPPER_JOINTS):
+    for name in (*ARM_JOINTS, *robot.tool_joints):
         out += [
             f'  <transmission name="{name}_transmission">',
             "    <type>transmission_interface/SimpleTransmission</type>",
@@ -99,9 +99,10 @@ def render_urdf(robot: Robot, meshes: bool = True) -> str:
             "  </transmission>",
         ]
     friction = d["friction"]
-    for name in LINKS:
+    for name in robot.link_names:
         f = friction.get(name, friction["default"])
         out.append(f'  <gazebo reference="{name}"><mu1>{fmt(f["mu1"])}</mu1><mu2>{fmt(f["mu2"])}</mu2></gazebo>')
-    out.append(GRASP_FIX_BLOCK.rstrip("\n"))
+    if robot.tool_joints:  # the suction cup's simulator settings are its grasping.yaml's `suction`
+        out.append(GRASP_FIX_BLOCK.rstrip("\n"))
     out.append("</robot>")
     return "\n".join(out) + "\n"

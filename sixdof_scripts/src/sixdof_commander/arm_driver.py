@@ -32,6 +32,7 @@ from .gripper import Gripper
 from .move_group import MoveGroup
 from .package_defaults import arm_group, find_gripper, home_state, link_in_link
 from .planning_scene import PlanningScene
+from .suction import SuctionGripper, suction_tcp_pose
 from .transforms import matrix_from_pose, quaternion_from_matrix
 
 # ArmDriver.last_failure_kind of a failed motion: no top-down grasp or place at that spot, or anything else.
@@ -117,9 +118,14 @@ class ArmDriver:
         self.arm.set_max_velocity_scaling_factor(velocity)
         self.arm.set_max_acceleration_scaling_factor(acceleration)
         self.home = home_state(srdf, self.arm.get_name())
-        self.gripper: Gripper | None = None
+        self.gripper: Gripper | SuctionGripper | None = None
         self._spec: GraspSpec | None = None
-        if self.gripper_model is not None:
+        if self.gripper_model is not None and self.gripper_model.suction_cup:
+            g = self.gripper_model
+            self.gripper = SuctionGripper(ns=ns, action_name=f"{g.vacuum_controller}/gripper_cmd",
+                                          wait_for_servers=wait_for_servers)
+            self._spec = grasp_spec(g, link_in_link(urdf, self.arm.get_end_effector_link(), g.parent_link))
+        elif self.gripper_model is not None:
             g = self.gripper_model
             self.gripper = Gripper(
                 ns=ns,
@@ -145,13 +151,17 @@ class ArmDriver:
         return self._ns
 
     @property
+    def _suction(self) -> bool:
+        return isinstance(self.gripper, SuctionGripper)
+
+    @property
     def grasp_spec(self) -> GraspSpec:
         """The gripper's grasp geometry (tcp in the tip link, closing axis, opening, finger reach, palm depth) from
         the package's grasping information, for callers that grasp objects located by other means than the
         simulator (e.g. a camera)."""
         return self._require_gripper("grasp_spec")[1]
 
-    def _require_gripper(self, what: str) -> tuple[Gripper, GraspSpec]:
+    def _require_gripper(self, what: str) -> tuple[Gripper | SuctionGripper, GraspSpec]:
         """The gripper and its grasp geometry; SixdofCommanderError saying why there is none."""
         if self.gripper is None or self._spec is None:
             raise SixdofCommanderError(f"ArmDriver.{what}: {self._no_gripper}")
@@ -190,7 +200,8 @@ class ArmDriver:
         return True
 
     def gripper_open(self) -> bool:
-        """Open the gripper; True when the fingers reached the 'open' position."""
+        """Open the gripper (a suction tool: vacuum off); True when the fingers reached the 'open' position (the
+        vacuum is off)."""
         gripper = self._require_gripper("gripper_open")[0]
         result = gripper.open()
         if not result.reached_goal:
@@ -200,9 +211,12 @@ class ArmDriver:
 
     def gripper_close(self) -> bool:
         """Close the gripper; True when it stopped on something (did not close on empty air: its finger joint
-        ended within 2.5 % of its open-to-closed travel of the closed state, whichever way that runs)."""
+        ended within 2.5 % of its open-to-closed travel of the closed state, whichever way that runs). A suction
+        tool: vacuum on; True when the cup holds an object (sealed on nothing otherwise, the vacuum left on)."""
         gripper = self._require_gripper("gripper_close")[0]
         result = gripper.close()
+        if isinstance(gripper, SuctionGripper):
+            return result.stalled or self._fail("the suction cup sealed on nothing (vacuum on, nothing held)")
         travel = abs(gripper.open_position - gripper.close_position)
         if abs(result.position - gripper.close_position) <= CLOSED_ON_NOTHING * travel:
             return self._fail(f"gripper closed on nothing (position {result.position:.4f})")
@@ -213,6 +227,8 @@ class ArmDriver:
         widths, interpolated linearly between the two states (exact for prismatic fingers, an estimate for a
         revolute linkage)."""
         gripper = self._require_gripper("gripper_opening")[0]
+        if isinstance(gripper, SuctionGripper):
+            raise SixdofCommanderError("ArmDriver.gripper_opening: a suction tool has no opening")
         g = self.gripper_model
         assert g is not None
         fraction = (position - gripper.close_position) / (gripper.open_position - gripper.close_position)
@@ -297,7 +313,7 @@ class ArmDriver:
         pose = matrix_from_pose(state.object.pose)
         try:
             geometry = object_geometry(pose, state.object.shape)
-            tcp, _ = grasp_tcp_pose(geometry, spec)
+            tcp = suction_tcp_pose(geometry) if self._suction else grasp_tcp_pose(geometry, spec)[0]
         except SixdofCommanderError as err:
             return self._fail(f"no top-down grasp of '{object_name}': {err}", kind=UNREACHABLE)
         grasp_tip = tip_pose(tcp, spec)

@@ -78,6 +78,14 @@ class Gripper:
         """The finger joint's position in the closed state."""
         return self._positions["close"]
 
+    def grasp(self, max_effort: float = 0.0) -> GripperCommandResult:
+        """close(): what a pick script calls to take hold (a SuctionGripper's vacuum on)."""
+        return self.close(max_effort)
+
+    def release(self, max_effort: float = 0.0) -> GripperCommandResult:
+        """open(): what a pick script calls to let go (a SuctionGripper's vacuum off)."""
+        return self.open(max_effort)
+
     def open(self, max_effort: float = 0.0) -> GripperCommandResult:
         """Move the fingers to the open state; the action result."""
         return self.set_position(self.open_position, max_effort)
@@ -99,22 +107,28 @@ class Gripper:
         effort = check_number(max_effort, "gripper max_effort")
         if effort < 0.0:
             raise SixdofCommanderError(f"gripper max_effort must be >= 0 (0: the joint's limit), got {effort}")
-        goal = GripperCommandGoal()
-        goal.command.position = value
-        goal.command.max_effort = effort
-        # Wall clock: with use_sim_time a paused or stopped simulator never advances ROS time.
-        done = threading.Event()
-        self._client.send_goal(goal, done_cb=lambda _state, _result: done.set())
-        reason = wait_for_done(self._client, done, self._result_timeout)
-        if reason:
-            self._client.cancel_goal()
-            raise SixdofCommanderError(
-                f"gripper command to {value:.6g}: {reason} (goal state {self._client.get_state()}); "
-                "the goal was canceled"
-            )
-        result = self._client.get_result()
-        if result is None:
-            raise SixdofCommanderError(f"gripper command got no result (goal status {self._client.get_state()})")
-        # The goal status text of the last command: the controller's words when it aborted or rejected it.
-        self.last_status_text = self._client.get_goal_status_text()
+        result, self.last_status_text = send_gripper_command(self._client, value, effort, self._result_timeout)
         return result
+
+
+def send_gripper_command(
+    client: ActionClient, position: float, max_effort: float, result_timeout: float
+) -> tuple[GripperCommandResult, str]:
+    """Sends a GripperCommand goal and waits (wall clock: with use_sim_time a paused or stopped simulator never
+    advances ROS time) for (its result, the goal status text: the controller's words when it aborted or rejected
+    it). A timeout or a lost server cancels the goal and raises SixdofCommanderError."""
+    goal = GripperCommandGoal()
+    goal.command.position = position
+    goal.command.max_effort = max_effort
+    done = threading.Event()
+    client.send_goal(goal, done_cb=lambda _state, _result: done.set())
+    reason = wait_for_done(client, done, result_timeout)
+    if reason:
+        client.cancel_goal()
+        raise SixdofCommanderError(
+            f"gripper command to {position:.6g}: {reason} (goal state {client.get_state()}); the goal was canceled"
+        )
+    result = client.get_result()
+    if result is None:
+        raise SixdofCommanderError(f"gripper command got no result (goal status {client.get_state()})")
+    return result, client.get_goal_status_text()

@@ -184,6 +184,9 @@ class GripperModel:
     pad_links: tuple[str, ...]
     closing_direction: np.ndarray  # unit
     approach_direction: np.ndarray  # unit
+    suction_cup: str = ""  # a suction tool's cup frame (grasping.yaml `suction`); empty: a gripper with fingers
+    vacuum_controller: str = ""  # the suction tool's vacuum: <vacuum_controller>/gripper_cmd
+    max_payload: float = 0.0  # kg the suction cup holds
 
 
 @dataclass(frozen=True)
@@ -295,6 +298,9 @@ def gripper_from_msg(msg: Any) -> GripperModel:
         pad_links=tuple(msg.pad_links),
         closing_direction=_vector(msg.closing_direction),
         approach_direction=_vector(msg.approach_direction),
+        suction_cup=msg.suction_cup,
+        vacuum_controller=msg.vacuum_controller,
+        max_payload=msg.max_payload,
     )
 
 

@@ -80,6 +80,32 @@ TEST(Suction, HoldsAPayloadThroughALiftAndReleasesOnVacuumOff) {
   EXPECT_EQ(detached[0].object, "cube");
 }
 
+// The cup pressed onto the cube's top, as a pick puts its face on it: once held, the cube and the cup's body have no
+// contacts (they would fight the constraint), and the cube keeps its place under the cup through the lift; let go,
+// it collides with the cup again.
+TEST(Suction, AHeldObjectDoesNotCollideWithTheCup) {
+  World world(gantryUrdf(), cubeWorld(0.3), options());
+  moveLift(world, -0.2605);  // the face 0.5 mm into the cube's top: pressing it
+  const auto cupContacts = [&world] {
+    int n = 0;
+    for (const Contact& c : world.contacts())
+      n += (c.body_a == "cup" && c.body_b == "cube") || (c.body_a == "cube" && c.body_b == "cup");
+    return n;
+  };
+  EXPECT_GT(cupContacts(), 0);
+  ASSERT_TRUE(world.setVacuum(true).ok());
+  world.step(1);
+  ASSERT_EQ(world.suctionHeld(), "cube");
+  const double sealed = cubeZ(world) - (0.3 + world.jointPositions()[0]);
+  moveLift(world, 0.0);
+  EXPECT_EQ(cupContacts(), 0);
+  EXPECT_NEAR(cubeZ(world) - (0.3 + world.jointPositions()[0]), sealed, 2e-4);
+  moveLift(world, -0.2605);
+  ASSERT_TRUE(world.setVacuum(false).ok());
+  world.step(200);
+  EXPECT_GT(cupContacts(), 0);
+}
+
 TEST(Suction, RefusesAnObjectOverThePayload) {
   World world(gantryUrdf(), cubeWorld(0.8), options());
   ASSERT_TRUE(world.setVacuum(true).ok());

@@ -11,6 +11,8 @@
 // - A seal fixes the object to the cup link at its current relative pose (a fixed constraint, as the grasp fix's)
 //   and queues an ATTACHED grasp event (arm_name, palm_link = gripper_links[0] = cup_link); the vacuum going off,
 //   deleting or teleporting the object releases it with a DETACHED event.
+// - While held, the object and the cup link's Bullet body do not collide (it touches the cup's face; their contacts
+//   would fight the constraint and turn the arm's wrist); they collide again once it is released.
 // - The vacuum is commanded through <controller>/gripper_cmd (control_msgs/GripperCommand) by the node:
 //   command.position > 0 turns it on, <= 0 off.
 

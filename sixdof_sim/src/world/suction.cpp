@@ -179,16 +179,37 @@ void World::Impl::stepSuction() {
   suction.constraint->setMaxAppliedImpulse(kGraspConstraintMaxImpulse);
   suction.constraint->finalizeMultiDof();
   world->addMultiBodyConstraint(suction.constraint.get());
+  setCupContacts(object, false);
   object->body->activate(true);
   suction.held = object->spec.name;
   setArticulatedWarmstarting(false);
   pushSuctionEvent(GraspEvent::Type::kAttached);
 }
 
+// A held object is fixed to the cup's body, touching the cup's face: their contacts would push it off the pose the
+// constraint holds, and the solver's fight between the two turns the wrist (on the sixdof arm, joint6 off its goal by
+// over 10 mrad with a cube in the air). So the pair does not collide while held, and collides again once let go.
+void World::Impl::setCupContacts(ObjectRuntime* object, bool on) {
+  const int link = bodies[links.at(suction_config->cup_link).body].bullet_link;
+  btCollisionObject* cup = link < 0 ? multibody->getBaseCollider() : multibody->getLink(link).m_collider;
+  if (cup == nullptr) return;
+  object->body->setIgnoreCollisionCheck(cup, !on);
+  if (on || object->body->getBroadphaseHandle() == nullptr || cup->getBroadphaseHandle() == nullptr) return;
+  // The pair stays in the broadphase (so that it collides again as soon as the object is let go) but its contact
+  // points go: a pair that is not checked keeps its manifold, and the solver would go on using its last points.
+  btBroadphasePair* pair = world->getBroadphase()->getOverlappingPairCache()->findPair(
+      object->body->getBroadphaseHandle(), cup->getBroadphaseHandle());
+  if (pair == nullptr || pair->m_algorithm == nullptr) return;
+  btManifoldArray manifolds;
+  pair->m_algorithm->getAllContactManifolds(manifolds);
+  for (int i = 0; i < manifolds.size(); ++i) manifolds[i]->clearManifold();
+}
+
 void World::Impl::releaseSuction() {
   if (!suction.constraint) return;
   world->removeMultiBodyConstraint(suction.constraint.get());
   suction.constraint.reset();
+  if (ObjectRuntime* object = findObject(suction.held)) setCupContacts(object, true);
   setArticulatedWarmstarting(true);
   pushSuctionEvent(GraspEvent::Type::kDetached);
   suction.held.clear();

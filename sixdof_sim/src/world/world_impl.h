@@ -265,6 +265,7 @@ struct World::Impl {
   void pushSuctionEvent(GraspEvent::Type type);
   void stepSuction();
   void releaseSuction();
+  void setCupContacts(ObjectRuntime* object, bool on);  // contacts between the cup's body and the object
   Result checkJointCommand(const std::string& joint, int* index);
   double dt() const { return options.time_step; }
 };

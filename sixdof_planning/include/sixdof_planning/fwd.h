@@ -55,5 +55,6 @@ class SimpleActionServer;
 namespace sixdof_planning {
 class MoveGroupContext;
 class SceneStore;
+class StageTimer;
 class TrajectoryExecutor;
 }  // namespace sixdof_planning

@@ -42,8 +42,10 @@ class MotionPlanner {
                  std::shared_ptr<const SceneStore> base_scene = nullptr) const;
 
  private:
+  // planRequest marks the end of each stage on `timer`.
   ErrorCode planRequest(const moveit_msgs::MotionPlanRequest& request, const std::string& source,
-                        moveit_msgs::MotionPlanResponse* response, std::shared_ptr<const SceneStore> base_scene) const;
+                        moveit_msgs::MotionPlanResponse* response, std::shared_ptr<const SceneStore> base_scene,
+                        StageTimer* timer) const;
   // Plans to one goal alternative.
   ErrorCode planToGoal(const sixdof_core::PlanningContext& planning, const sixdof_core::RobotState& start,
                        const moveit_msgs::Constraints& goal, const std::string& what,

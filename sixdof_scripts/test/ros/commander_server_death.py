@@ -18,7 +18,7 @@ from pathlib import Path
 import rospy
 import rostest
 from moveit_msgs.msg import MoveItErrorCodes, RobotTrajectory
-from moveit_msgs.srv import GetPositionFK
+from moveit_msgs.srv import GetPositionFK, GetPositionIK
 from sixdof_commander import Gripper, MoveGroup, SixdofCommanderError
 from sixdof_commander._ros import PersistentService, call_service
 from trajectory_msgs.msg import JointTrajectoryPoint
@@ -127,6 +127,19 @@ class CommanderServerDeath(unittest.TestCase):
         finally:
             stand_in.kill()
 
+    def test_a_kept_connection_that_stops_answering_is_given_up_after_its_timeout(self):
+        stand_in = StandIn()
+        try:
+            rospy.wait_for_service("compute_ik", timeout=HANG_GUARD)
+            service = PersistentService("compute_ik", GetPositionIK)
+            request = GetPositionIK._request_class()
+            call_service(service, request, HANG_GUARD)  # answered: the connection is kept
+            for _ in range(2):  # on the kept connection, then on a new one
+                with self.assertRaisesRegex(rospy.ROSException, "service '/compute_ik' gave no answer within 0.5 s"):
+                    call_service(service, request, 0.5)
+        finally:
+            stand_in.kill()
+
     def test_a_kept_connection_is_replaced_after_the_server_restarted(self):
         # PersistentService keeps its connection between calls; a server that died and came back gets a new one.
         service = PersistentService("get_robot_model", GetRobotModel)
@@ -136,7 +149,7 @@ class CommanderServerDeath(unittest.TestCase):
             try:
                 # rospy's wait connects to the registered server: a killed one's registration is not taken for it.
                 rospy.wait_for_service("get_robot_model", timeout=HANG_GUARD)
-                answers = [service(request) for _ in range(2)]
+                answers = [service(request) for _ in range(2)] + [call_service(service, request, HANG_GUARD)]
                 self.assertTrue(all(a.error_code.val == MoveItErrorCodes.SUCCESS for a in answers))
                 # Calls from two threads at once are both answered.
                 threads = [in_thread(lambda: service(request)) for _ in range(2)]

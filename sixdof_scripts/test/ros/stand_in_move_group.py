@@ -2,7 +2,8 @@
 """A stand-in for the move_group and simulator nodes that accepts every request and never answers: the
 commander_server_death test kills it by pid mid-request. Each request it receives sets the parameter
 /stand_in/received/<name> to True, so the test knows when the request is in flight. get_robot_model is the one
-it answers: relayed to the real move_group in /model_source (the commander needs the model before any request)."""
+it answers: relayed to the real move_group in /model_source (the commander needs the model before any request);
+compute_ik answers its first request (an empty response) and hangs on the next ones."""
 
 import threading
 
@@ -10,7 +11,15 @@ import actionlib
 import rospy
 from control_msgs.msg import GripperCommandAction
 from moveit_msgs.msg import ExecuteTrajectoryAction, MoveGroupAction
-from moveit_msgs.srv import ApplyPlanningScene, GetCartesianPath, GetMotionPlan, GetPlanningScene, GetPositionFK
+from moveit_msgs.srv import (
+    ApplyPlanningScene,
+    GetCartesianPath,
+    GetMotionPlan,
+    GetPlanningScene,
+    GetPositionFK,
+    GetPositionIK,
+    GetPositionIKResponse,
+)
 
 from sixdof_msgs.srv import GetRobotModel, RetimeTrajectory
 
@@ -21,6 +30,19 @@ def hang(name: str):
     def handler(*_args):
         rospy.set_param(f"/stand_in/received/{name}", True)
         threading.Event().wait()
+
+    return handler
+
+
+def answer_once(name: str):
+    answered = threading.Event()
+    hung = hang(name)
+
+    def handler(request):
+        if answered.is_set():
+            return hung(request)
+        answered.set()
+        return GetPositionIKResponse()
 
     return handler
 
@@ -48,6 +70,7 @@ def main() -> None:
             ("retime_trajectory", RetimeTrajectory),
         )
     ]
+    services.append(rospy.Service("compute_ik", GetPositionIK, answer_once("compute_ik")))
     rospy.wait_for_service(MODEL_SOURCE, timeout=60.0)
     source = rospy.ServiceProxy(MODEL_SOURCE, GetRobotModel)
     services.append(rospy.Service("get_robot_model", GetRobotModel, lambda request: source(request)))

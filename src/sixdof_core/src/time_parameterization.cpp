@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
-#include <sstream>
 
 #include "time_parameterization_inputs.h"
 
@@ -80,11 +78,21 @@ class Solver {
         grid_(std::move(grid)),
         limits_(std::move(limits)),
         joints_(limits_.velocity.size()),
-        ends_(4 * joints_ * (grid_.size() - 1)) {
-    // Tangent and curvature at both ends of every interval, on the interval's own segment (a point on a
-    // segment boundary has one curvature per side).
+        slots_(grid_.size() - 1) {
+    // On a straight segment every interval has the segment's direction as tangent and no curvature: the speed
+    // limit is the segment's, and the constraints need only the direction. Arcs store the tangent and curvature at
+    // both ends of each of their intervals, on the interval's own segment (a point on a segment boundary has one
+    // curvature per side).
+    line_limits_.reserve(segments_.size());
+    for (const Segment& seg : segments_) line_limits_.push_back(seg.circular ? 0.0 : directionSpeedLimit(seg.x));
+    std::size_t arc_intervals = 0;
+    for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
+      if (segmentOf(i).circular) slots_[i] = arc_intervals++;
+    }
+    ends_.resize(4 * joints_ * arc_intervals);
     for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
       const Segment& seg = segmentOf(i);
+      if (!seg.circular) continue;
       for (int e = 0; e < 2; ++e) {
         const double s = std::clamp(grid_[i + e].s - seg.start, 0.0, seg.length);
         seg.derivatives(s, slot(i, e, kTangent), slot(i, e, kCurvature));
@@ -139,28 +147,37 @@ class Solver {
  private:
   double step(std::size_t i) const { return grid_[i + 1].s - grid_[i].s; }
 
-  // Tangent (kTangent) or curvature (kCurvature) at end e (0: start, 1: end) of interval i, in ends_ (slot: to fill).
+  // Tangent (kTangent) or curvature (kCurvature) at end e (0: start, 1: end) of arc interval i, in ends_ (slot: to
+  // fill).
   static constexpr int kTangent = 0;
   static constexpr int kCurvature = 1;
   Eigen::Map<Eigen::VectorXd> slot(std::size_t i, int e, int which) {
-    return Eigen::Map<Eigen::VectorXd>(ends_.data() + (4 * i + 2 * e + which) * joints_, joints_);
+    return Eigen::Map<Eigen::VectorXd>(ends_.data() + (4 * slots_[i] + 2 * e + which) * joints_, joints_);
   }
   Eigen::Map<const Eigen::VectorXd> end(std::size_t i, int e, int which) const {
-    return Eigen::Map<const Eigen::VectorXd>(ends_.data() + (4 * i + 2 * e + which) * joints_, joints_);
+    return Eigen::Map<const Eigen::VectorXd>(ends_.data() + (4 * slots_[i] + 2 * e + which) * joints_, joints_);
   }
 
   const Segment& segmentOf(std::size_t interval) const { return segments_[grid_[interval].segment]; }
 
-  // Largest x at grid point p, for one adjacent interval, with some admissible acceleration.
-  double speedLimit(std::size_t interval, int end) const {
-    const Eigen::Map<const Eigen::VectorXd> d1 = this->end(interval, end, kTangent);
-    const Eigen::Map<const Eigen::VectorXd> d2 = this->end(interval, end, kCurvature);
+  // Largest x along tangent d1 within every joint's velocity limit.
+  template <class Vector>
+  double directionSpeedLimit(const Vector& d1) const {
     double x = std::numeric_limits<double>::infinity();
-    const Eigen::Index m = d1.size();
-    for (Eigen::Index j = 0; j < m; ++j) {
+    for (Eigen::Index j = 0; j < d1.size(); ++j) {
       if (std::abs(d1[j]) > 1e-12) x = std::min(x, std::pow(limits_.velocity[j] / d1[j], 2));
     }
-    // On a straight segment any x allows u = 0.
+    return x;
+  }
+
+  // Largest x at grid point p, for one adjacent interval, with some admissible acceleration.
+  double speedLimit(std::size_t interval, int end) const {
+    if (!segmentOf(interval).circular) return line_limits_[grid_[interval].segment];
+    const Eigen::Map<const Eigen::VectorXd> d1 = this->end(interval, end, kTangent);
+    const Eigen::Map<const Eigen::VectorXd> d2 = this->end(interval, end, kCurvature);
+    double x = directionSpeedLimit(d1);
+    const Eigen::Index m = d1.size();
+    // On a straight stretch any x allows u = 0.
     if (d2.isZero()) return x;
     // u must lie in every joint's band [(-A - b x) / a, (A - b x) / a]; bands with a = 0 bound x directly.
     for (Eigen::Index j = 0; j < m; ++j) {
@@ -193,6 +210,15 @@ class Solver {
   // acceleration u = (x_{i+1} - x) / (2 ds) must respect every joint's acceleration limit at both ends.
   bool transition(std::size_t i, double x, double* lo, double* hi) const {
     const double h = 2.0 * step(i);
+    const Segment& seg = segmentOf(i);
+    if (!seg.circular) {
+      // Both ends read a (x' - x) / h with the direction a: one constraint per joint.
+      bool ok = true;
+      for (Eigen::Index j = 0; j < seg.x.size(); ++j) {
+        ok &= intersect(-seg.x[j] * x / h, seg.x[j] / h, limits_.acceleration[j], lo, hi);
+      }
+      return ok;
+    }
     const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
     const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
@@ -213,6 +239,8 @@ class Solver {
   double maxStart(std::size_t i, double limit, double next_upper) {
     if (limit == 0.0) return 0.0;
     const double h = 2.0 * step(i);
+    const Segment& seg = segmentOf(i);
+    if (!seg.circular) return maxStartStraight(seg.x, h, limit, next_upper);
     const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
     const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
@@ -233,13 +261,10 @@ class Solver {
       lower.push_back(lo);
       upper.push_back(hi);
     };
-    // On a straight interval (same tangent at both ends, no curvature) the end's lines are the start's: the
-    // minimum below needs them once.
-    const bool straight = b0.isZero(0.0) && b1.isZero(0.0) && a0 == a1;
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
       add(a0[j] / h, b0[j] - a0[j] / h, A);
-      if (!straight) add(a1[j] / h + b1[j], -a1[j] / h, A);
+      add(a1[j] / h + b1[j], -a1[j] / h, A);
     }
     for (const auto& [lc, lm] : lower) {
       for (const auto& [hc, hm] : upper) {
@@ -247,6 +272,22 @@ class Solver {
         const double slope = lm - hm;
         if (slope > 1e-14) best = std::min(best, (hc - lc) / slope);
       }
+    }
+    return std::max(0.0, best);
+  }
+
+  // maxStart on a straight interval of direction a: each joint's constraint -A <= p (x_{i+1} - x_i) <= A, with
+  // p = a_j / h, gives the lines x_{i+1} = x_i -+ A / |p|; only the lowest of them against x_{i+1} <= next_upper
+  // bounds x_i.
+  template <class Vector>
+  double maxStartStraight(const Vector& a, double h, double limit, double next_upper) const {
+    double best = limit;
+    for (Eigen::Index j = 0; j < a.size(); ++j) {
+      const double p = a[j] / h;
+      if (std::abs(p) < 1e-14) continue;
+      const double A = limits_.acceleration[j];
+      const double lower = p < 0.0 ? A / p : -A / p;
+      best = std::min(best, next_upper - lower);
     }
     return std::max(0.0, best);
   }
@@ -275,70 +316,15 @@ class Solver {
   std::vector<PathPoint> grid_;
   Limits limits_;
   Eigen::Index joints_;
-  // Per interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
+  std::vector<double> line_limits_;  // per segment: a line's speed limit
+  std::vector<std::size_t> slots_;   // per interval on an arc: its place in ends_
+  // Per arc interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
   std::vector<double> ends_;
   std::vector<double> x_;
   std::vector<double> u_;
   std::vector<std::pair<double, double>> lower_lines_;  // maxStart's scratch space
   std::vector<std::pair<double, double>> upper_lines_;
 };
-
-std::string checkInputs(const std::vector<std::string>& names, const std::vector<std::vector<double>>& waypoints,
-                        const TimeParameterizationOptions& o) {
-  std::ostringstream msg;
-  const std::size_t n = names.size();
-  if (n == 0) return "no joint names";
-  if (std::set<std::string>(names.begin(), names.end()).size() != n) return "duplicate joint names";
-  if (waypoints.empty()) return "no waypoints";
-  for (std::size_t i = 0; i < waypoints.size(); ++i) {
-    if (waypoints[i].size() != n) {
-      msg << "waypoint " << i << " has " << waypoints[i].size() << " values for " << n << " joints";
-      return msg.str();
-    }
-    for (double v : waypoints[i]) {
-      if (!std::isfinite(v)) {
-        msg << "waypoint " << i << " is not finite";
-        return msg.str();
-      }
-    }
-  }
-  if (o.max_velocity.size() != n || o.max_acceleration.size() != n) {
-    msg << "max_velocity and max_acceleration need " << n << " values (got " << o.max_velocity.size() << " and "
-        << o.max_acceleration.size() << ")";
-    return msg.str();
-  }
-  for (std::size_t j = 0; j < n; ++j) {
-    if (!std::isfinite(o.max_velocity[j]) || o.max_velocity[j] <= 0.0) {
-      msg << "max_velocity of " << names[j] << " must be > 0 and finite, got " << o.max_velocity[j];
-      return msg.str();
-    }
-    if (!std::isfinite(o.max_acceleration[j]) || o.max_acceleration[j] <= 0.0) {
-      msg << "max_acceleration of " << names[j] << " must be > 0 and finite, got " << o.max_acceleration[j];
-      return msg.str();
-    }
-  }
-  if (!(o.velocity_scaling > 0.0 && o.velocity_scaling <= 1.0)) {
-    msg << "velocity scaling factor must be in (0, 1], got " << o.velocity_scaling;
-    return msg.str();
-  }
-  if (!(o.acceleration_scaling > 0.0 && o.acceleration_scaling <= 1.0)) {
-    msg << "acceleration scaling factor must be in (0, 1], got " << o.acceleration_scaling;
-    return msg.str();
-  }
-  if (!std::isfinite(o.max_deviation) || o.max_deviation < 0.0) {
-    msg << "max_deviation must be >= 0 and finite, got " << o.max_deviation;
-    return msg.str();
-  }
-  if (!std::isfinite(o.sample_period) || o.sample_period <= 0.0) {
-    msg << "sample_period must be > 0 and finite, got " << o.sample_period;
-    return msg.str();
-  }
-  if (!std::isfinite(o.path_resolution) || o.path_resolution <= 0.0) {
-    msg << "path_resolution must be > 0 and finite, got " << o.path_resolution;
-    return msg.str();
-  }
-  return "";
-}
 
 Segment line(const Eigen::VectorXd& from, const Eigen::VectorXd& to) {
   Segment seg;
@@ -405,16 +391,6 @@ void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation,
 }
 
 }  // namespace
-
-std::optional<TimeParameterizationResult> rejectInvalidInput(const std::vector<std::string>& names,
-                                                             const std::vector<std::vector<double>>& waypoints,
-                                                             const TimeParameterizationOptions& options) {
-  const std::string invalid = checkInputs(names, waypoints, options);
-  if (invalid.empty()) return std::nullopt;
-  TimeParameterizationResult result;
-  result.fail(TimeParameterizationStatus::kInvalidInput, "time parameterization: " + invalid);
-  return result;
-}
 
 TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::string>& joint_names,
                                                         const std::vector<std::vector<double>>& waypoints,

@@ -116,6 +116,7 @@ struct Outcome {
   bool held = true;             // attached at every step of lift and transport
   double lifted = 0.0;          // m the object rose
   double slip = 0.0;            // m: largest change of the object's position in the TCP frame while carried
+  double mimic_gap = 0.0;       // rad or m: largest gap of a mimic joint from its master's share while carried
   double release_after = -1.0;  // s from the open command
   double place_error = 0.0;     // m from the place point (xy), 0.1 s after the release
   double rest_height_error = 0.0;
@@ -159,6 +160,18 @@ class Rig {
   void setFinger(double position) { EXPECT_TRUE(gripper_.setGoal({position, 0.0}, world_.simTime()).ok()); }
   bool holding() const { return !world_.attachedObjects().empty(); }
   Eigen::Isometry3d tcp() const { return test::linkPose(world_, g_.palm) * g_.grasp.tcp; }
+  // The largest |q_mimic - (multiplier * q_master + offset)| over the mimic joints.
+  double mimicGap() const {
+    const std::vector<double> q = world_.jointPositions();
+    double gap = 0.0;
+    for (size_t j = 0; j < world_.joints().size(); ++j) {
+      const JointInfo& info = world_.joints()[j];
+      if (info.mimic_of.empty()) continue;
+      const double share = info.mimic_multiplier * q[world_.jointIndex(info.mimic_of)] + info.mimic_offset;
+      gap = std::max(gap, std::abs(q[j] - share));
+    }
+    return gap;
+  }
   Eigen::Vector3d objectPosition() const {
     ObjectState state;
     EXPECT_TRUE(world_.objectState("object", &state).ok());
@@ -235,6 +248,7 @@ Outcome pickAndPlace(const GantryGripper& g, Kind kind, double size) {
   const auto carried = [&] {
     out.held = out.held && rig.holding();
     out.slip = std::max(out.slip, (rig.tcp().inverse() * rig.objectPosition() - in_tcp).norm());
+    out.mimic_gap = std::max(out.mimic_gap, rig.mimicGap());
   };
   rig.move(Eigen::Vector3d(0, 0, grasp_z + 0.10), 1.0, carried);
   out.lifted = rig.objectPosition().z() - start.z();
@@ -265,10 +279,10 @@ TEST_P(FixtureGripper, HoldsThroughLiftAndTransportAndReleasesOnOpening) {
   const auto& [file, kind, size] = GetParam();
   const GantryGripper g = gantryGripper(file);
   const Outcome out = pickAndPlace(g, kind, size);
-  std::printf("%s %s %.0f mm: attached after %.3f s, slip %.2f mm while carried, released after %.3f s, placed "
-              "%.1f mm off, at rest %.1f mm from its height\n",
-              file.c_str(), kindName(kind), size * 1000.0, out.attach_after, out.slip * 1000.0, out.release_after,
-              out.place_error * 1000.0, out.rest_height_error * 1000.0);
+  std::printf("%s %s %.0f mm: attached after %.3f s, slip %.2f mm and mimic gap %.4f while carried, released after "
+              "%.3f s, placed %.1f mm off, at rest %.1f mm from its height\n",
+              file.c_str(), kindName(kind), size * 1000.0, out.attach_after, out.slip * 1000.0, out.mimic_gap,
+              out.release_after, out.place_error * 1000.0, out.rest_height_error * 1000.0);
   ASSERT_GE(out.attach_after, 0.0) << "never attached";
   EXPECT_LT(out.attach_after, 2.5);
   EXPECT_TRUE(out.held) << "dropped while carried";

@@ -1,5 +1,7 @@
 """The follow path of pick_moving: at rest at both ends, over the object (matching its velocity) from the end of the
-ramp to the end of the lift, down on it while the gripper closes; and the timing's checks."""
+ramp until the gripper has closed, down on it while it closes; and the timing's checks."""
+
+import math
 
 import numpy as np
 import pytest
@@ -23,14 +25,16 @@ def test_follow_path_meets_the_object_and_matches_its_velocity():
     assert times[0] == 0.0 and times[-1] == pytest.approx(timing.total)
     xyz = np.array([p[:3, 3] for p in poses])
     speed = np.diff(xyz, axis=0) / np.diff(times)[:, None]
-    # At rest at both ends: the first and last steps move by less than a step's worth of the ramp's acceleration.
-    assert np.linalg.norm(speed[0]) < 0.2 * timing.step / timing.ramp + 1e-9
-    assert np.linalg.norm(speed[-1]) < 0.2 * timing.step / timing.ramp + 1e-9
+    # At rest at both ends: the first and last steps' mean speeds are those of half a step into the ramps, and of the
+    # last step of the lift's half cosine.
+    assert np.linalg.norm(speed[0]) < 0.2 * timing.step / 2.0 / timing.ramp + 1e-9
+    assert np.linalg.norm(speed[-1][:2]) < 0.2 * timing.step / 2.0 / timing.lift + 1e-9
+    assert abs(speed[-1][2]) < 0.08 * (1.0 - math.cos(math.pi * timing.step / timing.lift)) / 2.0 / timing.step + 1e-9
     # The start is the approach height above where the ramp's middle meets the object.
     assert xyz[0] == pytest.approx(grasp_at(timing.ramp / 2.0)[:3, 3] + [0.0, 0.0, 0.08])
-    end_lift = timing.ramp + timing.descend + timing.close + timing.lift
+    end_close = timing.ramp + timing.descend + timing.close
     for tau, pose in zip(times, poses, strict=True):
-        if timing.ramp <= tau <= end_lift:
+        if timing.ramp <= tau <= end_close:
             # Over the object, at the object's speed.
             assert pose[:2, 3] == pytest.approx(grasp_at(tau)[:2, 3], abs=1e-9)
         if timing.grasp_time <= tau <= timing.grasp_time + timing.close:
@@ -39,7 +43,7 @@ def test_follow_path_meets_the_object_and_matches_its_velocity():
     assert xyz[:, 2].max() == pytest.approx(0.05 + 0.08)
     assert xyz[:, 2].min() == pytest.approx(0.05)
     # Matching the object's velocity on the final approach and while it closes.
-    during = (times[:-1] >= timing.ramp) & (times[1:] <= end_lift)
+    during = (times[:-1] >= timing.ramp) & (times[1:] <= end_close)
     assert speed[during][:, 1] == pytest.approx(0.2, abs=1e-9)
 
 

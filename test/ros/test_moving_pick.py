@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Moving objects on the belt of moving_pick_world.yaml: the perception tracker's velocity of a cube riding the belt
 at 0.2 m/s is within 5 % of the belt's (from the simulator's camera rendering), and pick_moving grasps a cube from the
-running belt and lifts it off, then the driver places it on the table."""
+running belt (0.2 m/s) and lifts it off, then the driver places it on the table."""
 
 import math
 import statistics
@@ -91,7 +91,7 @@ class MovingPick(unittest.TestCase):
     def test_2_pick_from_the_running_belt(self):
         driver = ArmDriver(wait_for_servers=60.0)
         self.assertTrue(driver.moveto_named(driver.home))
-        self.put_cube("moving_cube", -0.45, 0.1)
+        self.put_cube("moving_cube", -0.45, 0.2)
         rospy.sleep(0.5)  # up to the belt's speed
         result = pick_moving(driver, "moving_cube")
         print(f"pick_moving: {result}", file=sys.stderr)

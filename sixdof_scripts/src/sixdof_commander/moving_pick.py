@@ -1,22 +1,24 @@
 """Picking a moving object (one a conveyor carries): `pick_moving(driver, object)`.
 
 The object moves at a constant horizontal velocity (the simulator's twist of it, or the perception tracker's estimate
-in a DetectedObject; the vertical part is not used). pick_moving opens the gripper, plans the arm to a pre-grasp point
-`approach_distance` above where the object will be at the follow path's start: chosen so that the gripper closes
-where the object passes nearest the arm's base (or as soon as the arm can be there, `Timing.margin` seconds early,
-once the object has passed), and then runs one Cartesian path timed to the object: the tool accelerates from rest to
-the object's velocity while the object catches up with it (`ramp`), descends onto it moving with it (`descend`),
-stays on it while the gripper closes (`close`), lifts straight up still moving with it (`lift`) and comes to rest
-(`ramp`). Every point of that path is one inverse-kinematics solution of move_group's compute_ik (seeded with the
-previous one), timed here to the object's motion.
+in a DetectedObject; the vertical part is not used). pick_moving opens the gripper and chooses the interception:
+the earliest start of the follow path, from `lead` s ahead on, whose every point the arm can reach (the object is
+met as far upstream as the arm reaches, or the moment the arm can be there once it has entered its reach). The
+follow path is one Cartesian path timed to the object: the tool accelerates from rest, `approach_distance` above the
+object's path, to the object's velocity while the object catches up with it (`ramp`), descends onto it moving with
+it (`descend`), stays on it while the gripper closes (`close`), and lifts it while coming to rest (`lift`). Every
+point of it is one inverse-kinematics solution of move_group's compute_ik (seeded with the previous one), timed here
+to the object's motion. The arm runs the approach plan (to the follow path's first point), waits there and runs the
+follow path as one trajectory, so that no command latency falls between them; the approach must end
+`Timing.margin` s before the follow path starts, else the interception moves later.
 
 The gripper is the package's (ArmDriver's: its grasping information through move_group), closed with
 ArmDriver.gripper_close; whether the object is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
-is out of the arm's reach after passing its base), NOT_GRASPED (the gripper closed without holding it: no grasp, or
+leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
 no seal for a suction cup), DROPPED (held, then lost during the lift), UNREACHABLE (no grasp of the object's shape,
-or no arm pose for the approach or the follow path), FAILED (an execution or gripper command failed). Misuse
+or no follow path the arm can run within `Timing.search` s), FAILED (an execution or gripper command failed). Misuse
 raises SixdofCommanderError.
 """
 
@@ -46,8 +48,8 @@ from .transforms import matrix_from_pose
 MISSED = "missed"
 NOT_GRASPED = "not grasped"
 DROPPED = "dropped"
-# rad: the largest change of a joint between two follow-path points (50 ms apart) that is not a jump to another branch.
-MAX_JUMP = 0.3
+# rad: the largest change of a joint between two follow-path points (0.1 s apart) that is not a jump to another branch.
+MAX_JUMP = 0.4
 __all__ = [
     "DROPPED",
     "FAILED",
@@ -104,17 +106,20 @@ class MovingObject:
 
 @dataclass(frozen=True)
 class Timing:
-    """Durations (s) of the follow path's phases, its point spacing, and how early the arm waits at the pre-grasp."""
+    """Durations (s) of the follow path's phases, its point spacing, how early the arm waits at the pre-grasp point,
+    and how far ahead (in which steps) the interception is searched for."""
 
-    ramp: float = 0.4
-    descend: float = 0.6
+    ramp: float = 0.2
+    descend: float = 0.3
     close: float = 1.0
-    lift: float = 0.6
-    step: float = 0.05
-    margin: float = 0.3
+    lift: float = 0.3
+    step: float = 0.1
+    margin: float = 0.2
+    search: float = 4.0
+    search_step: float = 0.1
 
     def __post_init__(self) -> None:
-        for name in ("ramp", "descend", "close", "lift", "step", "margin"):
+        for name in ("ramp", "descend", "close", "lift", "step", "margin", "search", "search_step"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value <= 0:
                 raise SixdofCommanderError(f"pick_moving timing '{name}' must be a number > 0, got {value!r}")
@@ -126,7 +131,7 @@ class Timing:
 
     @property
     def total(self) -> float:
-        return 2.0 * self.ramp + self.descend + self.close + self.lift
+        return self.ramp + self.descend + self.close + self.lift
 
 
 @dataclass
@@ -149,8 +154,9 @@ def follow_path(
     """(times from the follow start, tip poses) of the follow path. grasp_at(tau): the tip's grasp pose over the
     object tau seconds after the start. The tool starts at rest `height` above grasp_at(ramp / 2) and accelerates
     uniformly to `velocity`, which puts it above grasp_at(tau) from tau = ramp on; it descends (half a cosine) to the
-    grasp, stays there for `close`, rises back by `height`, then decelerates uniformly to rest."""
-    ramp, end_lift = timing.ramp, timing.ramp + timing.descend + timing.close + timing.lift
+    grasp and stays there for `close`, then rises back by `height` while decelerating uniformly to rest (the object,
+    held, has left the belt)."""
+    ramp, end_close = timing.ramp, timing.ramp + timing.descend + timing.close
     start = grasp_at(ramp / 2.0)
     count = int(math.ceil(timing.total / timing.step - 1e-9))
     times = np.linspace(0.0, timing.total, count + 1)
@@ -158,11 +164,11 @@ def follow_path(
     for tau in times:
         if tau <= ramp:
             travel = tau * tau / (2.0 * ramp)
-        elif tau <= end_lift:
+        elif tau <= end_close:
             travel = tau - ramp / 2.0
         else:
-            after = tau - end_lift
-            travel = end_lift - ramp / 2.0 + after - after * after / (2.0 * ramp)
+            after = min(tau - end_close, timing.lift)
+            travel = end_close - ramp / 2.0 + after - after * after / (2.0 * timing.lift)
         down = tau - ramp
         if down <= 0.0:
             z = height
@@ -181,17 +187,23 @@ def follow_path(
     return times, poses
 
 
-def timed_trajectory(solution: RobotTrajectory, times: np.ndarray) -> RobotTrajectory:
-    """The path's points at the given times, velocities by central differences (zero at both ends)."""
-    points = solution.joint_trajectory.points
-    positions = np.array([p.positions for p in points])
-    velocities = np.zeros_like(positions)
-    velocities[1:-1] = (positions[2:] - positions[:-2]) / (times[2:] - times[:-2])[:, None]
-    for point, t, v in zip(points, times, velocities, strict=True):
-        point.time_from_start = rospy.Duration.from_sec(float(t))
-        point.velocities = list(v)
-        point.accelerations = []
-    return solution
+def joined(approach: RobotTrajectory, times: np.ndarray, positions: list[np.ndarray]) -> RobotTrajectory:
+    """The approach plan, then the follow path's positions at `times` (from the approach's start, the first after the
+    approach's end): the arm waits at the approach's last state until the follow path begins there. The follow
+    path's velocities by central differences, zero at both of its ends."""
+    trajectory = RobotTrajectory()
+    trajectory.joint_trajectory.joint_names = list(approach.joint_trajectory.joint_names)
+    trajectory.joint_trajectory.points = list(approach.joint_trajectory.points)
+    q = np.asarray(positions)
+    velocities = np.zeros_like(q)
+    velocities[1:-1] = (q[2:] - q[:-2]) / (times[2:] - times[:-2])[:, None]
+    for point in trajectory.joint_trajectory.points:
+        point.accelerations = []  # the follow path has none: a cubic spline through positions and velocities
+    for t, p, v in zip(times, q, velocities, strict=True):
+        trajectory.joint_trajectory.points.append(
+            JointTrajectoryPoint(positions=list(p), velocities=list(v), time_from_start=rospy.Duration.from_sec(t))
+        )
+    return trajectory
 
 
 class _Failed(Exception):  # noqa: N818 (internal: ends a pick with its failure class)
@@ -215,6 +227,13 @@ class _MovingPick:
         except SixdofCommanderError as err:
             raise _Failed(UNREACHABLE, f"no top-down grasp: {err}") from err
         self.grasp0 = tip_pose(tcp, driver.grasp_spec)  # the tip's grasp pose over the object at its stamp
+        self.joint_names = self.arm.get_active_joints()
+        self.request = GetPositionIKRequest()
+        self.request.ik_request.group_name = self.arm.get_name()
+        self.request.ik_request.ik_link_name = self.arm.get_end_effector_link()
+        self.request.ik_request.avoid_collisions = False  # the tool meets the object, and the belt under it
+        self.request.ik_request.robot_state.is_diff = True
+        self.request.ik_request.pose_stamped.header.frame_id = self.arm.get_planning_frame()
 
     def grasp_at(self, t: float) -> np.ndarray:
         """The tip's grasp pose over the object at ROS time t."""
@@ -222,76 +241,88 @@ class _MovingPick:
         pose[:3, 3] += self.velocity * (t - self.target.stamp)
         return pose
 
-    def nearest_start(self) -> float:
-        """The follow start that puts the middle of the gripper's closing where the object passes nearest the planning
-        frame's origin (the arm's base), in the horizontal plane; -inf for an object at rest."""
-        p, v = self.target.pose[:2, 3], self.velocity[:2]
-        if float(v @ v) < 1e-12:
-            return -math.inf
-        nearest = self.target.stamp - float(p @ v) / float(v @ v)
-        return nearest - self.timing.grasp_time - self.timing.close / 2.0
-
-    def plan_approach(self, lead: float) -> tuple[RobotTrajectory, float]:
-        """(approach plan, follow start time). The start puts the grasp where the object passes nearest the arm's
-        base, or `lead` s from now if that is sooner; later when the approach takes longer (three tries)."""
-        nearest = self.nearest_start()
-        start = max(rospy.get_time() + lead, nearest)
-        for _ in range(3):
-            pre = raised(self.grasp_at(start + self.timing.ramp / 2.0), self.driver.approach_distance)
-            self.arm.set_start_state_to_current_state()
-            self.arm.set_pose_target(pose_from_matrix(pre))
-            ok, plan, _, error = self.arm.plan()
-            if not ok:
-                where = f"({pre[0, 3]:.3f}, {pre[1, 3]:.3f}, {pre[2, 3]:.3f})"
-                if error.val not in (MoveItErrorCodes.NO_IK_SOLUTION, MoveItErrorCodes.GOAL_IN_COLLISION):
-                    raise _Failed(FAILED, f"planning to the pre-grasp point {where} failed: {self.arm.last_error}")
-                # Out of reach after the object passed the arm's base: it was missed.
-                kind = MISSED if start > nearest + 1e-9 else UNREACHABLE
-                raise _Failed(kind, f"no arm pose at the pre-grasp point {where}: {self.arm.last_error}")
-            duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
-            late = rospy.get_time() + duration + self.timing.margin - start
-            if late <= 0.0:
-                return plan, start
-            start += late + 0.2
-        raise _Failed(MISSED, "the arm cannot get ahead of the object (three approach plans were too slow)")
-
-    def follow(self, plan: RobotTrajectory, start: float) -> RobotTrajectory:
-        """The follow path from the approach's last state, timed to the object: one IK solution (move_group's
-        compute_ik, seeded with the previous point's) per point."""
-        times, poses = follow_path(
+    def poses(self, start: float) -> tuple[np.ndarray, list[np.ndarray]]:
+        """The follow path (times from its start, tip poses) when it starts at ROS time `start`."""
+        return follow_path(
             lambda tau: self.grasp_at(start + tau), self.velocity, self.driver.approach_distance, self.timing
         )
-        last = plan.joint_trajectory
-        trajectory = RobotTrajectory()
-        trajectory.joint_trajectory.joint_names = list(last.joint_names)
-        positions = [np.asarray(last.points[-1].positions, dtype=float)]
-        request = GetPositionIKRequest()
-        request.ik_request.group_name = self.arm.get_name()
-        request.ik_request.ik_link_name = self.arm.get_end_effector_link()
-        request.ik_request.avoid_collisions = False  # the tool meets the object, and the belt under it
-        request.ik_request.robot_state.is_diff = True
-        request.ik_request.pose_stamped.header.frame_id = self.arm.get_planning_frame()
+
+    def ik(self, pose: np.ndarray, seed: np.ndarray) -> np.ndarray | None:
+        """One IK solution of the tip pose near `seed` (move_group's compute_ik), None when there is none."""
+        self.request.ik_request.robot_state.joint_state = JointState(name=self.joint_names, position=list(seed))
+        self.request.ik_request.pose_stamped.pose = pose_from_matrix(pose)
+        try:
+            response = call_service(self.ik_service, self.request, SERVICE_TIMEOUT)
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise SixdofCommanderError(f"compute_ik failed: {err}") from err
+        if response.error_code.val != MoveItErrorCodes.SUCCESS:
+            return None
+        solution = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True))
+        return np.array([solution[name] for name in self.joint_names])
+
+    def follow(self, start: float, seed: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]] | str:
+        """(times, joint positions) of the follow path starting at ROS time `start`, each point one IK solution
+        seeded with the previous one; or why there is none."""
+        times, poses = self.poses(start)
+        first = self.ik(poses[0], seed)
+        if first is None:
+            return "no IK solution at its start"
+        positions = [first]
         for k, pose in enumerate(poses[1:], start=1):
-            request.ik_request.robot_state.joint_state = JointState(name=last.joint_names, position=positions[-1])
-            request.ik_request.pose_stamped.pose = pose_from_matrix(pose)
-            try:
-                response = call_service(self.ik_service, request, SERVICE_TIMEOUT)
-            except (rospy.ServiceException, rospy.ROSException) as err:
-                raise SixdofCommanderError(f"compute_ik failed: {err}") from err
+            q = self.ik(pose, positions[-1])
             where = f"point {k}/{len(poses) - 1} ({pose[0, 3]:.3f}, {pose[1, 3]:.3f}, {pose[2, 3]:.3f})"
-            if response.error_code.val != MoveItErrorCodes.SUCCESS:
-                raise _Failed(UNREACHABLE, f"no IK solution for the follow path's {where}")
-            solution = dict(
-                zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True)
-            )
-            q = np.array([solution[name] for name in last.joint_names])
+            if q is None:
+                return f"no IK solution at its {where}"
             jump = float(np.max(np.abs(q - positions[-1])))
             if jump > MAX_JUMP:
-                raise _Failed(UNREACHABLE, f"the follow path's IK jumps {jump:.2f} rad at its {where}")
+                return f"its IK jumps {jump:.2f} rad at its {where}"
             positions.append(q)
-        for q in positions:
-            trajectory.joint_trajectory.points.append(JointTrajectoryPoint(positions=list(q)))
-        return timed_trajectory(trajectory, times)
+        return times, positions
+
+    def intercept(self, earliest: float, seed: np.ndarray) -> tuple[float, np.ndarray, list[np.ndarray]]:
+        """The earliest follow start from ROS time `earliest` on (in steps of `Timing.search_step`) whose whole path
+        the arm can follow: (start, times, joint positions). MISSED once the path's end has left the arm's reach
+        downstream while its start is reachable (the object passed), UNREACHABLE when no start within
+        `Timing.search` s works."""
+        timing, why = self.timing, ""
+        start = earliest
+        while start <= earliest + timing.search:
+            _, poses = self.poses(start)
+            head, tail = self.ik(poses[0], seed), self.ik(poses[-1], seed)
+            if head is not None and tail is None:
+                break  # reachable at the start, not at the end: the window has passed
+            if head is not None and tail is not None:
+                path = self.follow(start, seed)
+                if not isinstance(path, str):
+                    return start, path[0], path[1]
+                why = f"the follow path from {start - rospy.get_time():.2f} s on: {path}"
+            start += timing.search_step
+        if head is not None and tail is None:
+            raise _Failed(MISSED, f"the object leaves the arm's reach before a follow path ends ({why or 'no path'})")
+        raise _Failed(UNREACHABLE, f"no follow path the arm can run within {timing.search:g} s ({why or 'no IK'})")
+
+    def plan_approach(self, lead: float) -> tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]:
+        """(approach plan, follow start time, follow times, follow joint positions): the earliest interception the
+        arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer."""
+        seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
+        start = rospy.get_time() + lead
+        tries = []
+        for _ in range(3):
+            began = rospy.get_time()
+            start, times, positions = self.intercept(start, seed)
+            self.arm.set_start_state_to_current_state()
+            self.arm.set_joint_value_target(dict(zip(self.joint_names, map(float, positions[0]), strict=True)))
+            ok, plan, _, _ = self.arm.plan()
+            if not ok:
+                raise _Failed(FAILED, f"planning to the pre-grasp point failed: {self.arm.last_error}")
+            now = rospy.get_time()
+            duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
+            tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
+            if now + duration + self.timing.margin <= start:
+                return plan, start, times, positions
+            # The next try takes about as long as this one did, and a later interception needs a longer approach.
+            start = now + 1.2 * duration + self.timing.margin + (now - began)
+        raise _Failed(MISSED, f"the arm cannot get ahead of the object ({'; '.join(tries)})")
 
     def attached(self) -> bool:
         return bool(self.driver.get_object_state(self.target.name).attached_to)
@@ -300,14 +331,12 @@ class _MovingPick:
         """Pick; the ROS time the gripper closed. _Failed says why not."""
         if not self.driver.gripper_open():
             raise _Failed(FAILED, self.driver.last_failure)
-        plan, start = self.plan_approach(lead)
-        trajectory = self.follow(plan, start)
-        if not self.arm.execute(plan, wait=True):
-            raise _Failed(FAILED, f"the approach failed: {self.arm.last_error}")
-        wait = start - rospy.get_time()
-        if wait < -self.timing.step:
-            raise _Failed(MISSED, f"at the pre-grasp point {-wait:.2f} s after the object")
-        rospy.sleep(max(wait, 0.0))
+        plan, start, times, positions = self.plan_approach(lead)
+        # One trajectory: the approach, a wait at the pre-grasp point, the follow path timed to the object.
+        offset = start - rospy.get_time()
+        if offset < plan.joint_trajectory.points[-1].time_from_start.to_sec():
+            raise _Failed(MISSED, f"the approach would reach the pre-grasp point {-offset:.2f} s after the object")
+        trajectory = joined(plan, times + offset, positions)
         executed: list[bool] = []
         runner = threading.Thread(target=lambda: executed.append(self.arm.execute(trajectory, wait=True)))
         runner.start()
@@ -315,14 +344,14 @@ class _MovingPick:
         grasp_time = rospy.get_time()
         closed = self.driver.gripper_close()
         # The grasp fix attaches a squeezed object within a few of its updates: until then, or the lift's end.
-        lifted = start + self.timing.total - self.timing.ramp
+        lifted = start + self.timing.total
         held = closed and self.attached()
         while closed and not held and rospy.get_time() < lifted and not rospy.is_shutdown():
             rospy.sleep(0.02)
             held = self.attached()
         runner.join()
         if not executed or not executed[0]:
-            raise _Failed(FAILED, f"the follow path failed: {self.arm.last_error}")
+            raise _Failed(FAILED, f"the approach and follow path failed: {self.arm.last_error}")
         if not held:
             why = self.driver.last_failure if not closed else "the gripper closed but holds nothing"
             raise _Failed(NOT_GRASPED, why)
@@ -335,13 +364,12 @@ class _MovingPick:
 
 
 def pick_moving(
-    driver: ArmDriver, target: str | MovingObject | DetectedObject, timing: Timing | None = None, lead: float = 1.5
+    driver: ArmDriver, target: str | MovingObject | DetectedObject, timing: Timing | None = None, lead: float = 1.3
 ) -> MovingPickResult:
     """Grasp a moving object on the fly and lift it (module docstring). target: a simulator object's name (its
     pose and velocity from the simulator), a MovingObject, or a DetectedObject with a tracked velocity. The follow path
-    starts so that the gripper closes where the object passes nearest the arm's base, or at the earliest `lead` s
-    from now (later when the approach needs longer). On success the driver holds the
-    object (ArmDriver.place puts it down)."""
+    starts at the earliest `lead` s from now (later when the object is not yet in reach or the approach needs
+    longer). On success the driver holds the object (ArmDriver.place puts it down)."""
     if not isinstance(driver, ArmDriver):
         raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
     if isinstance(target, str):

@@ -1,106 +1,50 @@
 #!/usr/bin/env python3
 """Pack arriving objects into a box: pick each object a conveyor brings (sixdof_commander.moving_pick.pick_moving,
-on the fly) and place it upright in the next free slot of the box, row by row, printing each pick's outcome and the
-picks per minute (simulated time). The box is a bin of the simulator's world (its ~world parameter, `bins:`); the
-pattern ROWSxCOLUMNS divides its inside into equal slots (rows along the bin's x axis). Arriving objects are the
-simulator's (its object states and velocities): the dynamic objects resting on the conveyor's belt.
+on the fly) and place it upright in the next free slot of the box, printing each pick's outcome and the picks per
+minute (simulated time). The box is a bin of the simulator's world (its ~world parameter, `bins:`). The slots come
+from --pattern ROWSxCOLUMNS[xLAYERS] (the box's inside cut into equal cells, rows along the bin's x axis, layers
+--layer-height apart) or --pattern-file, a pallet-style YAML (sixdof_commander.pack_pattern: rows, columns, layers,
+spacing, layer_height). Arriving objects are the simulator's (its object states and velocities): the dynamic
+objects resting on the conveyor's belt. Every arriving object is accounted for: packed, failed (by class), or
+passed (it rode past the last point it could be picked at, --pick-before).
 
     rosrun sixdof_scripts pack_objects.py --box box --pattern 2x2      (with the stack on a conveyor world)
 
+With --boxes N the box is filled N times: a full box's contents are checked and then removed from the world (as if
+the full box were swapped for an empty one). --objects N stops once N arriving objects are accounted for.
+
 Exit codes: 0 every slot filled with its object upright in it, 1 not (too many failed picks, the time ran out, or an
-object not in its slot), 2 bad arguments, a missing node, or a world without that box or a conveyor.
+object not in its slot), 2 bad arguments or pattern file, a missing node, or a world without that box or a conveyor.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
-import re
 import sys
 import time
 
-import numpy as np
 import rospy
 from sixdof_commander import ArmDriver, SixdofCommanderError
-from sixdof_commander.moving_pick import pick_moving
+from sixdof_commander.pack_pattern import Pattern, PatternError, Slot, load_pattern, parse_pattern
+from sixdof_commander.packing import Packer
 from sixdof_commander.sim_world import WORLD_PARAMETER, Bin, Conveyor, SimWorldError, wait_for_world
-from sixdof_commander.transforms import matrix_from_pose, matrix_from_quaternion
 
-from sixdof_msgs.msg import ObjectStates
-
-PATTERN = re.compile(r"^([1-9][0-9]*)x([1-9][0-9]*)$")
-
-
-def slots(box: Bin, rows: int, columns: int) -> list[tuple[float, float]]:
-    """Slot centres (world x, y), row by row: the bin's inside cut into rows x columns equal cells."""
-    hx, hy = box.inner_half()
-    return [
-        box.to_world(-hx + (2 * r + 1) * hx / rows, -hy + (2 * c + 1) * hy / columns)
-        for r in range(rows)
-        for c in range(columns)
-    ]
-
-
-class Packer:
-    def __init__(self, driver: ArmDriver, conveyor: Conveyor, ns: str) -> None:
-        self.driver = driver
-        self.conveyor = conveyor
-        self.direction = np.asarray(conveyor.direction)
-        self.states: ObjectStates | None = None
-        self.done: set[str] = set()
-        topic = f"{ns.rstrip('/')}/sixdof_sim/object_states" if ns else "sixdof_sim/object_states"
-        rospy.Subscriber(topic, ObjectStates, self._on_states, queue_size=1)
-
-    def _on_states(self, msg: ObjectStates) -> None:
-        self.states = msg
-
-    def on_belt(self, position: np.ndarray) -> float | None:
-        """How far along the belt (m from its centre, downstream positive) an object resting on it is; None off it."""
-        centre = np.asarray(self.conveyor.position)
-        rotation = matrix_from_quaternion(self.conveyor.orientation)
-        local = rotation.T @ (position - centre)
-        half = np.asarray(self.conveyor.size) / 2.0
-        if abs(local[0]) > half[0] or abs(local[1]) > half[1] or not half[2] < local[2] < half[2] + 0.1:
-            return None
-        return float(local[0]) if self.direction @ rotation[:, 0] > 0.0 else -float(local[0])
-
-    def next_object(self, pick_before: float) -> str | None:
-        """The object furthest downstream on the belt that is still upstream of pick_before."""
-        states = self.states
-        if states is None:
-            return None
-        best, best_along = None, -math.inf
-        for name, pose, holder in zip(states.name, states.pose, states.attached_to, strict=True):
-            if holder or name in self.done or name == self.conveyor.name:
-                continue
-            along = self.on_belt(np.array([pose.position.x, pose.position.y, pose.position.z]))
-            if along is not None and best_along < along < pick_before:
-                best, best_along = name, along
-        return best
-
-
-def put_down(driver: ArmDriver, name: str, slot: tuple[float, float]) -> bool:
-    """Place the held object in its slot and retreat. Opening fingers may stop at a neighbour or the box's wall, or on
-    the object while the grasp fix still holds it (it lets go within a few of its 4 Hz updates): the object is put
-    down when the grasp fix has let it go."""
-    if not driver.release_at(list(slot)):
-        if not driver.last_failure.startswith("gripper did not open"):
-            return False
-        rospy.sleep(0.5)
-        if driver.get_object_state(name).attached_to:
-            return False
-        if name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
-            rospy.logwarn("detaching '%s' in the planning scene failed", name)
-        driver.forget_held()
-    return driver.retreat()
+PASSED = "passed"
 
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--box", required=True, help="the bin of the world to fill")
-    parser.add_argument("--pattern", default="2x2", help="ROWSxCOLUMNS slots (default 2x2)")
+    patterns = parser.add_mutually_exclusive_group()
+    patterns.add_argument("--pattern", default="2x2", help="ROWSxCOLUMNS[xLAYERS] slots (default 2x2)")
+    patterns.add_argument("--pattern-file", default="", help="a pattern YAML (rows, columns, layers, spacing, ...)")
+    parser.add_argument("--layer-height", type=float, default=0.065, help="m between --pattern's layers (0.065)")
+    parser.add_argument("--boxes", type=int, default=1, help="boxes to fill, one after the other (1)")
+    parser.add_argument("--objects", type=int, default=0, help="stop after this many arriving objects (0: no limit)")
     parser.add_argument("--conveyor", default="", help="the conveyor objects arrive on (default: the world's first)")
-    parser.add_argument("--timeout", type=float, default=300.0, help="simulated seconds to fill the box (300)")
+    parser.add_argument("--timeout", type=float, default=300.0, help="simulated seconds to fill the boxes (300)")
     parser.add_argument("--max-failures", type=int, default=3, help="failed picks before giving up (3)")
     parser.add_argument(
         "--pick-before",
@@ -109,23 +53,33 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         help="m along the belt from its centre: an object past it is left to ride on (default -0.15)",
     )
     parser.add_argument("--tolerance", type=float, default=0.015, help="m an object may rest from its slot (0.015)")
-    parser.add_argument("--velocity-scaling", type=float, default=0.8, help="max velocity scaling in (0, 1]")
+    parser.add_argument("--velocity-scaling", type=float, default=1.0, help="max velocity scaling in (0, 1] (1.0)")
+    parser.add_argument("--approach", type=float, default=0.05, help="m above objects and slots to descend from")
+    parser.add_argument("--json", default="", help="write every object's outcome and the totals to this file")
     parser.add_argument("--ns", default="", help="namespace of the planner and simulator nodes")
     args = parser.parse_args(argv)
-    match = PATTERN.match(args.pattern)
-    if match is None:
-        parser.error(f"--pattern must be ROWSxCOLUMNS (e.g. 2x2), got '{args.pattern}'")
-    args.rows, args.columns = int(match.group(1)), int(match.group(2))
-    for name in ("timeout", "tolerance"):
+    for name in ("timeout", "tolerance", "layer_height", "approach"):
         value = getattr(args, name)
         if not math.isfinite(value) or value <= 0.0:
-            parser.error(f"--{name} must be > 0, got {value}")
+            parser.error(f"--{name.replace('_', '-')} must be > 0, got {value}")
     if not math.isfinite(args.pick_before):
         parser.error(f"--pick-before must be a finite number, got {args.pick_before}")
-    if args.max_failures < 0:
-        parser.error(f"--max-failures must be >= 0, got {args.max_failures}")
+    for name, least in (("max_failures", 0), ("boxes", 1), ("objects", 0)):
+        if getattr(args, name) < least:
+            parser.error(f"--{name.replace('_', '-')} must be >= {least}, got {getattr(args, name)}")
     if not 0.0 < args.velocity_scaling <= 1.0:
         parser.error(f"--velocity-scaling must be in (0, 1], got {args.velocity_scaling}")
+    try:
+        if args.pattern_file:
+            args.slots_pattern = load_pattern(args.pattern_file)
+        else:
+            args.slots_pattern = parse_pattern(args.pattern, args.layer_height)
+    except PatternError as err:
+        # One line, as every bad-input message of a pattern (argparse's own errors add a usage line).
+        print(
+            f"pack_objects.py: error: {'--pattern-file' if args.pattern_file else '--pattern'}: {err}", file=sys.stderr
+        )
+        sys.exit(2)
     return args
 
 
@@ -144,77 +98,153 @@ def world_parts(args: argparse.Namespace) -> tuple[Bin, Conveyor]:
     return box, conveyor
 
 
+class Run:
+    """Every arriving object's outcome, the boxes filled so far, and the picks per minute."""
+
+    def __init__(self, packer: Packer, args: argparse.Namespace, slots: list[Slot]) -> None:
+        self.packer, self.args, self.slots = packer, args, slots
+        self.start = rospy.get_time()
+        self.outcomes: dict[str, dict] = {}
+        self.seen: set[str] = set()
+        self.in_box: list[str] = []
+        self.boxes = 0
+        self.last_placed = self.start
+        self.speeds: list[tuple[float, float]] = []  # (s since the start, belt speed m/s), every 0.5 s
+
+    def failures(self) -> dict[str, int]:
+        counts: dict[str, int] = {}
+        for outcome in self.outcomes.values():
+            if outcome["outcome"] not in ("packed", "misplaced", PASSED):
+                counts[outcome["outcome"]] = counts.get(outcome["outcome"], 0) + 1
+        return counts
+
+    def watch_belt(self) -> None:
+        """Objects that were on the belt, were never picked and are gone (deleted at its end) or past pick_before;
+        the belt's speed."""
+        elapsed = rospy.get_time() - self.start
+        if not self.speeds or elapsed >= self.speeds[-1][0] + 0.5:
+            self.speeds.append((elapsed, self.packer.belt_speed))
+        now = self.packer.on_belt_now()
+        for name in self.seen - set(now) - set(self.outcomes) - self.packer.done:
+            self.outcomes[name] = {"name": name, "outcome": PASSED, "time": rospy.get_time() - self.start}
+        self.seen |= set(now)
+        for name, along in now.items():
+            if along >= self.args.pick_before and name not in self.outcomes:
+                self.packer.done.add(name)
+                self.outcomes[name] = {"name": name, "outcome": PASSED, "time": rospy.get_time() - self.start}
+
+    def finished(self) -> bool:
+        args = self.args
+        if self.boxes >= args.boxes or rospy.is_shutdown():
+            return True
+        if args.objects and len(self.outcomes) >= args.objects:
+            return True
+        return rospy.get_time() - self.start > args.timeout or sum(self.failures().values()) > args.max_failures
+
+    def pack_next(self) -> None:
+        name = self.packer.next_object(self.args.pick_before)
+        if name is None:
+            time.sleep(0.02)
+            return
+        slot = self.slots[len(self.in_box)]
+        result = self.packer.pack(name, slot)
+        now = rospy.get_time() - self.start
+        if not result.ok:
+            self.outcomes[name] = {"name": name, "outcome": result.failure, "message": result.message, "time": now}
+            print(f"  {name}: {result.failure}: {result.message}", flush=True)
+            return
+        self.outcomes[name] = {"name": name, "outcome": "packed", "box": self.boxes, "slot": len(self.in_box)}
+        self.outcomes[name].update(slot=[slot.x, slot.y, slot.layer], time=now)
+        self.in_box.append(name)
+        self.last_placed = rospy.get_time()
+        print(
+            f"  box {self.boxes + 1} slot {len(self.in_box)}/{len(self.slots)}: {name} at ({slot.x:.3f}, "
+            f"{slot.y:.3f}, layer {slot.layer}), {now:.1f} s, {self.placed() / (now / 60.0):.1f} picks/min",
+            flush=True,
+        )
+        if len(self.in_box) == len(self.slots):
+            self.close_box(swap=self.boxes + 1 < self.args.boxes)
+
+    def placed(self) -> int:
+        return sum(o["outcome"] in ("packed", "misplaced") for o in self.outcomes.values())
+
+    def close_box(self, swap: bool) -> None:
+        """Check the box's objects against their slots; with swap, remove them for the next box."""
+        for name, slot in zip(self.in_box, self.slots, strict=False):
+            check = self.packer.check(name, slot, self.args.tolerance)
+            outcome = self.outcomes[name]
+            outcome.update(error_mm=round(check.error * 1000.0, 2), lean_deg=round(math.degrees(check.lean), 2))
+            if not check.ok:
+                outcome["outcome"] = "misplaced"
+                print(
+                    f"  {name} is not upright in its slot: {check.error * 1000:.1f} mm off, leaning "
+                    f"{math.degrees(check.lean):.1f} deg",
+                    flush=True,
+                )
+            if swap:
+                self.packer.delete(name)
+        self.boxes += 1
+        self.in_box = []
+
+    def summary(self) -> dict:
+        elapsed = self.last_placed - self.start
+        placed = self.placed()
+        counts: dict[str, int] = {}
+        for outcome in self.outcomes.values():
+            counts[outcome["outcome"]] = counts.get(outcome["outcome"], 0) + 1
+        return {
+            "objects": len(self.outcomes),
+            "counts": counts,
+            "packed": counts.get("packed", 0),
+            "boxes": self.boxes,
+            "seconds": elapsed,
+            "picks_per_minute": placed / (elapsed / 60.0) if placed and elapsed > 0.0 else 0.0,
+            "outcomes": sorted(self.outcomes.values(), key=lambda o: o["time"]),
+            "belt_speed": self.speeds,
+        }
+
+
 def main() -> int:
     args = parse_args(rospy.myargv(sys.argv)[1:])
     rospy.init_node("pack_objects", anonymous=True)
+    pattern: Pattern = args.slots_pattern
     try:
         box, conveyor = world_parts(args)
-        rows, columns = args.rows, args.columns
-        targets = slots(box, rows, columns)
+        slots = pattern.slots(box)
         scaling = args.velocity_scaling
-        driver = ArmDriver(ns=args.ns, velocity_scaling=scaling, acceleration_scaling=scaling)
-        packer = Packer(driver, conveyor, args.ns)
+        driver = ArmDriver(
+            ns=args.ns, velocity_scaling=scaling, acceleration_scaling=scaling, approach_distance=args.approach
+        )
+        packer = Packer(driver, conveyor, box)
     except (SixdofCommanderError, SimWorldError) as err:
         print(f"error: {err}", file=sys.stderr)
         return 2
-    print(f"packing {rows}x{columns} into '{box.name}' from '{conveyor.name}'", flush=True)
+    print(
+        f"packing {len(slots)} slots ({pattern.rows}x{pattern.columns}x{pattern.layers}) into '{box.name}' "
+        f"from '{conveyor.name}', {args.boxes} box(es)",
+        flush=True,
+    )
     if not driver.moveto_named(driver.home):
         print(f"error: moving home failed: {driver.last_failure}", file=sys.stderr)
         return 1
-    start = rospy.get_time()
-    placed: list[tuple[str, tuple[float, float], float]] = []
-    failures: dict[str, int] = {}
-    while len(placed) < len(targets) and not rospy.is_shutdown():
-        elapsed = rospy.get_time() - start
-        if elapsed > args.timeout or sum(failures.values()) > args.max_failures:
-            break
-        name = packer.next_object(args.pick_before)
-        if name is None:
-            time.sleep(0.05)
-            continue
-        packer.done.add(name)
-        result = pick_moving(driver, name)
-        if not result.ok:
-            failures[result.failure] = failures.get(result.failure, 0) + 1
-            print(f"  {name}: {result.failure}: {result.message}", flush=True)
-            driver.gripper_open()
-            driver.forget_held()
-            driver.moveto_named(driver.home)
-            continue
-        x, y = targets[len(placed)]
-        if not put_down(driver, name, (x, y)):
-            failures["place failed"] = failures.get("place failed", 0) + 1
-            print(f"  {name}: place failed: {driver.last_failure}", flush=True)
-            driver.gripper_open()
-            driver.forget_held()
-            driver.moveto_named(driver.home)
-            continue
-        placed.append((name, (x, y), rospy.get_time()))
-        minutes = (rospy.get_time() - start) / 60.0
-        print(
-            f"  slot {len(placed)}/{len(targets)}: {name} at ({x:.3f}, {y:.3f}), {rospy.get_time() - start:.1f} s, "
-            f"{len(placed) / minutes:.1f} picks/min",
-            flush=True,
-        )
+    run = Run(packer, args, slots)
+    while not run.finished():
+        run.watch_belt()
+        run.pack_next()
+    if run.in_box:
+        run.close_box(swap=False)
     driver.moveto_named(driver.home)
-    rospy.sleep(0.5)
-    in_slot = 0
-    for name, (x, y), _ in placed:
-        state = driver.get_object_state(name).object.pose
-        upright = abs(matrix_from_pose(state)[2, 2]) > math.cos(math.radians(10.0))
-        ok = math.dist((state.position.x, state.position.y), (x, y)) <= args.tolerance and upright
-        in_slot += ok
-        if not ok:
-            print(f"  {name} is not upright in its slot ({state.position.x:.3f}, {state.position.y:.3f})", flush=True)
-    elapsed = placed[-1][2] - start if placed else rospy.get_time() - start
-    rate = len(placed) / (elapsed / 60.0) if elapsed > 0.0 and placed else 0.0
-    failed = ", ".join(f"{k} {v}" for k, v in sorted(failures.items())) or "none"
+    summary = run.summary()
+    if args.json:
+        with open(args.json, "w") as out:
+            json.dump(summary, out, indent=1)
+    counts = ", ".join(f"{k} {v}" for k, v in sorted(summary["counts"].items()))
     print(
-        f"packed {in_slot}/{len(targets)} in {elapsed:.1f} s (simulated): {rate:.1f} picks per minute; "
-        f"failures: {failed}",
+        f"packed {summary['packed']}/{len(slots) * args.boxes} in {summary['seconds']:.1f} s (simulated): "
+        f"{summary['picks_per_minute']:.1f} picks per minute; objects: {counts or 'none'}",
         flush=True,
     )
-    return 0 if in_slot == len(targets) else 1
+    return 0 if summary["packed"] == len(slots) * args.boxes else 1
 
 
 if __name__ == "__main__":

@@ -1,0 +1,145 @@
+"""Packing what a conveyor brings into a box: which object to pick next, picking it on the fly (moving_pick) and
+putting it upright into its slot (pack_pattern), and checking where it ended up. pack_objects.py and the packing
+benchmark (bench/pack_bench.py) are loops over these. Arriving objects are the simulator's (its object states): the
+dynamic objects resting on the conveyor's belt.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import rospy
+
+from sixdof_msgs.msg import ConveyorStates, ObjectStates
+from sixdof_msgs.srv import DeleteObject
+
+from ._ros import resolve
+from .arm_driver import ArmDriver
+from .grasping import object_geometry
+from .moving_pick import MISSED, UNREACHABLE, MovingPickResult, Timing, pick_moving
+from .pack_pattern import Slot
+from .sim_world import Bin, Conveyor
+from .transforms import matrix_from_pose, matrix_from_quaternion
+
+PLACE_FAILED = "place failed"
+# An object leaning by more than this from upright is not upright in its slot.
+UPRIGHT_TOLERANCE = math.radians(10.0)
+__all__ = ["PLACE_FAILED", "Packer", "SlotCheck"]
+
+
+@dataclass(frozen=True)
+class SlotCheck:
+    """Where a packed object rests against its slot: horizontal error (m), lean (rad), and whether both are within
+    the tolerance and UPRIGHT_TOLERANCE."""
+
+    error: float
+    lean: float
+    ok: bool
+
+
+class Packer:
+    """Picks objects off `conveyor` and puts them into the slots of `box` with `driver`."""
+
+    def __init__(self, driver: ArmDriver, conveyor: Conveyor, box: Bin, timing: Timing | None = None) -> None:
+        self.driver, self.conveyor, self.box = driver, conveyor, box
+        self.timing = timing or Timing()
+        self.direction = np.asarray(conveyor.direction)
+        self.states: ObjectStates | None = None
+        self.done: set[str] = set()
+        self.delete = rospy.ServiceProxy(resolve(driver.ns, "sixdof_sim/delete_object"), DeleteObject)
+        self.belt_speed = math.nan  # m/s, the simulator's current speed of the conveyor (nan until it says)
+        rospy.Subscriber(resolve(driver.ns, "sixdof_sim/object_states"), ObjectStates, self._on_states, queue_size=1)
+        rospy.Subscriber(
+            resolve(driver.ns, "sixdof_sim/conveyor_states"), ConveyorStates, self._on_conveyors, queue_size=1
+        )
+
+    def _on_states(self, msg: ObjectStates) -> None:
+        self.states = msg
+
+    def _on_conveyors(self, msg: ConveyorStates) -> None:
+        if self.conveyor.name in msg.conveyor:
+            self.belt_speed = msg.speed[msg.conveyor.index(self.conveyor.name)]
+
+    def on_belt(self, position: np.ndarray) -> float | None:
+        """How far along the belt (m from its centre, downstream positive) an object resting on it is; None off it."""
+        centre = np.asarray(self.conveyor.position)
+        rotation = matrix_from_quaternion(self.conveyor.orientation)
+        local = rotation.T @ (position - centre)
+        half = np.asarray(self.conveyor.size) / 2.0
+        if abs(local[0]) > half[0] or abs(local[1]) > half[1] or not half[2] < local[2] < half[2] + 0.1:
+            return None
+        return float(local[0]) if self.direction @ rotation[:, 0] > 0.0 else -float(local[0])
+
+    def on_belt_now(self, riding: bool = False) -> dict[str, float]:
+        """The objects on the belt (not yet picked) and how far along it each is; riding: only those moving with the
+        belt (within 5 % of its speed: a fresh object still landing on it would be mispredicted)."""
+        states = self.states
+        if states is None:
+            return {}
+        found = {}
+        for name, pose, twist, holder in zip(states.name, states.pose, states.twist, states.attached_to, strict=True):
+            if holder or name in self.done or name == self.conveyor.name:
+                continue
+            along = self.on_belt(np.array([pose.position.x, pose.position.y, pose.position.z]))
+            if along is None:
+                continue
+            speed = float(self.direction @ [twist.linear.x, twist.linear.y, twist.linear.z])
+            if not riding or abs(speed - self.belt_speed) <= 0.05 * abs(self.belt_speed):
+                found[name] = along
+        return found
+
+    def next_object(self, pick_before: float) -> str | None:
+        """The object furthest downstream on the belt, riding with it, that is still upstream of pick_before."""
+        waiting = {name: along for name, along in self.on_belt_now(riding=True).items() if along < pick_before}
+        return max(waiting, key=waiting.get) if waiting else None
+
+    def pack(self, name: str, slot: Slot) -> MovingPickResult:
+        """Pick the object off the belt and put it upright into the slot (PLACE_FAILED when that fails). After a
+        failure the gripper is open and nothing is held (an object the gripper cannot let go of is deleted from the
+        simulator); the arm is back at its home state unless the pick was MISSED or UNREACHABLE (found before the arm
+        moved)."""
+        self.done.add(name)
+        state = self.driver.get_object_state(name).object
+        height = object_geometry(matrix_from_pose(state.pose), state.shape).height
+        result = pick_moving(self.driver, name, self.timing)
+        if result.ok and not self.put_down(name, [slot.x, slot.y, self.box.centre[2] + slot.bottom + height / 2.0]):
+            result.failure, result.message = PLACE_FAILED, f"{name}: {self.driver.last_failure}"
+        if not result.ok and result.failure not in (MISSED, UNREACHABLE):  # those two fail before the arm moves
+            self.recover(name)
+        return result
+
+    def recover(self, name: str) -> None:
+        driver = self.driver
+        if not driver.gripper_open() and driver.get_object_state(name).attached_to:
+            rospy.logwarn(f"'{name}' stays in the gripper: deleting it")
+            self.delete(name)
+            driver.gripper_open()
+        if name in driver.scene.get_attached_object_names():
+            driver.scene.detach_object(name)
+        driver.forget_held()
+        driver.moveto_named(driver.home)
+
+    def put_down(self, name: str, position: list[float]) -> bool:
+        """Place the held object at position and retreat. Opening fingers may stop at a neighbour or the box's wall,
+        or on the object while the grasp fix still holds it (it lets go within a few of its updates): the object is
+        put down when the grasp fix has let it go."""
+        driver = self.driver
+        if not driver.release_at(position):
+            if not driver.last_failure.startswith("gripper did not open"):
+                return False
+            rospy.sleep(0.5)
+            if driver.get_object_state(name).attached_to:
+                return False
+            if name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
+                rospy.logwarn("detaching '%s' in the planning scene failed", name)
+            driver.forget_held()
+        return driver.retreat()
+
+    def check(self, name: str, slot: Slot, tolerance: float) -> SlotCheck:
+        """Where the object rests against its slot (the simulator's pose of it)."""
+        pose = matrix_from_pose(self.driver.get_object_state(name).object.pose)
+        error = math.dist(pose[:2, 3], (slot.x, slot.y))
+        lean = math.acos(min(1.0, abs(float(pose[2, 2]))))
+        return SlotCheck(error, lean, error <= tolerance and lean <= UPRIGHT_TOLERANCE)

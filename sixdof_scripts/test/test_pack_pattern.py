@@ -69,6 +69,12 @@ def test_bad_pattern_files_are_named(tmp_path, text, message):
     assert message in str(raised.value)
 
 
+def test_the_example_pattern_fits_the_packing_worlds_box():
+    pattern = load_pattern(PACKAGE / "examples/pallet_pattern.yaml")
+    assert (pattern.rows, pattern.columns, pattern.layers) == (2, 3, 2)
+    assert len(pattern.slots(BOX)) == 12
+
+
 def test_a_grid_wider_than_the_box_is_refused(tmp_path):
     pattern = load_pattern(write(tmp_path, "rows: 4\ncolumns: 2\nspacing: [0.09, 0.1]\n"))
     with pytest.raises(PatternError, match=r"4 slots 0.09 m apart along x do not fit in box 'box' \(0.260 m"):

@@ -1,0 +1,203 @@
+#!/usr/bin/env python3
+"""Packing from a running belt against a running stack (`make bench-pack`; scripts/bench_pack.sh starts the stack on
+bench/pack_world.yaml in real time and runs this).
+
+For each run (a belt speed and a number of objects) the belt is set to that speed and the benchmark spawns the
+objects onto its upstream end at seeded random intervals: boxes and upright cylinders, 3-6 cm wide and high, random
+yaw (boxes) and lateral offset. pack_objects.py packs them into the world's box (--pattern, --boxes enough for every
+object: a full box is checked and emptied) and writes every arriving object's outcome. Each spawned object is
+accounted for: placed correctly (in its slot within --tolerance and upright), misplaced, passed (rode past the
+last point it could be picked at, by the belt's end), or its pick's failure class (missed, not grasped, dropped,
+unreachable, failed, place failed). Picks per minute are simulated time, from the start of packing to the last
+placement.
+
+    bench/pack_bench.py --runs 0.2:100 0.1:10 0.3:10 --seed 1 --report report.md
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import random
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from collections import Counter
+from pathlib import Path
+
+import rospy
+from geometry_msgs.msg import Pose
+from shape_msgs.msg import SolidPrimitive
+from std_msgs.msg import ColorRGBA
+
+from sixdof_msgs.msg import SimObject
+from sixdof_msgs.srv import DeleteObject, SetConveyor, SpawnObject
+
+BELT, BOX = "belt", "box"
+BELT_X, BELT_TOP, SPAWN_Y = 0.45, 0.03, -0.45
+COLOURS = ((0.9, 0.1, 0.1), (0.1, 0.7, 0.2), (0.1, 0.3, 0.9), (0.95, 0.85, 0.1))
+CLASSES = ("passed", "missed", "not grasped", "dropped", "unreachable", "failed", "place failed", "misplaced")
+
+
+def random_object(rng: random.Random, name: str) -> SimObject:
+    shape = rng.choice(("box", "cylinder"))
+    width, height = rng.uniform(0.03, 0.06), rng.uniform(0.03, 0.06)
+    obj = SimObject(name=name, mass=0.05, friction=0.8, color=ColorRGBA(*rng.choice(COLOURS), 1.0))
+    if shape == "box":
+        depth = rng.uniform(0.03, 0.06)
+        obj.shape = SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[width, depth, height])
+    else:
+        obj.shape = SolidPrimitive(type=SolidPrimitive.CYLINDER, dimensions=[height, width / 2.0])
+    yaw = rng.uniform(-math.pi, math.pi) if shape == "box" else 0.0
+    obj.pose = Pose()
+    obj.pose.position.x = BELT_X + rng.uniform(-0.02, 0.02)
+    obj.pose.position.y, obj.pose.position.z = SPAWN_Y, BELT_TOP + height / 2.0 + 0.002
+    obj.pose.orientation.z, obj.pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+    return obj
+
+
+def spawner(rng: random.Random, prefix: str, count: int, interval: tuple[float, float], names: list[str]) -> None:
+    """Spawn `count` objects at random intervals (simulated seconds), appending their names."""
+    spawn = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)
+    for i in range(count):
+        if rospy.is_shutdown():
+            return
+        name = f"{prefix}_{i:03d}"
+        response = spawn(random_object(rng, name))
+        if not response.success:
+            rospy.logerr(f"spawning {name}: {response.status_message}")
+        else:
+            names.append(name)
+        rospy.sleep(rng.uniform(*interval))
+
+
+def run(args: argparse.Namespace, speed: float, count: int, rng: random.Random) -> dict:
+    set_conveyor = rospy.ServiceProxy("sixdof_sim/set_conveyor", SetConveyor)
+    response = set_conveyor(BELT, speed)
+    if not response.success:
+        raise RuntimeError(f"set_conveyor: {response.status_message}")
+    names: list[str] = []
+    prefix = f"v{round(speed * 100):02d}"
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "pack.json"
+        command = [
+            "rosrun", "sixdof_scripts", "pack_objects.py", "--box", BOX, "--pattern", args.pattern,
+            "--boxes", str(count), "--objects", str(count), "--max-failures", str(count),
+            "--timeout", str(count * max(args.interval) * 2.0 + 60.0), "--tolerance", str(args.tolerance),
+            "--json", str(out),
+        ]  # fmt: skip
+        wall = time.monotonic()
+        packer = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        rospy.sleep(2.0)  # pack_objects at home
+        thread = threading.Thread(target=spawner, args=(rng, prefix, count, tuple(args.interval), names), daemon=True)
+        thread.start()
+        log = packer.communicate()[0]
+        wall = time.monotonic() - wall
+        thread.join()
+        if not out.exists():
+            raise RuntimeError(f"pack_objects.py wrote no results (exit {packer.returncode}):\n{log}")
+        result = json.loads(out.read_text())
+    print(log, file=sys.stderr)
+    outcomes = {o["name"]: o for o in result["outcomes"]}
+    delete = rospy.ServiceProxy("sixdof_sim/delete_object", DeleteObject)
+    for name in names:  # the last box's objects, and whatever else is left, for the next run
+        delete(name)
+    result.update(speed=speed, spawned=len(names), wall=wall, unaccounted=[n for n in names if n not in outcomes])
+    return result
+
+
+def percentile(values: list[float], q: float) -> float:
+    if not values:
+        return math.nan
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, max(0, math.ceil(q * len(ordered)) - 1))]
+
+
+def report(args: argparse.Namespace, results: list[dict]) -> str:
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    lines = [
+        "## pack (scripts/bench_pack.sh)",
+        "",
+        f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}: pack_objects.py "
+        f"on bench/pack_world.yaml, simulator in real time, seed {args.seed}.",
+        f"Objects spawned onto the belt's upstream end every {args.interval[0]:g}-{args.interval[1]:g} s (simulated, "
+        "seeded): boxes and upright cylinders 3-6 cm wide and high; packed",
+        f"{args.pattern} into the world's box, which is checked and emptied when full. Placed correctly = in its slot "
+        f"within {args.tolerance * 1000:.0f} mm and upright (10 deg).",
+        "Runs with fewer than 100 objects are shorter for time, not chosen on their results.",
+        "",
+        "| belt speed | objects | placed correctly | picks per minute (simulated) | "
+        + " | ".join(CLASSES)
+        + " | place error median / p95 | wall time |",
+        "|---" * (6 + len(CLASSES)) + "|",
+    ]
+    for r in results:
+        counts = Counter({k: v for k, v in r["counts"].items()})
+        good = counts.get("packed", 0)
+        errors = [o["error_mm"] for o in r["outcomes"] if o["outcome"] == "packed" and "error_mm" in o]
+        accounted = r["spawned"] - len(r["unaccounted"])
+        lines.append(
+            f"| {r['speed']:g} m/s | {r['spawned']} ({accounted} accounted for) | {good} "
+            f"({100.0 * good / max(r['spawned'], 1):.1f} %) | {r['picks_per_minute']:.1f} | "
+            + " | ".join(str(counts.get(k, 0)) for k in CLASSES)
+            + f" | {statistics.median(errors) if errors else math.nan:.1f} / {percentile(errors, 0.95):.1f} mm"
+            f" | {r['wall'] / 60.0:.1f} min |"
+        )
+    failures = [(r["speed"], o) for r in results for o in r["outcomes"] if o["outcome"] not in ("packed", "passed")]
+    if failures:
+        lines += ["", "Failures:", ""]
+        for speed, o in failures:
+            lines.append(f"- {speed:g} m/s, {o['name']} at {o['time']:.1f} s: {o['outcome']}: {o.get('message', '')}")
+    unaccounted = [n for r in results for n in r["unaccounted"]]
+    if unaccounted:
+        lines += ["", f"Not accounted for by pack_objects.py: {', '.join(unaccounted)}"]
+    return "\n".join(lines) + "\n"
+
+
+def parse_args(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--runs", nargs="+", default=["0.2:100", "0.1:10", "0.3:10"], help="SPEED:OBJECTS ...")
+    parser.add_argument("--interval", nargs=2, type=float, default=[6.0, 7.0], help="s between arrivals (6 7)")
+    parser.add_argument("--pattern", default="2x2", help="pack_objects.py's --pattern (2x2)")
+    parser.add_argument("--tolerance", type=float, default=0.005, help="m from the slot's centre (0.005)")
+    parser.add_argument("--seed", type=int, default=1, help="random seed (1)")
+    parser.add_argument("--report", help="write the markdown section here")
+    args = parser.parse_args(argv)
+    runs = []
+    for text in args.runs:
+        speed, _, count = text.partition(":")
+        try:
+            runs.append((float(speed), int(count)))
+        except ValueError:
+            parser.error(f"--runs takes SPEED:OBJECTS (e.g. 0.2:100), got '{text}'")
+        if not (runs[-1][0] > 0.0 and runs[-1][1] > 0):
+            parser.error(f"--runs: speed and objects must be > 0, got '{text}'")
+    if not 0.0 < args.interval[0] <= args.interval[1]:
+        parser.error(f"--interval must be 0 < MIN <= MAX, got {args.interval}")
+    args.run_list = runs
+    return args
+
+
+def main() -> int:
+    args = parse_args(sys.argv[1:])
+    rospy.init_node("pack_bench", anonymous=True)
+    rospy.wait_for_service("sixdof_sim/spawn_object", timeout=120.0)
+    rng = random.Random(args.seed)
+    results = []
+    for speed, count in args.run_list:
+        print(f"[bench-pack] {count} objects at {speed:g} m/s", flush=True)
+        results.append(run(args, speed, count, rng))
+        print(report(args, results[-1:]), flush=True)
+    text = report(args, results)
+    print(text)
+    if args.report:
+        Path(args.report).write_text(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

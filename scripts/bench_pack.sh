@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Packing benchmark on a stack of its own (make bench-pack): demo.launch rviz:=false (the simulator in real time: the
+# picks are timed to the objects on ROS time) on bench/pack_world.yaml, then bench/pack_bench.py, which writes the
+# "pack" section of bench/results.md.
+#   scripts/bench_pack.sh                          0.2 m/s with 100 objects, 0.1 and 0.3 m/s with 10 each
+#   scripts/bench_pack.sh --runs 0.2:20 ...        ARGS go to bench/pack_bench.py (--runs, --interval, --seed, ...)
+# Logs in artifacts/bench_pack_logs/.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
+# shellcheck source=scripts/stack_lib.sh
+. scripts/stack_lib.sh
+
+stack_init "$repo/artifacts/bench_pack_logs"
+report=$stack_work/report.md
+echo "[bench-pack] launching the stack in real time (master port $stack_port)"
+stack_start launch roslaunch -p "$stack_port" sixdof_bringup demo.launch rviz:=false world:="$repo/bench/pack_world.yaml"
+stack_wait_ready belt "${stack_pids[-1]}" || { echo "[bench-pack] the stack did not come up (see $ROS_LOG_DIR/launch.out)" >&2; exit 1; }
+
+status=0
+python3 bench/pack_bench.py "$@" --report "$report" || status=$?
+if [ -s "$report" ]; then
+  python3 scripts/results_section.py bench/results.md "$report"
+  echo "[bench-pack] wrote its section of bench/results.md"
+fi
+exit $status

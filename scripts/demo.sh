@@ -33,8 +33,6 @@ stack_init "$artifacts/demo_logs"
 work=$stack_work
 port=$stack_port
 
-stage() { printf '\n\033[1m[demo] %s\033[0m\n' "$*"; }
-fail() { printf '\033[1;31m[demo] FAILED: %s\033[0m\n' "$*" >&2; exit 1; }
 
 stage "1/6 launching the simulator (real time), move_group and the scene mirror (master port $port)"
 # Real time, as the end-to-end tests run: a free-running simulator (headless:=true) can outrun its consumers

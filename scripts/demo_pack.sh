@@ -18,8 +18,6 @@ artifacts=$repo/artifacts
 mkdir -p "$artifacts"
 stack_init "$artifacts/demo_pack_logs"
 
-stage() { printf '\n\033[1m[demo-pack] %s\033[0m\n' "$*"; }
-fail() { printf '\033[1;31m[demo-pack] FAILED: %s\033[0m\n' "$*" >&2; exit 1; }
 
 stage "1/3 launching the simulator and move_group (master port $stack_port)"
 stack_start launch roslaunch -p "$stack_port" sixdof_bringup demo.launch rviz:=false \

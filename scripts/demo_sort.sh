@@ -22,8 +22,6 @@ artifacts=$repo/artifacts
 mkdir -p "$artifacts"
 stack_init "$artifacts/demo_sort_logs"
 
-stage() { printf '\n\033[1m[demo-sort] %s\033[0m\n' "$*"; }
-fail() { printf '\033[1;31m[demo-sort] FAILED: %s\033[0m\n' "$*" >&2; exit 1; }
 
 stage "1/4 launching the simulator, move_group and the perception node (master port $stack_port)"
 stack_start launch roslaunch -p "$stack_port" sixdof_bringup demo.launch "${launch_args[@]}" world:="$world" \

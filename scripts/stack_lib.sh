@@ -7,6 +7,7 @@
 #   stack_rviz_screenshot <png>        rviz (sixdof_bringup rviz.launch.xml) on a virtual display, a shot of its window
 #   stack_wait_ready [object [pid]]    wait until move_group answers (and the object is in the planning scene);
 #                                      fails at once when process group pid (the launch) has ended
+#   stage <words> / fail <words>       a demo's progress line / its failure (exit 1), tagged [$stack_tag]
 # The caller's EXIT trap must call stack_cleanup (stack_init installs one that does).
 # Sourcing it sources scripts/env.sh (the venv and the install space) first.
 
@@ -14,6 +15,10 @@
 . "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 
 stack_pids=()
+stack_tag=$(basename "$0" .sh | tr _ -)
+
+stage() { printf '\n\033[1m[%s] %s\033[0m\n' "$stack_tag" "$*"; }
+fail() { printf '\033[1;31m[%s] FAILED: %s\033[0m\n' "$stack_tag" "$*" >&2; exit 1; }
 
 stack_init() {
   stack_work=$(mktemp -d)

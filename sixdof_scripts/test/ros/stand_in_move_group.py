@@ -10,16 +10,8 @@ import threading
 import actionlib
 import rospy
 from control_msgs.msg import GripperCommandAction
-from moveit_msgs.msg import ExecuteTrajectoryAction, MoveGroupAction
-from moveit_msgs.srv import (
-    ApplyPlanningScene,
-    GetCartesianPath,
-    GetMotionPlan,
-    GetPlanningScene,
-    GetPositionFK,
-    GetPositionIK,
-    GetPositionIKResponse,
-)
+from moveit_msgs.srv import GetPositionIKResponse
+from sixdof_commander.move_group_clients import MOVE_GROUP_ACTIONS, MOVE_GROUP_SERVICES
 
 from sixdof_msgs.srv import GetRobotModel, RetimeTrajectory
 
@@ -49,28 +41,16 @@ def answer_once(name: str):
 
 def main() -> None:
     rospy.init_node("stand_in_move_group")
-    servers = [
-        actionlib.SimpleActionServer(name, spec, hang(name), auto_start=False)
-        for name, spec in (
-            ("move_group", MoveGroupAction),
-            ("execute_trajectory", ExecuteTrajectoryAction),
-            ("gripper_controller/gripper_cmd", GripperCommandAction),
-        )
-    ]
+    actions = {name: action for name, (action, _goal) in MOVE_GROUP_ACTIONS.items()}
+    actions["gripper_controller/gripper_cmd"] = GripperCommandAction
+    servers = [actionlib.SimpleActionServer(name, spec, hang(name), auto_start=False) for name, spec in actions.items()]
     for server in servers:
         server.start()
+    answers = {"compute_ik": answer_once("compute_ik")}
     services = [
-        rospy.Service(name, spec, hang(name))
-        for name, spec in (
-            ("plan_kinematic_path", GetMotionPlan),
-            ("compute_fk", GetPositionFK),
-            ("compute_cartesian_path", GetCartesianPath),
-            ("get_planning_scene", GetPlanningScene),
-            ("apply_planning_scene", ApplyPlanningScene),
-            ("retime_trajectory", RetimeTrajectory),
-        )
+        rospy.Service(name, spec, answers.get(name, hang(name)))
+        for name, spec in [*MOVE_GROUP_SERVICES.items(), ("retime_trajectory", RetimeTrajectory)]
     ]
-    services.append(rospy.Service("compute_ik", GetPositionIK, answer_once("compute_ik")))
     rospy.wait_for_service(MODEL_SOURCE, timeout=60.0)
     source = rospy.ServiceProxy(MODEL_SOURCE, GetRobotModel)
     services.append(rospy.Service("get_robot_model", GetRobotModel, lambda request: source(request)))

@@ -17,7 +17,15 @@ from control_msgs.msg import (
 )
 from control_msgs.srv import QueryTrajectoryState
 from shape_msgs.msg import SolidPrimitive
-from sim_test_util import ARM_JOINTS, FINGER_JOINTS, JointStateListener, sim_service, trajectory_goal, wait_for_servers
+from sim_test_util import (
+    ARM_JOINTS,
+    FINGER_JOINTS,
+    JointStateListener,
+    sim_service,
+    trajectory_goal,
+    wait_for_goal,
+    wait_for_servers,
+)
 from std_srvs.srv import Empty
 
 from sixdof_msgs.msg import SimObject
@@ -49,7 +57,7 @@ class SimActionsTest(unittest.TestCase):
     def run_goal(self, goal, client=None) -> tuple[int, FollowJointTrajectoryResult]:
         client = client or self.arm
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(RESULT_TIMEOUT)), "no result")
+        self.assertTrue(wait_for_goal(client, RESULT_TIMEOUT), "no result")
         return client.get_state(), client.get_result()
 
     def assert_rejected(self, goal, code: int, text: str, client=None) -> None:
@@ -66,7 +74,7 @@ class SimActionsTest(unittest.TestCase):
         feedback = []
         goal = trajectory_goal(ARM_JOINTS, [(TARGET, 1.5)])
         self.arm.send_goal(goal, feedback_cb=feedback.append)
-        self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.arm, RESULT_TIMEOUT))
         self.assertEqual(self.arm.get_state(), GoalStatus.SUCCEEDED)
         self.assertEqual(self.arm.get_result().error_code, FollowJointTrajectoryResult.SUCCESSFUL)
         self.assert_reaches(ARM_JOINTS, TARGET, 0.011)
@@ -130,7 +138,7 @@ class SimActionsTest(unittest.TestCase):
         for p, v, t in zip(answer.position, answer.velocity, TARGET, strict=True):
             self.assertAlmostEqual(p, t, places=9)
             self.assertAlmostEqual(v, 0.0, places=9)
-        self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.arm, RESULT_TIMEOUT))
         self.assertEqual(self.arm.get_state(), GoalStatus.SUCCEEDED)
 
     def test_multi_point_linear_trajectory_in_another_joint_order(self) -> None:
@@ -189,7 +197,7 @@ class SimActionsTest(unittest.TestCase):
         self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(TARGET, 2.0)]))
         rospy.sleep(1.0)  # the behaviour under test: a goal canceled halfway through its motion (simulated time)
         self.arm.cancel_goal()
-        self.assertTrue(self.arm.wait_for_result(rospy.Duration(RESULT_TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.arm, RESULT_TIMEOUT))
         self.assertEqual(self.arm.get_state(), GoalStatus.PREEMPTED)
         held = self.joints.settled(ARM_JOINTS)
         rospy.sleep(1.0)  # the behaviour under test: the joints hold where they stopped, 1 s later too

@@ -16,7 +16,7 @@ from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import GripperCommandAction, GripperCommandGoal
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
-from sim_test_util import sim_service, wait_for_servers
+from sim_test_util import sim_service, wait_for_goal, wait_for_servers
 
 from sixdof_msgs.msg import ConveyorStates, GraspEvent, ObjectStates, SimObject
 from sixdof_msgs.srv import SetConveyor, SpawnObject
@@ -79,12 +79,12 @@ class SimConveyor(unittest.TestCase):
         goal = GripperCommandGoal()
         goal.command.position = math.nan
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(client, TIMEOUT))
         self.assertEqual(client.get_state(), GoalStatus.REJECTED)
 
         goal.command.position = 1.0
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(client, TIMEOUT))
         self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED)
         self.assertEqual(client.get_result().position, 1.0)
         self.assertFalse(client.get_result().stalled)
@@ -132,7 +132,7 @@ class SimConveyor(unittest.TestCase):
 
         goal.command.position = 0.0
         client.send_goal(goal)
-        self.assertTrue(client.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(client, TIMEOUT))
         self.assertEqual(client.get_result().position, 0.0)
         event = next_event()
         self.assertEqual(event.event, GraspEvent.DETACHED)

@@ -19,6 +19,7 @@ from sim_test_util import (
     at_rest,
     top_down_ik,
     trajectory_goal,
+    wait_for_goal,
     wait_for_servers,
     wait_until,
 )
@@ -53,12 +54,12 @@ class SimGraspTest(unittest.TestCase):
 
     def gripper_goal(self, position: float, max_effort: float = 0.0) -> tuple[int, object, str]:
         self.gripper.send_goal(GripperCommandGoal(command=GripperCommand(position=position, max_effort=max_effort)))
-        self.assertTrue(self.gripper.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.gripper, TIMEOUT))
         return self.gripper.get_state(), self.gripper.get_result(), self.gripper.get_goal_status_text()
 
     def move_arm(self, joints: list[float], duration: float = 2.0) -> None:
         self.arm.send_goal(trajectory_goal(ARM_JOINTS, [(joints, duration)]))
-        self.assertTrue(self.arm.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.arm, TIMEOUT))
         self.assertEqual(self.arm.get_state(), GoalStatus.SUCCEEDED, self.arm.get_result().error_string)
 
     def cube(self):

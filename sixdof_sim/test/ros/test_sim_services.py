@@ -18,6 +18,7 @@ from sim_test_util import (
     at_rest,
     sim_service,
     trajectory_goal,
+    wait_for_goal,
     wait_for_servers,
     wait_until,
 )
@@ -129,9 +130,9 @@ class SimServicesTest(unittest.TestCase):
         self.fingers.send_goal(trajectory_goal(FINGER_JOINTS, [([0.01, 0.01], 3.0)]))
         self.assertTrue(wait_until(lambda: self.fingers.get_state() == GoalStatus.ACTIVE, TIMEOUT), "fingers goal")
         self.gripper.send_goal(GripperCommandGoal(command=GripperCommand(position=0.035)))
-        self.assertTrue(self.gripper.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.gripper, TIMEOUT))
         self.assertEqual(self.gripper.get_state(), GoalStatus.SUCCEEDED)
-        self.assertTrue(self.fingers.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(self.fingers, TIMEOUT))
         self.assertEqual(self.fingers.get_state(), GoalStatus.PREEMPTED)
         self.assertTrue(self.joints.wait_near(FINGER_JOINTS, [0.035, 0.035], 0.0025))
         rospy.sleep(1.0)  # the behaviour under test: for 1 s the preempted trajectory towards 0.01 drives nothing

@@ -15,7 +15,6 @@ import actionlib
 import rosgraph
 import rosnode
 import rospy
-from actionlib import CommState
 from e2e import wait_for_action_server, wait_for_stack
 from moveit_msgs.msg import ExecuteTrajectoryAction
 from moveit_msgs.srv import GetMotionPlan
@@ -64,16 +63,6 @@ def bounded_call(function, *args, timeout: float, what: str):
         return future.result(timeout=timeout)
     except concurrent.futures.TimeoutError:
         raise AssertionError(f"{what} did not return within {timeout} s") from None
-
-
-def wait_for_action(client, timeout: float, what: str) -> tuple[float, object]:
-    """Waits for an actionlib client's goal to finish: (wall seconds waited, result)."""
-    start = time.monotonic()
-    # The goal handle's state, not simple_state: a result arriving before SimpleActionClient.send_goal has stored the
-    # new handle (a fast server) is dropped by its transition callback ("a goal handle that we're not tracking"), and
-    # simple_state never becomes DONE.
-    wait_until(lambda: client.gh is not None and client.gh.get_comm_state() == CommState.DONE, timeout, what, 0.01)
-    return time.monotonic() - start, client.get_result()
 
 
 def connect(node: str, group: str) -> tuple[MoveGroup, rospy.ServiceProxy, actionlib.SimpleActionClient]:

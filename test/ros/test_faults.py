@@ -15,10 +15,12 @@ import unittest
 import rospy
 import rostest
 from e2e import case
-from faults import bounded_call, connect, node_pid, signal_node, wait_for_action, wait_until
+from faults import bounded_call, connect, node_pid, signal_node, wait_until
 from moveit_msgs.msg import ExecuteTrajectoryGoal, MotionPlanRequest, MoveItErrorCodes
 from sensor_msgs.msg import JointState
 from sixdof_commander.goals import joint_constraints
+
+from sixdof_test_support.actions import wait_for_goal
 
 SIM = "/sixdof_sim"
 MOVE_GROUP = "/move_group"
@@ -83,7 +85,7 @@ class Faults(unittest.TestCase):
         time.sleep(FAULT_AFTER)
         pid = signal_node(SIM, sig)
         # Hang guard far above the bound: the bound itself is asserted on the measured time below.
-        wait_for_action(self.execute, allowed + 60.0, "execute_trajectory result after the fault")
+        self.assertTrue(wait_for_goal(self.execute, allowed + 60.0), "no execute_trajectory result after the fault")
         elapsed = time.monotonic() - start
         text = self.execute.get_goal_status_text()
         rospy.loginfo("%s %.1f s into a %.1f s motion: execution ended after %.2f s (bound %.2f s): %s",
@@ -109,7 +111,7 @@ class Faults(unittest.TestCase):
         wait_until(self.move_group_state_is_current, 60.0, "move_group planning from the simulator's state", 0.2)
         trajectory, expected = self.plan()
         self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=trajectory))
-        wait_for_action(self.execute, self.allowed(expected) + 60.0, "execute_trajectory after recovery")
+        self.assertTrue(wait_for_goal(self.execute, self.allowed(expected) + 60.0), "execute_trajectory after recovery")
         result = self.execute.get_result()
         self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS, self.execute.get_goal_status_text())
 
@@ -131,7 +133,7 @@ class Faults(unittest.TestCase):
                 # Executing from a state nobody confirms is refused, naming why.
                 trajectory, expected = self.plan()
                 self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=trajectory))
-                wait_for_action(self.execute, CALL_TIMEOUT, "execute_trajectory while stopped")
+                self.assertTrue(wait_for_goal(self.execute, CALL_TIMEOUT), "execute_trajectory while stopped")
                 error, text = self.execute.get_result().error_code, self.execute.get_goal_status_text()
                 self.assertEqual(error.val, MoveItErrorCodes.CONTROL_FAILED, text)
                 self.assertIn("no current robot state: joint_states stale for", text)

@@ -32,7 +32,7 @@ from control_msgs.msg import (
 )
 from control_msgs.srv import QueryTrajectoryState
 from e2e import planning_scene, wait_for_action_server, wait_for_stack
-from faults import bounded_call, node_pid, wait_for_action
+from faults import bounded_call, node_pid
 from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
@@ -48,6 +48,7 @@ from sixdof_commander.move_group_clients import MOVE_GROUP_ACTIONS, MOVE_GROUP_S
 from std_srvs.srv import Empty
 
 from sixdof_msgs.srv import DeleteObject, GetObjectState, SetObjectState, SpawnObject, StepSimulation
+from sixdof_test_support.actions import wait_for_goal
 
 TOPICS = ("planning_scene", "collision_object", "attached_collision_object")
 CALL_TIMEOUT = 60.0  # s of wall time: a request unanswered by then hangs (planning alone is bounded by its time)
@@ -269,15 +270,11 @@ class Fuzz(unittest.TestCase):
         for i in range(count):
             goal = fuzzer.message(goal_class) if i % 4 == 0 else fuzzer.mutate(base, rng.randint(1, 3))
             client.send_goal(goal)
-            try:
-                wait_for_action(client, GOAL_TIMEOUT, f"{name} goal {i}")
-            except AssertionError:
+            if not wait_for_goal(client, GOAL_TIMEOUT):
                 # A goal may legitimately run long (a trajectory starting in a year): cancelled, it must end.
                 client.cancel_goal()
-                try:
-                    wait_for_action(client, CALL_TIMEOUT, f"{name} goal {i} cancelled")
-                except AssertionError as exc:
-                    self.fail(f"{exc}: {self.dump(name, i, goal)}")
+                if not wait_for_goal(client, CALL_TIMEOUT):
+                    self.fail(f"{name} goal {i} cancelled: not within {CALL_TIMEOUT} s: {self.dump(name, i, goal)}")
             result = client.get_result()
             self.assertIsNotNone(result, f"{name} goal {i}: no result message")
             problem = explains_failure(result)

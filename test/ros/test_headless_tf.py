@@ -9,10 +9,12 @@ import unittest
 
 import rospy
 import rostest
-from faults import bounded_call, connect, wait_for_action, wait_until
+from faults import bounded_call, connect, wait_until
 from moveit_msgs.msg import ExecuteTrajectoryActionResult, ExecuteTrajectoryGoal, MotionPlanRequest, MoveItErrorCodes
 from sixdof_commander.goals import joint_constraints
 from tf2_msgs.msg import TFMessage
+
+from sixdof_test_support.actions import wait_for_goal
 
 GROUP = "arm"
 MOTIONS = 4
@@ -55,7 +57,7 @@ class HeadlessTf(unittest.TestCase):
             with self.lock:
                 self.results.clear()
             self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=response.motion_plan_response.trajectory))
-            wait_for_action(self.execute, 120.0, "execute_trajectory")
+            self.assertTrue(wait_for_goal(self.execute, 120.0), "no execute_trajectory result")
             self.assertEqual(self.execute.get_result().error_code.val, MoveItErrorCodes.SUCCESS)
             end, ended = wait_until(lambda: self.results and self.results[-1], 10.0, "the result message")
 

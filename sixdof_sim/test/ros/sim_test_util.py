@@ -6,7 +6,6 @@ import time
 import xml.etree.ElementTree as ET
 
 import rospy
-from actionlib import CommState
 from control_msgs.msg import FollowJointTrajectoryGoal
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
@@ -24,19 +23,6 @@ def wait_for_servers(clients: tuple, timeout: float) -> None:
         deadline = time.monotonic() + timeout
         while not client.wait_for_server(rospy.Duration(0.05)):
             assert time.monotonic() < deadline and not rospy.is_shutdown(), "action server missing"
-
-
-def wait_for_goal(client, timeout: float) -> bool:
-    """Whether the action client's last goal finished within `timeout` wall-clock seconds. Waits on the goal
-    handle's state, not SimpleActionClient.wait_for_result: a result that arrives before send_goal has stored the
-    new handle (a goal the server rejects at once) is dropped by the simple client's transition callback ("a goal
-    handle that we're not tracking"), so its simple state never becomes DONE; the handle itself still sees it."""
-    deadline = time.monotonic() + timeout
-    while client.gh is None or client.gh.get_comm_state() != CommState.DONE:
-        if time.monotonic() >= deadline or rospy.is_shutdown():
-            return False
-        time.sleep(0.005)
-    return True
 
 
 def sim_service(name: str, service_type: type, timeout: float) -> rospy.ServiceProxy:

@@ -23,13 +23,13 @@ from sim_test_util import (
     JointStateListener,
     sim_service,
     trajectory_goal,
-    wait_for_goal,
     wait_for_servers,
 )
 from std_srvs.srv import Empty
 
 from sixdof_msgs.msg import SimObject
 from sixdof_msgs.srv import GetObjectState, SpawnObject
+from sixdof_test_support.actions import wait_for_goal
 
 TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
 TARGET_B = [-0.3, 0.2, 0.6, -0.1, 0.5, 0.2]

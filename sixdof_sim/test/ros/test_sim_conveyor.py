@@ -16,10 +16,11 @@ from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import GripperCommandAction, GripperCommandGoal
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
-from sim_test_util import sim_service, wait_for_goal, wait_for_servers
+from sim_test_util import sim_service, wait_for_servers
 
 from sixdof_msgs.msg import ConveyorStates, GraspEvent, ObjectStates, SimObject
 from sixdof_msgs.srv import SetConveyor, SpawnObject
+from sixdof_test_support.actions import wait_for_goal
 
 # Outcome bounds (wall-clock seconds): the simulator runs free, each step is cheap.
 TIMEOUT = 60.0

@@ -19,7 +19,6 @@ from sim_test_util import (
     at_rest,
     top_down_ik,
     trajectory_goal,
-    wait_for_goal,
     wait_for_servers,
     wait_until,
 )
@@ -27,6 +26,7 @@ from std_srvs.srv import Empty
 
 from sixdof_msgs.msg import GraspEvent
 from sixdof_msgs.srv import GetObjectState, SetObjectState
+from sixdof_test_support.actions import wait_for_goal
 
 CUBE = "red_cube"
 TIMEOUT = 60.0  # simulated seconds

@@ -18,7 +18,6 @@ from sim_test_util import (
     at_rest,
     sim_service,
     trajectory_goal,
-    wait_for_goal,
     wait_for_servers,
     wait_until,
 )
@@ -32,6 +31,7 @@ from sixdof_msgs.srv import (
     SpawnObject,
     StepSimulation,
 )
+from sixdof_test_support.actions import wait_for_goal
 
 TIMEOUT = 60.0
 

@@ -42,6 +42,7 @@ from std_srvs.srv import Empty
 from trajectory_msgs.msg import JointTrajectory
 
 from sixdof_msgs.msg import ErrorReport
+from sixdof_test_support.actions import wait_for_goal
 
 ARM = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 # The elbow folded back so far that the forearm (link4) hits the shoulder (link1); found by sampling the
@@ -253,12 +254,12 @@ class MoveGroupTestCase(unittest.TestCase):
         goal = ExecuteTrajectoryGoal()
         goal.trajectory.joint_trajectory = trajectory
         self.execute.send_goal(goal)
-        self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
+        self.assertTrue(wait_for_goal(self.execute, 120.0), "no execute_trajectory result")
         self.assert_result(self.execute, expected, *fragments)
 
     def move_group_result(self, goal: MoveGroupGoal) -> object:
         self.move_group.send_goal(goal)
-        self.assertTrue(self.move_group.wait_for_result(rospy.Duration(120.0)))
+        self.assertTrue(wait_for_goal(self.move_group, 120.0), "no move_group result")
         return self.move_group.get_result()
 
     def move_to(self, values: dict, group: str = "arm") -> None:

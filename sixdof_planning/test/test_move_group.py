@@ -40,6 +40,8 @@ from shape_msgs.msg import Plane
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 from visualization_msgs.msg import Marker, MarkerArray
 
+from sixdof_test_support.actions import wait_for_goal
+
 PKG = "sixdof_planning"
 
 
@@ -262,7 +264,7 @@ class MoveGroupTest(MoveGroupTestCase):
                 time.sleep(0.01)
             self.assertEqual(self.execute.get_state(), GoalStatus.ACTIVE, "execute_trajectory goal never became active")
             self.execute.cancel_goal()
-            self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)))
+            self.assertTrue(wait_for_goal(self.execute, 120.0), "no execute_trajectory result")
         finally:
             rospy.set_param(FIXTURE + "/slowdown", 1.0)
         self.assert_result(self.execute, MoveItErrorCodes.PREEMPTED)

@@ -45,6 +45,7 @@ from visualization_msgs.msg import MarkerArray
 
 from sixdof_msgs.msg import SimObject
 from sixdof_msgs.srv import SpawnObject
+from sixdof_test_support.actions import wait_for_goal
 
 OCTOMAP_BODY = "<octomap>"
 GROUP = "arm"
@@ -154,7 +155,7 @@ class OccupancyMapTest(unittest.TestCase):
         points = trajectory.joint_trajectory.points
         waypoints = [[dict(zip(names, p.positions, strict=True))[j] for j in self.joints] for p in points]
         self.execute.send_goal(ExecuteTrajectoryGoal(trajectory=trajectory))
-        self.assertTrue(self.execute.wait_for_result(rospy.Duration(120.0)), "execution did not finish")
+        self.assertTrue(wait_for_goal(self.execute, 120.0), "execution did not finish")
         result = self.execute.get_result()
         self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS, self.execute.get_goal_status_text())
         return waypoints

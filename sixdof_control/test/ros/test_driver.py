@@ -26,6 +26,8 @@ from sensor_msgs.msg import JointState
 from std_srvs.srv import SetBool, Trigger
 from trajectory_msgs.msg import JointTrajectoryPoint
 
+from sixdof_test_support.actions import wait_for_goal
+
 ARM = [f"joint{i}" for i in range(1, 7)]
 FINGERS = ["finger1_joint", "finger2_joint"]
 TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
@@ -86,7 +88,7 @@ class Driver:
 
     def run(self, client, goal) -> tuple[int, object]:
         client.send_goal(goal)
-        assert client.wait_for_result(rospy.Duration(TIMEOUT)), "no result"
+        assert wait_for_goal(client, TIMEOUT), "no result"
         return client.get_state(), client.get_result()
 
     def arm_goal(self, target: list[float], seconds: float) -> FollowJointTrajectoryGoal:
@@ -193,7 +195,7 @@ class DriverTest(unittest.TestCase):
         rospy.rostime.wallsleep(1.0)
         pressed = time.monotonic()
         self.assertTrue(d.estop(True).success)
-        self.assertTrue(d.arm.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(d.arm, TIMEOUT), "no result")
         self.assertLess(time.monotonic() - pressed, FAULT_BOUND)
         self.assertEqual(d.arm.get_state(), GoalStatus.ABORTED)
         self.assertIn("e-stop", d.arm.get_result().error_string)
@@ -244,7 +246,7 @@ class DriverTest(unittest.TestCase):
             self.assertLess(time.monotonic(), deadline)
             time.sleep(0.005)
         accepted = time.monotonic()
-        self.assertTrue(d.arm.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertTrue(wait_for_goal(d.arm, TIMEOUT), "no result")
         ended = time.monotonic() - accepted
         result = d.arm.get_result()
         self.assertEqual(d.arm.get_state(), GoalStatus.ABORTED, result.error_string)

@@ -1,9 +1,9 @@
-"""Shared fixtures: the fixture robot (test/data) read by the test-only offline_model and resolved."""
+"""Shared fixtures: the fixture robot (test/data) as move_group's model of it (core_model) and resolved."""
 
 from pathlib import Path
 
 import pytest
-from offline_model import parse_srdf, parse_urdf
+from core_model import load_model
 from sixdof_commander.goals import GoalBuilder
 from sixdof_commander.robot_model import resolve_group
 
@@ -11,13 +11,18 @@ DATA = Path(__file__).resolve().parent / "data"
 
 
 @pytest.fixture(scope="session")
-def urdf():
-    return parse_urdf((DATA / "fixture.urdf").read_text())
+def model():
+    return load_model((DATA / "fixture.urdf").read_text(), (DATA / "fixture.srdf").read_text())
 
 
 @pytest.fixture(scope="session")
-def srdf(urdf):
-    return parse_srdf((DATA / "fixture.srdf").read_text(), urdf)
+def urdf(model):
+    return model[0]
+
+
+@pytest.fixture(scope="session")
+def srdf(model):
+    return model[1]
 
 
 @pytest.fixture(scope="session")

@@ -6,8 +6,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from core_model import load_model
 from geometry_msgs.msg import Point, Pose
-from offline_model import parse_urdf
 from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from sixdof_commander import SixdofCommanderError
 from sixdof_commander.robot_model import geometry_points, primitive_points
@@ -47,7 +47,7 @@ FINGER = RobotModelLinkGeometry(
 
 
 def hand(geometry=None):
-    return dataclasses.replace(parse_urdf(URDF), collision={"finger": FINGER} if geometry is None else geometry)
+    return dataclasses.replace(load_model(URDF)[0], collision={"finger": FINGER} if geometry is None else geometry)
 
 
 def test_geometry_points_bound_every_primitive_in_the_link_frame():
@@ -87,7 +87,7 @@ def test_links_without_geometry_have_no_points_and_unknown_links_are_named():
 
 def test_a_model_queried_without_geometry_says_so():
     with pytest.raises(SixdofCommanderError, match="collision_geometry=True"):
-        parse_urdf(URDF).collision_points("finger")
+        load_model(URDF)[0].collision_points("finger")
 
 
 def test_bad_primitives_are_named():

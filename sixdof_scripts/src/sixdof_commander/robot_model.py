@@ -4,8 +4,8 @@ The model comes from move_group's `get_robot_model` service (`model_from_respons
 RobotModel is the project's only URDF/SRDF reader, so the commander agrees with the planner, the simulator and
 rviz on joint order, limits (a continuous joint: `bounded` False, nominal limits -pi..pi) and groups, as
 moveit_commander gets them from MoveIt's C++ RobotModel. Nothing here parses XML: scene_mirror and the perception
-node ask move_group too (sixdof_commander.scene_node), and the unit tests that run without a move_group build their
-models with a reader of their own (sixdof_scripts/test/offline_model.py).
+node ask move_group too (sixdof_commander.scene_node), and the unit tests that run without a move_group build its
+get_robot_model response from the core's Python bindings (sixdof_scripts/test/core_model.py).
 
 Only what the commander needs: which joints a group moves (in order), their limits, the group's tip and
 end-effector links, the named states, fixed offsets between links, the gripper's grasping information (its TCP,

@@ -34,7 +34,7 @@ from sixdof_test_support.actions import wait_for_goal
 TARGET = [0.3, -0.2, 0.4, 0.1, 0.3, -0.2]
 TARGET_B = [-0.3, 0.2, 0.6, -0.1, 0.5, 0.2]
 SERVER_TIMEOUT = 60.0
-RESULT_TIMEOUT = 60.0  # simulated seconds
+RESULT_TIMEOUT = 60.0  # s: wall-clock in wait_for_goal, simulated in the deadlines on rospy.Time
 
 
 class SimActionsTest(unittest.TestCase):

@@ -29,7 +29,7 @@ from sixdof_msgs.srv import GetObjectState, SetObjectState
 from sixdof_test_support.actions import wait_for_goal
 
 CUBE = "red_cube"
-TIMEOUT = 60.0  # simulated seconds
+TIMEOUT = 60.0  # s: simulated in wait_until, wall-clock in the other waits
 LIFT = 0.10
 GRASP_ABOVE_CENTRE = 0.01
 

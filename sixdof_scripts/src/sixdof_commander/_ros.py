@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-import io
 import math
-import socket
-import struct
 import threading
 import time
 import xmlrpc.client
 
 import actionlib
-import genpy
 import rosgraph
 import rospy
 from actionlib_msgs.msg import GoalStatusArray
@@ -19,6 +15,7 @@ from sensor_msgs.msg import JointState
 
 from sixdof_msgs.srv import GetRobotModel, GetRobotModelRequest
 
+from ._service import SERVICE_TIMEOUT, call_service
 from .exceptions import SixdofCommanderError
 from .robot_model import RobotDescription, SemanticDescription, model_from_response
 
@@ -91,170 +88,6 @@ def query_robot_model(
     if response.error_code.val != response.error_code.SUCCESS:
         raise SixdofCommanderError(f"robot model: '{rospy.resolve_name(name)}' failed: {response.error_message}")
     return model_from_response(response, collision=bool(collision_geometry))
-
-
-# Hang guard (wall clock) for service calls: a dead node fails at once, this only bounds a node that hangs.
-SERVICE_TIMEOUT = 30.0
-
-
-class PersistentService:
-    """A client of a service without side effects (a query: planning, IK, FK, ...) that keeps its connection to the
-    server between calls (rospy's persistent ServiceProxy), so that a call costs no master lookup and no new
-    connection.
-
-    A call on a kept connection that breaks (the server restarted or died since the last call) is made once more
-    on a new connection, which is why the service must have no side effects; a failure on a new connection raises
-    as rospy's ServiceProxy does. Calls from several threads at once are served one at a time on the kept
-    connection, the others on connections of their own (as rospy's non-persistent proxies).
-    """
-
-    def __init__(self, name: str, service_class: type) -> None:
-        self.resolved_name = rospy.resolve_name(name)
-        self._service_class = service_class
-        self._busy = threading.Lock()
-        self._proxy: rospy.ServiceProxy | None = None
-
-    def __call__(self, request: object) -> object:
-        if not self._busy.acquire(blocking=False):
-            return rospy.ServiceProxy(self.resolved_name, self._service_class)(request)
-        try:
-            proxy = self._proxy
-            if proxy is not None:
-                try:
-                    return proxy(request)
-                except (rospy.ServiceException, rospy.ROSException):
-                    proxy.close()
-                    if self._proxy is not proxy:  # reset() while waiting: the caller gave up on this call
-                        raise
-            self._proxy = rospy.ServiceProxy(self.resolved_name, self._service_class, persistent=True)
-            proxy = self._proxy
-            try:
-                return proxy(request)
-            except (rospy.ServiceException, rospy.ROSException):
-                proxy.close()
-                self._proxy = None
-                raise
-        finally:
-            self._busy.release()
-
-    def call(self, request: object, timeout: float) -> object:
-        """self(request) given up after `timeout` wall-clock seconds (call_service). On the kept connection the call
-        runs in the caller's thread, its socket bounded by the time left; opening a connection (the first call, or
-        after the kept one broke) and a call while another thread holds the kept connection go through
-        call_service's thread."""
-        if self._busy.acquire(blocking=False):
-            try:
-                proxy = self._proxy
-                if proxy is not None and proxy.transport is not None and proxy.transport.socket is not None:
-                    try:
-                        return _call_kept(proxy, request, time.monotonic() + timeout)
-                    except _NoAnswerError:
-                        self.reset()
-                        raise rospy.ROSException(
-                            f"service '{self.resolved_name}' gave no answer within {timeout:g} s"
-                        ) from None
-                    except (OSError, rospy.ServiceException):
-                        # The kept connection broke: a new one below (the service has no side effects).
-                        self.reset()
-            finally:
-                self._busy.release()
-        return _call_in_thread(self, request, timeout)
-
-    def reset(self) -> None:
-        """Closes the kept connection (a call waiting on it fails); the next call opens a new one."""
-        proxy, self._proxy = self._proxy, None
-        if proxy is not None:
-            proxy.close()
-
-
-class _NoAnswerError(Exception):
-    """The deadline of a call on a kept connection passed."""
-
-
-def _receive(sock: socket.socket, size: int, deadline: float) -> bytes:
-    """Exactly `size` bytes from sock, before the deadline (time.monotonic()); _NoAnswerError after it."""
-    data = bytearray(size)
-    view = memoryview(data)
-    received = 0
-    while received < size:
-        remaining = deadline - time.monotonic()
-        if remaining <= 0.0:
-            raise _NoAnswerError
-        sock.settimeout(remaining)
-        try:
-            count = sock.recv_into(view[received:])
-        except TimeoutError:
-            raise _NoAnswerError from None
-        if count == 0:
-            raise rospy.ServiceException("the server closed the connection")
-        received += count
-    return bytes(data)
-
-
-def _call_kept(proxy: rospy.ServiceProxy, request: object, deadline: float) -> object:
-    """proxy(request) on its open persistent connection, read before the deadline: TCPROS's service framing (the
-    request's length and bytes out; an ok byte, the length and the response's bytes, or an error text, back), with
-    rospy's own message serialization."""
-    request = rospy.msg.args_kwds_to_message(proxy.request_class, (request,), {})
-    transport = proxy.transport
-    proxy.seq += 1
-    buffer = io.BytesIO()
-    rospy.msg.serialize_message(buffer, proxy.seq, request)
-    sock = transport.socket
-    sock.settimeout(max(deadline - time.monotonic(), 1e-3))
-    try:
-        sock.sendall(buffer.getvalue())
-    except TimeoutError:
-        raise _NoAnswerError from None
-    ok, size = struct.unpack("<BI", _receive(sock, 5, deadline))
-    data = _receive(sock, size, deadline)
-    if not ok:
-        raise rospy.ServiceException(
-            f"service [{proxy.resolved_name}] responded with an error: {data.decode('utf-8', 'replace')}"
-        )
-    response = proxy.response_class()
-    try:
-        response.deserialize(data)
-    except genpy.DeserializationError as err:
-        raise rospy.ServiceException(f"service [{proxy.resolved_name}]: {err}") from err
-    response._connection_header = transport.header
-    return response
-
-
-def call_service(proxy: rospy.ServiceProxy | PersistentService, request: object, timeout: float) -> object:
-    """proxy(request), given up after `timeout` wall-clock seconds with rospy.ROSException naming the service (a
-    PersistentService's connection is then closed: the next call opens a new one).
-
-    rospy's service calls have no timeout: a node that accepted the connection and then stopped answering
-    would block the caller forever. (A node that died answers at once: the connection is refused or closed,
-    and rospy raises ServiceException.) A PersistentService bounds calls on its kept connection itself; other
-    calls run in a thread of their own, waited for up to the timeout.
-    """
-    if isinstance(proxy, PersistentService):
-        return proxy.call(request, timeout)
-    return _call_in_thread(proxy, request, timeout)
-
-
-def _call_in_thread(proxy: rospy.ServiceProxy | PersistentService, request: object, timeout: float) -> object:
-    outcome: dict[str, object] = {}
-    done = threading.Event()
-
-    def run() -> None:
-        try:
-            outcome["response"] = proxy(request)
-        except Exception as err:  # re-raised in the caller's thread
-            outcome["error"] = err
-        finally:
-            done.set()
-
-    threading.Thread(target=run, daemon=True).start()
-    if not done.wait(timeout):
-        if isinstance(proxy, PersistentService):
-            proxy.reset()
-        raise rospy.ROSException(f"service '{proxy.resolved_name}' gave no answer within {timeout:g} s")
-    if "error" in outcome:
-        raise outcome["error"]
-    return outcome["response"]
 
 
 def server_connected(client: actionlib.SimpleActionClient) -> bool:

@@ -15,7 +15,8 @@ from shape_msgs.msg import SolidPrimitive
 
 from sixdof_msgs.srv import GetObjectState
 
-from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, query_robot_model, resolve
+from ._ros import ServerWaiter, query_robot_model, resolve
+from ._service import SERVICE_TIMEOUT, call_service
 from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor

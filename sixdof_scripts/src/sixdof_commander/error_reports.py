@@ -16,7 +16,8 @@ from moveit_msgs.msg import MoveItErrorCodes
 
 from sixdof_msgs.msg import ErrorReport
 
-from ._ros import SERVICE_TIMEOUT, PersistentService, call_service, resolve
+from ._ros import resolve
+from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 
 # MoveItErrorCodes' constants by value: Python's one table of code names (C++'s: sixdof_msgs/error_code_names.h).
 ERROR_NAMES = {

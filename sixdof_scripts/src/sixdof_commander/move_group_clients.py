@@ -20,7 +20,8 @@ from moveit_msgs.msg import (
 
 from sixdof_msgs.srv import RetimeTrajectory, RetimeTrajectoryRequest
 
-from ._ros import SERVICE_TIMEOUT, ActionClient, PersistentService, ServerWaiter, call_service, resolve, wait_for_done
+from ._ros import ActionClient, ServerWaiter, resolve, wait_for_done
+from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .error_reports import SUCCESS, CallError, ErrorReports
 
 # move_group's moveit_msgs services and actions under MoveIt's names: {name: service type} and

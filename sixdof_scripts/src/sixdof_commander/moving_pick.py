@@ -39,7 +39,8 @@ from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import DetectedObject
 
-from ._ros import SERVICE_TIMEOUT, PersistentService, call_service, resolve
+from ._ros import resolve
+from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .arm_driver import FAILED, UNREACHABLE, ArmDriver, pose_from_matrix
 from .exceptions import SixdofCommanderError
 from .grasping import grasp_tcp_pose, object_geometry, raised, tip_pose

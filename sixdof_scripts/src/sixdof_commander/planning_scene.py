@@ -12,7 +12,8 @@ from moveit_msgs.msg import PlanningScene as SceneMsg
 from moveit_msgs.srv import ApplyPlanningScene, GetPlanningScene, GetPlanningSceneRequest
 from shape_msgs.msg import SolidPrimitive
 
-from ._ros import SERVICE_TIMEOUT, ServerWaiter, call_service, load_robot_model, require_node, resolve
+from ._ros import ServerWaiter, load_robot_model, require_node, resolve
+from ._service import SERVICE_TIMEOUT, call_service
 from .error_reports import SUCCESS, CallError, ErrorReports
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_positive, pose_stamped_from_target

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rostest: go(), plan(), execute() and the gripper return (False with an error code, or SixdofCommanderError)
 when the node serving them is killed mid-request, instead of waiting forever (issue 13, item 3); the kept
-connection of a PersistentService is replaced when its server restarted.
+connection of a PersistentService is replaced when its server restarted, and a server's error answer is never
+made again.
 
 The server is a stand-in of our own (stand_in_move_group.py) that never answers, started per case and killed by
 pid with SIGKILL once the request is in flight. Bounds are hang guards (the call returned at all), not speed."""
@@ -20,7 +21,7 @@ import rostest
 from moveit_msgs.msg import MoveItErrorCodes, RobotTrajectory
 from moveit_msgs.srv import GetPositionFK, GetPositionIK
 from sixdof_commander import Gripper, MoveGroup, SixdofCommanderError
-from sixdof_commander._ros import PersistentService, call_service
+from sixdof_commander._service import PersistentService, call_service
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.srv import GetRobotModel, GetRobotModelRequest
@@ -158,6 +159,40 @@ class CommanderServerDeath(unittest.TestCase):
                     self.assertEqual(outcome["value"].error_code.val, MoveItErrorCodes.SUCCESS, outcome)
             finally:
                 stand_in.kill()
+
+    def test_an_error_answer_is_not_made_again(self):
+        # A server's error answer (TCPROS's ok byte 0) raises and is never made again, on a new connection or the kept
+        # one, by either way of calling: a service with side effects runs once per call.
+        handled = []
+        refuse = [True]
+
+        def handle(request):
+            handled.append(request)
+            if refuse[0]:
+                raise rospy.ServiceException("refused on purpose")
+            return GetPositionFK._response_class()
+
+        server = rospy.Service("counting_fk", GetPositionFK, handle)
+        try:
+            service = PersistentService("counting_fk", GetPositionFK)
+            request = GetPositionFK._request_class()
+            calls = [lambda: service(request), lambda: call_service(service, request, HANG_GUARD)]
+            for call in calls:  # on a new connection (the server refuses): not kept
+                with self.assertRaisesRegex(rospy.ServiceException, "refused on purpose"):
+                    call()
+            self.assertEqual(len(handled), 2)
+            refuse[0] = False
+            service(request)  # answered: the connection is kept
+            refuse[0] = True
+            for call in calls + calls:  # on the kept connection
+                with self.assertRaisesRegex(rospy.ServiceException, "refused on purpose"):
+                    call()
+            self.assertEqual(len(handled), 7)
+            refuse[0] = False
+            self.assertIsNotNone(call_service(service, request, HANG_GUARD))  # the connection outlived the errors
+            self.assertEqual(len(handled), 8)
+        finally:
+            server.shutdown()
 
     def test_gripper_raises_naming_the_lost_server(self):
         _, outcome = self.run_and_kill(

@@ -7,6 +7,7 @@ import socket
 import struct
 import threading
 import time
+from collections.abc import Callable
 
 import genpy
 import rospy
@@ -24,11 +25,13 @@ class PersistentService:
     0) raises rospy.ServiceException and is never made again, so the service may have side effects. A failure on a
     new connection raises as rospy's ServiceProxy does. Calls from several threads at once are served one at a time
     on the kept connection, the others on connections of their own (as rospy's non-persistent proxies).
+    `decode` (the response's bytes -> the response) replaces genpy's deserializer on the kept connection.
     """
 
-    def __init__(self, name: str, service_class: type) -> None:
+    def __init__(self, name: str, service_class: type, decode: Callable[[bytes], object] | None = None) -> None:
         self.resolved_name = rospy.resolve_name(name)
         self._service_class = service_class
+        self._decode = decode
         self._busy = threading.Lock()
         self._proxy: rospy.ServiceProxy | None = None
 
@@ -39,7 +42,7 @@ class PersistentService:
             proxy = self._kept()
             if proxy is not None:
                 try:
-                    return _call_kept(proxy, request, None)
+                    return _call_kept(proxy, request, None, self._decode)
                 except (OSError, _ConnectionClosedError):
                     if self._proxy is not proxy:  # reset() while waiting: the caller gave up on this call
                         raise rospy.ServiceException(f"service [{self.resolved_name}]: connection closed") from None
@@ -66,7 +69,7 @@ class PersistentService:
                 proxy = self._kept()
                 if proxy is not None:
                     try:
-                        return _call_kept(proxy, request, time.monotonic() + timeout)
+                        return _call_kept(proxy, request, time.monotonic() + timeout, self._decode)
                     except _NoAnswerError:
                         self.reset()
                         raise rospy.ROSException(
@@ -122,10 +125,12 @@ def _receive(sock: socket.socket, size: int, deadline: float | None) -> bytes:
     return bytes(data)
 
 
-def _call_kept(proxy: rospy.ServiceProxy, request: object, deadline: float | None) -> object:
+def _call_kept(
+    proxy: rospy.ServiceProxy, request: object, deadline: float | None, decode: Callable[[bytes], object] | None
+) -> object:
     """proxy(request) on its open persistent connection, read before the deadline (None: no deadline): TCPROS's
     service framing (the request's length and bytes out; an ok byte, the length and the response's bytes, or an
-    error text, back), with rospy's own message serialization. A broken connection raises OSError or
+    error text, back), with rospy's own message serialization (or `decode`). A broken connection raises OSError or
     _ConnectionClosedError, the server's error answer rospy.ServiceException."""
     request = rospy.msg.args_kwds_to_message(proxy.request_class, (request,), {})
     transport = proxy.transport
@@ -145,7 +150,7 @@ def _call_kept(proxy: rospy.ServiceProxy, request: object, deadline: float | Non
             f"service [{proxy.resolved_name}] responded with an error: {data.decode('utf-8', 'replace')}"
         )
     try:
-        response = proxy.response_class().deserialize(data)
+        response = decode(data) if decode is not None else proxy.response_class().deserialize(data)
     except genpy.DeserializationError as err:
         raise rospy.ServiceException(f"service [{proxy.resolved_name}]: {err}") from err
     response._connection_header = transport.header

@@ -1,0 +1,165 @@
+"""A fast decoder of plan_kinematic_path's answer (moveit_msgs/GetMotionPlan's response) from its bytes on the wire.
+
+genpy's generated deserializer builds every trajectory point through the message constructors, a struct per array
+and a slice of the buffer per field, which costs more than the rest of the answer together. This decoder reads the
+points in one pass (struct.iter_unpack over the points' common layout) and builds the same message objects, field
+for field the values and types genpy gives (tuples for float64[], lists for string[] and message arrays, genpy.Time
+and genpy.Duration). It reads the answers move_group gives: a start state without multi-DOF joints or attached
+objects, and a trajectory without multi-DOF points, each point's arrays as long as the first point's. Any other
+answer (or bytes that do not parse) is decoded by genpy itself.
+"""
+
+from __future__ import annotations
+
+import struct
+
+import genpy
+from moveit_msgs.msg import MotionPlanResponse, MoveItErrorCodes, RobotState, RobotTrajectory
+from moveit_msgs.srv import GetMotionPlanResponse
+from sensor_msgs.msg import JointState, MultiDOFJointState
+from std_msgs.msg import Header
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
+
+_U32 = struct.Struct("<I")
+_HEADER = struct.Struct("<3I")
+_TAIL = struct.Struct("<di")  # planning_time, error_code.val
+
+
+class _UnusualAnswerError(Exception):
+    """The bytes are not an answer of the shape this decoder reads."""
+
+
+class _Reader:
+    """Reads the fields of a serialized message in order."""
+
+    __slots__ = ("data", "at")
+
+    def __init__(self, data: bytes) -> None:
+        self.data = data
+        self.at = 0
+
+    def u32(self) -> int:
+        (value,) = _U32.unpack_from(self.data, self.at)
+        self.at += 4
+        return value
+
+    def string(self) -> str:
+        size = self.u32()
+        end = self.at + size
+        if end > len(self.data):
+            raise _UnusualAnswerError
+        value = self.data[self.at : end].decode("utf-8")
+        self.at = end
+        return value
+
+    def strings(self) -> list[str]:
+        return [self.string() for _ in range(self.u32())]
+
+    def float64s(self) -> tuple[float, ...]:
+        count = self.u32()
+        values = struct.unpack_from(f"<{count}d", self.data, self.at)
+        self.at += 8 * count
+        return values
+
+    def header(self) -> Header:
+        seq, secs, nsecs = _HEADER.unpack_from(self.data, self.at)
+        self.at += 12
+        return Header(seq=seq, stamp=_stamp(genpy.Time, secs, nsecs), frame_id=self.string())
+
+    def empty(self) -> None:
+        """An array that must be empty (a shape this decoder does not read otherwise)."""
+        if self.u32():
+            raise _UnusualAnswerError
+
+
+def _stamp(kind: type, secs: int, nsecs: int) -> genpy.TVal:
+    """A genpy.Time or genpy.Duration holding the values as read (genpy's deserializers do not normalize them)."""
+    value = kind.__new__(kind)
+    value.secs = secs
+    value.nsecs = nsecs
+    return value
+
+
+def _points(reader: _Reader) -> list[JointTrajectoryPoint]:
+    count = reader.u32()
+    if count == 0:
+        return []
+    data, at = reader.data, reader.at
+    # Each point: positions, velocities, accelerations, effort (a length, then float64s), time_from_start (2 x int32).
+    lengths = []
+    offset = at
+    for _ in range(4):
+        (length,) = _U32.unpack_from(data, offset)
+        lengths.append(length)
+        offset += 4 + 8 * length
+    p, v, a, e = lengths
+    layout = struct.Struct(f"<I{p}dI{v}dI{a}dI{e}d2i")
+    end = at + count * layout.size
+    if end > len(data):
+        raise _UnusualAnswerError
+    vi, ai, ei = p + 1, p + v + 2, p + v + a + 3
+    points = []
+    new_point, new_duration = JointTrajectoryPoint.__new__, genpy.Duration.__new__
+    for fields in layout.iter_unpack(memoryview(data)[at:end]):
+        if fields[0] != p or fields[vi] != v or fields[ai] != a or fields[ei] != e:
+            raise _UnusualAnswerError
+        point = new_point(JointTrajectoryPoint)
+        point.positions = fields[1:vi]
+        point.velocities = fields[vi + 1 : ai]
+        point.accelerations = fields[ai + 1 : ei]
+        point.effort = fields[ei + 1 : -2]
+        duration = new_duration(genpy.Duration)
+        duration.secs, duration.nsecs = fields[-2:]
+        point.time_from_start = duration
+        points.append(point)
+    reader.at = end
+    return points
+
+
+def _decode(reader: _Reader) -> GetMotionPlanResponse:
+    joint_state = JointState(
+        header=reader.header(),
+        name=reader.strings(),
+        position=reader.float64s(),
+        velocity=reader.float64s(),
+        effort=reader.float64s(),
+    )
+    multi_dof_header = reader.header()
+    for _ in range(4):  # joint_names, transforms, twist, wrench
+        reader.empty()
+    reader.empty()  # attached_collision_objects
+    is_diff = bool(reader.data[reader.at])
+    reader.at += 1
+    start = RobotState(
+        joint_state=joint_state,
+        multi_dof_joint_state=MultiDOFJointState(
+            header=multi_dof_header, joint_names=[], transforms=[], twist=[], wrench=[]
+        ),
+        attached_collision_objects=[],
+        is_diff=is_diff,
+    )
+    group_name = reader.string()
+    joint_trajectory = JointTrajectory(header=reader.header(), joint_names=reader.strings(), points=_points(reader))
+    multi_dof = MultiDOFJointTrajectory(header=reader.header(), joint_names=reader.strings(), points=[])
+    reader.empty()  # multi_dof_joint_trajectory.points
+    planning_time, code = _TAIL.unpack_from(reader.data, reader.at)
+    if reader.at + _TAIL.size != len(reader.data):
+        raise _UnusualAnswerError
+    return GetMotionPlanResponse(
+        motion_plan_response=MotionPlanResponse(
+            trajectory_start=start,
+            group_name=group_name,
+            trajectory=RobotTrajectory(joint_trajectory=joint_trajectory, multi_dof_joint_trajectory=multi_dof),
+            planning_time=planning_time,
+            error_code=MoveItErrorCodes(val=code),
+        )
+    )
+
+
+def decode_plan_response(data: bytes) -> GetMotionPlanResponse:
+    """The GetMotionPlan response serialized in `data`, as genpy's deserialize gives it (genpy.DeserializationError
+    when the bytes are not one)."""
+    try:
+        return _decode(_Reader(data))
+    except (_UnusualAnswerError, struct.error, IndexError, UnicodeDecodeError):
+        return GetMotionPlanResponse().deserialize(data)

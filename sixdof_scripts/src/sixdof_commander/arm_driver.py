@@ -22,6 +22,7 @@ from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .grasping import (
     GraspSpec,
+    ObjectGeometry,
     grasp_spec,
     grasp_tcp_pose,
     object_geometry,
@@ -152,7 +153,8 @@ class ArmDriver:
         return self._ns
 
     @property
-    def _suction(self) -> bool:
+    def suction(self) -> bool:
+        """Whether the tool is a suction cup (its vacuum is `gripper`, a SuctionGripper)."""
         return isinstance(self.gripper, SuctionGripper)
 
     @property
@@ -307,17 +309,16 @@ class ArmDriver:
     # Pick and place, in the paper's stages ------------------------------------------------------------
     def grasp(self, object_name: str) -> bool:
         """'pick pose': open, move above the object, descend straight and close the gripper on it."""
-        _, spec = self._require_gripper("grasp")
+        self._require_gripper("grasp")
         if self._held is not None:
             raise SixdofCommanderError(f"already holding '{self._held.name}': place it first")
         state = self.get_object_state(object_name)
         pose = matrix_from_pose(state.object.pose)
         try:
             geometry = object_geometry(pose, state.object.shape)
-            tcp = suction_tcp_pose(geometry) if self._suction else grasp_tcp_pose(geometry, spec)[0]
+            grasp_tip = self.grasp_tip(geometry)
         except SixdofCommanderError as err:
             return self._fail(f"no top-down grasp of '{object_name}': {err}", kind=UNREACHABLE)
-        grasp_tip = tip_pose(tcp, spec)
         where = f"'{object_name}' at ({pose[0, 3]:.3f}, {pose[1, 3]:.3f})"
         if not (self.gripper_open() and self._descend_to(grasp_tip, "approach", where) and self.gripper_close()):
             return False
@@ -327,6 +328,13 @@ class ArmDriver:
         round_ = state.object.shape.type == SolidPrimitive.SPHERE
         self._held = _Held(name=object_name, height=geometry.height, round=round_)
         return True
+
+    def grasp_tip(self, geometry: ObjectGeometry) -> np.ndarray:
+        """The tip link's pose (4x4) that grasps the object from the top: the suction cup's face on the centre of
+        its top (suction.suction_tcp_pose), or the fingers around it (grasping.grasp_tcp_pose);
+        SixdofCommanderError when the object has no such grasp."""
+        spec = self._require_gripper("grasp_tip")[1]
+        return tip_pose(suction_tcp_pose(geometry) if self.suction else grasp_tcp_pose(geometry, spec)[0], spec)
 
     def lift(self) -> bool:
         """'after pick pose': lift the grasped object straight up by the approach distance."""
@@ -398,8 +406,16 @@ class ArmDriver:
         moving_pick.pick_moving; round_: a sphere): attach it in the planning scene and note where it sits in the
         hand, so that place() can put it down."""
         spec = self._require_gripper("hold")[1]
-        if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
-            return False
+        state = self.get_object_state(object_name).object
+        if object_name in self.scene.get_known_object_names():
+            # Where the simulator has it now: the scene's pose of an object picked off a belt lags behind.
+            if state.mesh_resource:
+                if not self._scene_attach(object_name, True):
+                    return False
+            elif not self.scene.attach_primitive(
+                object_name, self.arm.get_end_effector_link(), state.pose, state.shape
+            ):
+                return self._fail(f"attaching '{object_name}' in the planning scene failed", self.scene.last_error)
         self._held = _Held(name=object_name, height=height, round=round_)
         self._note_in_hand(self._held, spec)
         return True

@@ -12,8 +12,11 @@ to the object's motion. The arm runs the approach plan (to the follow path's fir
 follow path as one trajectory, so that no command latency falls between them; the approach must end
 `Timing.margin` s before the follow path starts, else the interception moves later.
 
-The gripper is the package's (ArmDriver's: its grasping information through move_group), closed with
-ArmDriver.gripper_close; whether the object is held is the simulator's `attached_to` of it.
+The gripper is the package's (ArmDriver's: its grasping information through move_group). Fingers close with
+ArmDriver.gripper_close once the tool is at the grasp (Timing's default `close`, 1 s, is their closing time). A
+suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
+moment its face touches the top (SUCTION_TIMING: 0.1 s on the top face). Whether the object is held is the
+simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
 leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
@@ -43,7 +46,8 @@ from ._ros import resolve
 from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .arm_driver import FAILED, UNREACHABLE, ArmDriver, pose_from_matrix
 from .exceptions import SixdofCommanderError
-from .grasping import grasp_tcp_pose, object_geometry, raised, tip_pose
+from .grasping import object_geometry, raised
+from .suction import SuctionGripper
 from .transforms import matrix_from_pose
 
 MISSED = "missed"
@@ -56,6 +60,7 @@ __all__ = [
     "FAILED",
     "MISSED",
     "NOT_GRASPED",
+    "SUCTION_TIMING",
     "UNREACHABLE",
     "MovingObject",
     "MovingPickResult",
@@ -135,6 +140,10 @@ class Timing:
         return self.ramp + self.descend + self.close + self.lift
 
 
+# A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close.
+SUCTION_TIMING = Timing(close=0.1)
+
+
 @dataclass
 class MovingPickResult:
     """The outcome: failure '' on success, else its class (MISSED, NOT_GRASPED, DROPPED, UNREACHABLE, FAILED)."""
@@ -142,7 +151,7 @@ class MovingPickResult:
     object: str
     failure: str = ""
     message: str = ""
-    grasp_time: float = math.nan  # ROS time the gripper closed on the object
+    grasp_time: float = math.nan  # ROS time the gripper closed on the object (a suction cup's vacuum went on)
 
     @property
     def ok(self) -> bool:
@@ -224,10 +233,9 @@ class _MovingPick:
         geometry = object_geometry(target.pose, target.shape)
         self.height = geometry.height
         try:
-            tcp, _ = grasp_tcp_pose(geometry, driver.grasp_spec)
+            self.grasp0 = driver.grasp_tip(geometry)  # the tip's grasp pose over the object at its stamp
         except SixdofCommanderError as err:
             raise _Failed(UNREACHABLE, f"no top-down grasp: {err}") from err
-        self.grasp0 = tip_pose(tcp, driver.grasp_spec)  # the tip's grasp pose over the object at its stamp
         self.joint_names = self.arm.get_active_joints()
         self.request = GetPositionIKRequest()
         self.request.ik_request.group_name = self.arm.get_name()
@@ -328,6 +336,18 @@ class _MovingPick:
     def attached(self) -> bool:
         return bool(self.driver.get_object_state(self.target.name).attached_to)
 
+    def grip(self, start: float) -> tuple[float, str]:
+        """Close the fingers when the tool is at the grasp, or turn a suction cup's vacuum on as the descent begins
+        (it seals when the cup's face touches the top): (the ROS time of the command, why it failed or '')."""
+        driver = self.driver
+        suction = isinstance(driver.gripper, SuctionGripper)
+        rospy.sleep(max(start + (self.timing.ramp if suction else self.timing.grasp_time) - rospy.get_time(), 0.0))
+        grip_time = rospy.get_time()
+        if suction:
+            on = driver.gripper.grasp().reached_goal
+            return grip_time, "" if on else f"the vacuum did not go on: {driver.gripper.last_status_text}"
+        return grip_time, "" if driver.gripper_close() else driver.last_failure
+
     def run(self, lead: float) -> float:
         """Pick; the ROS time the gripper closed. _Failed says why not."""
         if not self.driver.gripper_open():
@@ -341,21 +361,20 @@ class _MovingPick:
         executed: list[bool] = []
         runner = threading.Thread(target=lambda: executed.append(self.arm.execute(trajectory, wait=True)))
         runner.start()
-        rospy.sleep(max(start + self.timing.grasp_time - rospy.get_time(), 0.0))
-        grasp_time = rospy.get_time()
-        closed = self.driver.gripper_close()
-        # The grasp fix attaches a squeezed object within a few of its updates: until then, or the lift's end.
+        grasp_time, why_not = self.grip(start)
+        # The grasp fix attaches a squeezed object within a few of its updates, a cup the moment it touches the top:
+        # until then, or the lift's end.
         lifted = start + self.timing.total
-        held = closed and self.attached()
-        while closed and not held and rospy.get_time() < lifted and not rospy.is_shutdown():
+        held = not why_not and self.attached()
+        while not why_not and not held and rospy.get_time() < lifted and not rospy.is_shutdown():
             rospy.sleep(0.02)
             held = self.attached()
         runner.join()
         if not executed or not executed[0]:
             raise _Failed(FAILED, f"the approach and follow path failed: {self.arm.last_error}")
         if not held:
-            why = self.driver.last_failure if not closed else "the gripper closed but holds nothing"
-            raise _Failed(NOT_GRASPED, why)
+            tool = "the suction cup sealed on nothing" if self.driver.suction else "the gripper closed"
+            raise _Failed(NOT_GRASPED, why_not or f"{tool} but holds nothing")
         if not self.attached():
             raise _Failed(DROPPED, "held after closing, lost during the lift")
         round_ = self.target.shape.type == SolidPrimitive.SPHERE
@@ -370,7 +389,8 @@ def pick_moving(
     """Grasp a moving object on the fly and lift it (module docstring). target: a simulator object's name (its
     pose and velocity from the simulator), a MovingObject, or a DetectedObject with a tracked velocity. The follow path
     starts at the earliest `lead` s from now (later when the object is not yet in reach or the approach needs
-    longer). On success the driver holds the object (ArmDriver.place puts it down)."""
+    longer). timing: SUCTION_TIMING for a suction tool, Timing() for fingers unless given. On success the driver
+    holds the object (ArmDriver.place puts it down)."""
     if not isinstance(driver, ArmDriver):
         raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
     if isinstance(target, str):
@@ -383,7 +403,8 @@ def pick_moving(
         raise SixdofCommanderError(f"pick_moving lead must be a number > 0, got {lead!r}")
     result = MovingPickResult(target.name)
     try:
-        result.grasp_time = _MovingPick(driver, target, timing or Timing()).run(float(lead))
+        timing = timing or (SUCTION_TIMING if driver.suction else Timing())
+        result.grasp_time = _MovingPick(driver, target, timing).run(float(lead))
     except _Failed as failed:
         result.failure, result.message = failed.failure, f"pick_moving '{target.name}': {failed}"
         rospy.logerr(result.message)

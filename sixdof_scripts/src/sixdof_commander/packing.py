@@ -43,8 +43,9 @@ class Packer:
     """Picks objects off `conveyor` and puts them into the slots of `box` with `driver`."""
 
     def __init__(self, driver: ArmDriver, conveyor: Conveyor, box: Bin, timing: Timing | None = None) -> None:
+        """timing: pick_moving's (None: its default for the driver's tool)."""
         self.driver, self.conveyor, self.box = driver, conveyor, box
-        self.timing = timing or Timing()
+        self.timing = timing
         self.direction = np.asarray(conveyor.direction)
         self.states: ObjectStates | None = None
         self.done: set[str] = set()

@@ -255,6 +255,16 @@ class PlanningScene:
         the link, links fixed to it and its end effector's links) may be in contact with it."""
         return self._apply_diff(attached=[attach_request(name, link, self._touch_links(link, touch_links))])
 
+    def attach_primitive(
+        self, name: str, link: str, pose: object, shape: SolidPrimitive, touch_links: Sequence[str] | None = None
+    ) -> bool:
+        """Attach the solid primitive `name` centred at pose to `link`, replacing a world or attached object of
+        that name (e.g. a world object whose scene pose lags behind where the gripper holds it); touch_links as
+        attach_object."""
+        attached = attach_request(name, link, self._touch_links(link, touch_links))
+        attached.object = primitive_object(name, pose, shape.type, list(shape.dimensions), self._planning_frame)
+        return self._apply_diff(attached=[attached])
+
     def attach_collision_object(self, attached_collision_object: AttachedCollisionObject) -> bool:
         """Apply an AttachedCollisionObject as it is (with shapes: a new object; without: a world object)."""
         if not isinstance(attached_collision_object, AttachedCollisionObject):

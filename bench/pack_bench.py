@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Packing from a running belt against a running stack (`make bench-pack`; scripts/bench_pack.sh starts the stack on
-bench/pack_world.yaml in real time and runs this).
+bench/pack_world.yaml in real time, with the two-finger gripper or with --tool suction the suction variant, and runs
+this; --launch-file prints the tool's launch file and exits).
 
 For each run (a belt speed and a number of objects) the belt is set to that speed and the benchmark spawns the
 objects onto its upstream end at seeded random intervals: boxes and upright cylinders, 3-6 cm wide and high, random
@@ -12,6 +13,7 @@ unreachable, failed, place failed). Picks per minute are simulated time, from th
 placement.
 
     bench/pack_bench.py --runs 0.2:100 0.1:10 0.3:10 --seed 1 --report report.md
+    bench/pack_bench.py --tool suction --runs 0.2:100 --report report.md
 """
 
 from __future__ import annotations
@@ -40,6 +42,9 @@ from sixdof_msgs.srv import DeleteObject, SetConveyor, SpawnObject
 BELT, BOX = "belt", "box"
 BELT_X, BELT_TOP, SPAWN_Y = 0.45, 0.03, -0.45
 COLOURS = ((0.9, 0.1, 0.1), (0.1, 0.7, 0.2), (0.1, 0.3, 0.9), (0.95, 0.85, 0.1))
+# The launch file (sixdof_bringup) of each tool, and its arrivals' default interval (s): a suction pick's cycle is
+# shorter (the cup seals as it touches, where fingers take 1 s to close).
+TOOLS = {"fingers": ("demo.launch", (6.0, 7.0)), "suction": ("demo_suction.launch", (2.5, 3.0))}
 CLASSES = ("passed", "missed", "not grasped", "dropped", "unreachable", "failed", "place failed", "misplaced")
 
 
@@ -119,11 +124,13 @@ def percentile(values: list[float], q: float) -> float:
 
 def report(args: argparse.Namespace, results: list[dict]) -> str:
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    suction = args.tool == "suction"
     lines = [
-        "## pack (scripts/bench_pack.sh)",
+        "## pack, suction (scripts/bench_pack.sh --tool suction)" if suction else "## pack (scripts/bench_pack.sh)",
         "",
         f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}: pack_objects.py "
-        f"on bench/pack_world.yaml, simulator in real time, seed {args.seed}.",
+        f"on bench/pack_world.yaml, simulator in real time, seed {args.seed}, "
+        f"{'the suction variant (demo_suction.launch)' if suction else 'the two-finger gripper (demo.launch)'}.",
         f"Objects spawned onto the belt's upstream end every {args.interval[0]:g}-{args.interval[1]:g} s (simulated, "
         "seeded): boxes and upright cylinders 3-6 cm wide and high; packed",
         f"{args.pattern} into the world's box, which is checked and emptied when full. Placed correctly = in its slot "
@@ -161,7 +168,9 @@ def report(args: argparse.Namespace, results: list[dict]) -> str:
 def parse_args(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", nargs="+", default=["0.2:100", "0.1:10", "0.3:10"], help="SPEED:OBJECTS ...")
-    parser.add_argument("--interval", nargs=2, type=float, default=[6.0, 7.0], help="s between arrivals (6 7)")
+    parser.add_argument("--tool", choices=TOOLS, default="fingers", help="the stack's tool (fingers)")
+    parser.add_argument("--launch-file", action="store_true", help="print the tool's launch file and exit")
+    parser.add_argument("--interval", nargs=2, type=float, help="s between arrivals (fingers 6 7, suction 2.5 3)")
     parser.add_argument("--pattern", default="2x2", help="pack_objects.py's --pattern (2x2)")
     parser.add_argument("--tolerance", type=float, default=0.005, help="m from the slot's centre (0.005)")
     parser.add_argument("--seed", type=int, default=1, help="random seed (1)")
@@ -176,6 +185,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
             parser.error(f"--runs takes SPEED:OBJECTS (e.g. 0.2:100), got '{text}'")
         if not (runs[-1][0] > 0.0 and runs[-1][1] > 0):
             parser.error(f"--runs: speed and objects must be > 0, got '{text}'")
+    args.interval = args.interval or list(TOOLS[args.tool][1])
     if not 0.0 < args.interval[0] <= args.interval[1]:
         parser.error(f"--interval must be 0 < MIN <= MAX, got {args.interval}")
     args.run_list = runs
@@ -184,6 +194,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 
 def main() -> int:
     args = parse_args(sys.argv[1:])
+    if args.launch_file:
+        print(TOOLS[args.tool][0])
+        return 0
     rospy.init_node("pack_bench", anonymous=True)
     rospy.wait_for_service("sixdof_sim/spawn_object", timeout=120.0)
     rng = random.Random(args.seed)

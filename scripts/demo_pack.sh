@@ -7,10 +7,20 @@
 #   pack_result.json  every arriving object's outcome (pack_objects.py --json)
 #   demo_pack_logs/   ROS logs
 # Exits with pack_objects.py's code: 0 only if every slot holds its object upright.
-#   scripts/demo_pack.sh [pack_objects.py args]   (e.g. --pattern 2x2)
+#   scripts/demo_pack.sh [--tool fingers|suction] [pack_objects.py args]   (e.g. --pattern 2x2)
+# --tool suction: demo_suction.launch, the sixdof arm's suction variant (default: fingers, demo.launch).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
+launch=demo.launch
+if [ "${1:-}" = --tool ]; then
+  case "${2:-}" in
+    fingers) ;;
+    suction) launch=demo_suction.launch ;;
+    *) echo "demo_pack.sh: error: --tool must be fingers or suction, got '${2:-}'" >&2; exit 2 ;;
+  esac
+  shift 2
+fi
 # shellcheck source=scripts/stack_lib.sh
 . scripts/stack_lib.sh
 
@@ -19,8 +29,8 @@ mkdir -p "$artifacts"
 stack_init "$artifacts/demo_pack_logs"
 
 
-stage "1/3 launching the simulator and move_group (master port $stack_port)"
-stack_start launch roslaunch -p "$stack_port" sixdof_bringup demo.launch rviz:=false \
+stage "1/3 launching the simulator and move_group with $launch (master port $stack_port)"
+stack_start launch roslaunch -p "$stack_port" sixdof_bringup "$launch" rviz:=false \
   world:="$repo/sixdof_sim/worlds/packing.yaml"
 stack_wait_ready belt "${stack_pids[-1]}" || fail "the stack did not come up (see $ROS_LOG_DIR/launch.out)"
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """pack_objects.py fills the 2x2 box of pack_world.yaml with objects picked from the running belt (exit 0, every
-object upright in its slot), and refuses a box the world does not have (exit 2, one line)."""
+object upright in its slot), and refuses a box the world does not have (exit 2, one line). With whichever tool the
+stack has: pack_objects.test (two-finger gripper), pack_objects_suction.test (suction cup)."""
 
 import subprocess
 import sys

@@ -5,8 +5,9 @@ minute (simulated time). The box is a bin of the simulator's world (its ~world p
 from --pattern ROWSxCOLUMNS[xLAYERS] (the box's inside cut into equal cells, rows along the bin's x axis, layers
 --layer-height apart) or --pattern-file, a pallet-style YAML (sixdof_commander.pack_pattern: rows, columns, layers,
 spacing, layer_height). Arriving objects are the simulator's (its object states and velocities): the dynamic
-objects resting on the conveyor's belt. Every arriving object is accounted for: packed, failed (by class), or
-passed (it rode past the last point it could be picked at, --pick-before).
+objects resting on the conveyor's belt. Every arriving object is accounted for: packed, failed (by class), passed
+(it rode past the last point it could be picked at, --pick-before, or off the belt, watched also while the arm is
+busy), or still on the belt when the run stopped.
 
     rosrun sixdof_scripts pack_objects.py --box box --pattern 2x2      (with the stack on a conveyor world)
 
@@ -32,6 +33,7 @@ from sixdof_commander.packing import Packer
 from sixdof_commander.sim_world import WORLD_PARAMETER, Bin, Conveyor, SimWorldError, wait_for_world
 
 PASSED = "passed"
+ON_BELT = "on belt"
 
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
@@ -105,33 +107,28 @@ class Run:
         self.packer, self.args, self.slots = packer, args, slots
         self.start = rospy.get_time()
         self.outcomes: dict[str, dict] = {}
-        self.seen: set[str] = set()
         self.in_box: list[str] = []
         self.boxes = 0
         self.last_placed = self.start
-        self.speeds: list[tuple[float, float]] = []  # (s since the start, belt speed m/s), every 0.5 s
 
     def failures(self) -> dict[str, int]:
         counts: dict[str, int] = {}
         for outcome in self.outcomes.values():
-            if outcome["outcome"] not in ("packed", "misplaced", PASSED):
+            if outcome["outcome"] not in ("packed", "misplaced", PASSED, ON_BELT):
                 counts[outcome["outcome"]] = counts.get(outcome["outcome"], 0) + 1
         return counts
 
     def watch_belt(self) -> None:
-        """Objects that were on the belt, were never picked and are gone (deleted at its end) or past pick_before;
-        the belt's speed."""
-        elapsed = rospy.get_time() - self.start
-        if not self.speeds or elapsed >= self.speeds[-1][0] + 0.5:
-            self.speeds.append((elapsed, self.packer.belt_speed))
-        now = self.packer.on_belt_now()
-        for name in self.seen - set(now) - set(self.outcomes) - self.packer.done:
-            self.outcomes[name] = {"name": name, "outcome": PASSED, "time": rospy.get_time() - self.start}
-        self.seen |= set(now)
-        for name, along in now.items():
-            if along >= self.args.pick_before and name not in self.outcomes:
-                self.packer.done.add(name)
-                self.outcomes[name] = {"name": name, "outcome": PASSED, "time": rospy.get_time() - self.start}
+        """The objects the packer saw pass (it watches the belt also while the arm is busy)."""
+        for name, (stamp, how) in list(self.packer.passed.items()):
+            if name not in self.outcomes:
+                self.outcomes[name] = {"name": name, "outcome": PASSED, "message": how, "time": stamp - self.start}
+
+    def stop(self) -> None:
+        """At the end: the objects still on the belt, neither picked nor passed (the run stopped first)."""
+        self.watch_belt()
+        for name in self.packer.seen - set(self.outcomes):
+            self.outcomes[name] = {"name": name, "outcome": ON_BELT, "time": rospy.get_time() - self.start}
 
     def finished(self) -> bool:
         args = self.args
@@ -142,7 +139,7 @@ class Run:
         return rospy.get_time() - self.start > args.timeout or sum(self.failures().values()) > args.max_failures
 
     def pack_next(self) -> None:
-        name = self.packer.next_object(self.args.pick_before)
+        name = self.packer.take_next()
         if name is None:
             time.sleep(0.02)
             return
@@ -200,7 +197,7 @@ class Run:
             "seconds": elapsed,
             "picks_per_minute": placed / (elapsed / 60.0) if placed and elapsed > 0.0 else 0.0,
             "outcomes": sorted(self.outcomes.values(), key=lambda o: o["time"]),
-            "belt_speed": self.speeds,
+            "belt_speed": [(t - self.start, v) for t, v in self.packer.speeds if t >= self.start],
         }
 
 
@@ -215,7 +212,7 @@ def main() -> int:
         driver = ArmDriver(
             ns=args.ns, velocity_scaling=scaling, acceleration_scaling=scaling, approach_distance=args.approach
         )
-        packer = Packer(driver, conveyor, box)
+        packer = Packer(driver, conveyor, box, pick_before=args.pick_before)
     except (SixdofCommanderError, SimWorldError) as err:
         print(f"error: {err}", file=sys.stderr)
         return 2
@@ -231,6 +228,7 @@ def main() -> int:
     while not run.finished():
         run.watch_belt()
         run.pack_next()
+    run.stop()
     if run.in_box:
         run.close_box(swap=False)
     driver.moveto_named(driver.home)

@@ -7,6 +7,7 @@ dynamic objects resting on the conveyor's belt.
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,26 +43,50 @@ class SlotCheck:
 class Packer:
     """Picks objects off `conveyor` and puts them into the slots of `box` with `driver`."""
 
-    def __init__(self, driver: ArmDriver, conveyor: Conveyor, box: Bin, timing: Timing | None = None) -> None:
-        """timing: pick_moving's (None: its default for the driver's tool)."""
+    def __init__(
+        self, driver: ArmDriver, conveyor: Conveyor, box: Bin, timing: Timing | None = None, pick_before: float = 0.0
+    ) -> None:
+        """timing: pick_moving's (None: its default for the driver's tool). pick_before: m along the belt from its
+        centre (downstream positive); an object past it is left to ride on (`passed`)."""
         self.driver, self.conveyor, self.box = driver, conveyor, box
         self.timing = timing
+        self.pick_before = pick_before
         self.direction = np.asarray(conveyor.direction)
         self.states: ObjectStates | None = None
-        self.done: set[str] = set()
+        # The belt is watched on every object state, also while the arm is busy: every object that was on it ends
+        # claimed (picked or being picked) or passed.
+        self._lock = threading.Lock()
+        self.claimed: set[str] = set()
+        self.passed: dict[str, tuple[float, str]] = {}  # name: (ROS time, how it passed)
+        self.seen: set[str] = set()
         self.delete = rospy.ServiceProxy(resolve(driver.ns, "sixdof_sim/delete_object"), DeleteObject)
         self.belt_speed = math.nan  # m/s, the simulator's current speed of the conveyor (nan until it says)
+        self.speeds: list[tuple[float, float]] = []  # (ROS time, belt speed m/s), every 0.5 s
         rospy.Subscriber(resolve(driver.ns, "sixdof_sim/object_states"), ObjectStates, self._on_states, queue_size=1)
         rospy.Subscriber(
             resolve(driver.ns, "sixdof_sim/conveyor_states"), ConveyorStates, self._on_conveyors, queue_size=1
         )
 
     def _on_states(self, msg: ObjectStates) -> None:
-        self.states = msg
+        now = rospy.get_time()
+        with self._lock:
+            self.states = msg
+            on = self._on_belt(msg, riding=False)
+            self.seen |= on.keys()
+            for name, along in on.items():
+                if along >= self.pick_before:
+                    self.passed[name] = (now, f"rode past {self.pick_before:g} m along the belt unpicked")
+            present = set(msg.name)
+            for name in self.seen - on.keys() - self.claimed - self.passed.keys():
+                how = "left the belt unpicked" if name in present else "rode off the belt's end unpicked (deleted)"
+                self.passed[name] = (now, how)
 
     def _on_conveyors(self, msg: ConveyorStates) -> None:
         if self.conveyor.name in msg.conveyor:
             self.belt_speed = msg.speed[msg.conveyor.index(self.conveyor.name)]
+            now = rospy.get_time()
+            if not self.speeds or now >= self.speeds[-1][0] + 0.5:
+                self.speeds.append((now, self.belt_speed))
 
     def on_belt(self, position: np.ndarray) -> float | None:
         """How far along the belt (m from its centre, downstream positive) an object resting on it is; None off it."""
@@ -73,15 +98,13 @@ class Packer:
             return None
         return float(local[0]) if self.direction @ rotation[:, 0] > 0.0 else -float(local[0])
 
-    def on_belt_now(self, riding: bool = False) -> dict[str, float]:
-        """The objects on the belt (not yet picked) and how far along it each is; riding: only those moving with the
-        belt (within 5 % of its speed: a fresh object still landing on it would be mispredicted)."""
-        states = self.states
-        if states is None:
-            return {}
+    def _on_belt(self, states: ObjectStates, riding: bool) -> dict[str, float]:
+        """The objects of `states` on the belt, neither claimed nor passed, and how far along it each is; riding:
+        only those moving with the belt (within 5 % of its speed: a fresh object still landing on it would be
+        mispredicted)."""
         found = {}
         for name, pose, twist, holder in zip(states.name, states.pose, states.twist, states.attached_to, strict=True):
-            if holder or name in self.done or name == self.conveyor.name:
+            if holder or name in self.claimed or name in self.passed or name == self.conveyor.name:
                 continue
             along = self.on_belt(np.array([pose.position.x, pose.position.y, pose.position.z]))
             if along is None:
@@ -91,17 +114,21 @@ class Packer:
                 found[name] = along
         return found
 
-    def next_object(self, pick_before: float) -> str | None:
-        """The object furthest downstream on the belt, riding with it, that is still upstream of pick_before."""
-        waiting = {name: along for name, along in self.on_belt_now(riding=True).items() if along < pick_before}
-        return max(waiting, key=waiting.get) if waiting else None
+    def take_next(self) -> str | None:
+        """Claim the object furthest downstream on the belt, riding with it (upstream of pick_before)."""
+        with self._lock:
+            waiting = self._on_belt(self.states, riding=True) if self.states is not None else {}
+            if not waiting:
+                return None
+            name = max(waiting, key=waiting.get)
+            self.claimed.add(name)
+            return name
 
     def pack(self, name: str, slot: Slot) -> MovingPickResult:
-        """Pick the object off the belt and put it upright into the slot (PLACE_FAILED when that fails). After a
-        failure the gripper is open and nothing is held (an object the gripper cannot let go of is deleted from the
-        simulator); the arm is back at its home state unless the pick was MISSED or UNREACHABLE (found before the arm
-        moved)."""
-        self.done.add(name)
+        """Pick the object (claimed by take_next) off the belt and put it upright into the slot (PLACE_FAILED when
+        that fails). After a failure the gripper is open and nothing is held (an object the gripper cannot let go of
+        is deleted from the simulator); the arm is back at its home state unless the pick was MISSED or UNREACHABLE
+        (found before the arm moved)."""
         state = self.driver.get_object_state(name).object
         height = object_geometry(matrix_from_pose(state.pose), state.shape).height
         result = pick_moving(self.driver, name, self.timing)

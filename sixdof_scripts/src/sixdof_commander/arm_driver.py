@@ -374,14 +374,9 @@ class ArmDriver:
     def release_at(self, position: Sequence[float]) -> bool:
         """'place pose': carry the held object above position [x, y, z] (its centre), upright (a box or cylinder that
         leans in the hand), descend and open."""
-        _, spec = self._require_gripper("place")
         held = self._require_held("place")
-        target = self._check_position(position, held)
-        if self._object_in_tcp is None:
-            raise SixdofCommanderError("place: lift() the object first (its position in the hand is unknown)")
-        tcp = place_tcp_pose(target, self._object_in_tcp, spec.clearance)
-        place_tip = tip_pose(tcp, spec)
-        where = f"({target[0]:.3f}, {target[1]:.3f})"
+        place_tip = self.place_tip(position)
+        where = f"({place_tip[0, 3]:.3f}, {place_tip[1, 3]:.3f})"
         if not (self._descend_to(place_tip, "place descent", where) and self.gripper_open()):
             return False
         self._wait_for_grasp_fix(held.name, attached=False)
@@ -389,6 +384,16 @@ class ArmDriver:
             return False
         self.forget_held()
         return True
+
+    def place_tip(self, position: Sequence[float]) -> np.ndarray:
+        """The tip link's pose (4x4) that puts the held object down upright with its centre at [x, y, z] ([x, y]: on
+        the table at z = 0)."""
+        _, spec = self._require_gripper("place")
+        held = self._require_held("place")
+        target = self._check_position(position, held)
+        if self._object_in_tcp is None:
+            raise SixdofCommanderError("place: lift() the object first (its position in the hand is unknown)")
+        return tip_pose(place_tcp_pose(target, self._object_in_tcp, spec.clearance), spec)
 
     def retreat(self) -> bool:
         """'after place pose': move the open gripper straight up by the approach distance."""

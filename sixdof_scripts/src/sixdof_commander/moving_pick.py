@@ -15,8 +15,8 @@ follow path as one trajectory, so that no command latency falls between them; th
 The gripper is the package's (ArmDriver's: its grasping information through move_group). Fingers close with
 ArmDriver.gripper_close once the tool is at the grasp (Timing's default `close`, 1 s, is their closing time). A
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
-moment its face touches the top (SUCTION_TIMING: 0.1 s on the top face). Whether the object is held is the
-simulator's `attached_to` of it.
+moment its face touches the top (SUCTION_TIMING: 0.2 s down, 0.1 s on the top face, 0.2 s up). Whether the object
+is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
 leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
@@ -140,8 +140,9 @@ class Timing:
         return self.ramp + self.descend + self.close + self.lift
 
 
-# A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close.
-SUCTION_TIMING = Timing(close=0.1)
+# A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close,
+# and a quicker descent and lift (nothing closes around the object: it need not be met as gently).
+SUCTION_TIMING = Timing(descend=0.2, close=0.1, lift=0.2)
 
 
 @dataclass

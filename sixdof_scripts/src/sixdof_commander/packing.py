@@ -12,19 +12,24 @@ from dataclasses import dataclass
 
 import numpy as np
 import rospy
+from moveit_msgs.msg import RobotState, RobotTrajectory
+from sensor_msgs.msg import JointState
+from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import ConveyorStates, ObjectStates
 from sixdof_msgs.srv import DeleteObject
 
 from ._ros import resolve
-from .arm_driver import ArmDriver
-from .grasping import object_geometry
+from .arm_driver import ArmDriver, pose_from_matrix
+from .grasping import object_geometry, raised
 from .moving_pick import MISSED, UNREACHABLE, MovingPickResult, Timing, pick_moving
 from .pack_pattern import Slot
 from .sim_world import Bin, Conveyor
 from .transforms import matrix_from_pose, matrix_from_quaternion
 
 PLACE_FAILED = "place failed"
+# s the cup stays on the place while its vacuum goes off (the command is sent a third of the way into it).
+RELEASE_DWELL = 0.15
 # An object leaning by more than this from upright is not upright in its slot.
 UPRIGHT_TOLERANCE = math.radians(10.0)
 __all__ = ["PLACE_FAILED", "Packer", "SlotCheck"]
@@ -59,6 +64,7 @@ class Packer:
         self.claimed: set[str] = set()
         self.passed: dict[str, tuple[float, str]] = {}  # name: (ROS time, how it passed)
         self.seen: set[str] = set()
+        self.last_failure = ""  # what put_down found failed
         self.delete = rospy.ServiceProxy(resolve(driver.ns, "sixdof_sim/delete_object"), DeleteObject)
         self.belt_speed = math.nan  # m/s, the simulator's current speed of the conveyor (nan until it says)
         self.speeds: list[tuple[float, float]] = []  # (ROS time, belt speed m/s), every 0.5 s
@@ -133,7 +139,7 @@ class Packer:
         height = object_geometry(matrix_from_pose(state.pose), state.shape).height
         result = pick_moving(self.driver, name, self.timing)
         if result.ok and not self.put_down(name, [slot.x, slot.y, self.box.centre[2] + slot.bottom + height / 2.0]):
-            result.failure, result.message = PLACE_FAILED, f"{name}: {self.driver.last_failure}"
+            result.failure, result.message = PLACE_FAILED, f"{name}: {self.last_failure}"
         if not result.ok and result.failure not in (MISSED, UNREACHABLE):  # those two fail before the arm moves
             self.recover(name)
         return result
@@ -150,11 +156,16 @@ class Packer:
         driver.moveto_named(driver.home)
 
     def put_down(self, name: str, position: list[float]) -> bool:
-        """Place the held object at position and retreat. Opening fingers may stop at a neighbour or the box's wall,
-        or on the object while the grasp fix still holds it (it lets go within a few of its updates): the object is
-        put down when the grasp fix has let it go."""
+        """Place the held object at position and retreat: a suction cup in one motion (release_in_one_motion).
+        Opening fingers may stop at a neighbour or the box's wall, or on the object while the grasp fix still holds it
+        (it lets go within a few of its updates): the object is put down when the grasp fix has let it go."""
         driver = self.driver
+        if driver.suction:
+            self.last_failure = release_in_one_motion(driver, name, position)
+            return not self.last_failure
+        self.last_failure = ""
         if not driver.release_at(position):
+            self.last_failure = driver.last_failure
             if not driver.last_failure.startswith("gripper did not open"):
                 return False
             rospy.sleep(0.5)
@@ -163,7 +174,10 @@ class Packer:
             if name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
                 rospy.logwarn("detaching '%s' in the planning scene failed", name)
             driver.forget_held()
-        return driver.retreat()
+        if driver.retreat():
+            return True
+        self.last_failure = driver.last_failure
+        return False
 
     def check(self, name: str, slot: Slot, tolerance: float) -> SlotCheck:
         """Where the object rests against its slot (the simulator's pose of it)."""
@@ -171,3 +185,71 @@ class Packer:
         error = math.dist(pose[:2, 3], (slot.x, slot.y))
         lean = math.acos(min(1.0, abs(float(pose[2, 2]))))
         return SlotCheck(error, lean, error <= tolerance and lean <= UPRIGHT_TOLERANCE)
+
+
+def _end_state(trajectory: RobotTrajectory) -> RobotState:
+    """The state where `trajectory` ends."""
+    points = trajectory.joint_trajectory
+    return RobotState(joint_state=JointState(name=list(points.joint_names), position=list(points.points[-1].positions)))
+
+
+def _append(trajectory: RobotTrajectory, part: RobotTrajectory, pause: float) -> None:
+    """Append `part` (starting at rest where `trajectory` ends at rest) `pause` s after trajectory's end."""
+    points = trajectory.joint_trajectory.points
+    offset = points[-1].time_from_start + rospy.Duration.from_sec(pause) if points else rospy.Duration(0)
+    for point in part.joint_trajectory.points[1:] if points else part.joint_trajectory.points:
+        points.append(
+            JointTrajectoryPoint(
+                positions=point.positions,
+                velocities=point.velocities,
+                accelerations=point.accelerations,
+                time_from_start=point.time_from_start + offset,
+            )
+        )
+
+
+def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -> str:
+    """Put the object a suction cup holds down at `position` (its centre) and retreat, as one trajectory: a plan to
+    `approach_distance` above the place, straight down, RELEASE_DWELL s on the place while the vacuum goes off, and
+    straight up. The vacuum goes off when the trajectory is at the place (timed from when it was sent); the object is
+    put down once the simulator has let it go. '' on success, else what failed."""
+    arm = driver.arm
+    place = driver.place_tip(position)
+    above = raised(place, driver.approach_distance)
+    arm.set_start_state_to_current_state()
+    arm.set_pose_target(pose_from_matrix(above))
+    ok, trajectory, _, _ = arm.plan()
+    if not ok:
+        return f"place: planning above the slot failed: {arm.last_error}"
+    try:
+        for what, target, pause in (("down onto", place, 0.0), ("up from", above, RELEASE_DWELL)):
+            arm.set_start_state(_end_state(trajectory))
+            path, fraction = arm.compute_cartesian_path([pose_from_matrix(target)], driver.cartesian_step, 0.0, False)
+            if fraction < 1.0 - 1e-6:
+                return f"place: straight {what} the slot only {max(fraction, 0.0) * 100:.0f}% feasible"
+            if not pause:
+                at_place = path.joint_trajectory.points[-1].time_from_start.to_sec()
+                at_place += trajectory.joint_trajectory.points[-1].time_from_start.to_sec()
+            _append(trajectory, path, pause)
+    finally:
+        arm.set_start_state_to_current_state()
+    sent = rospy.get_time()
+    executed: list[bool] = []
+    runner = threading.Thread(target=lambda: executed.append(arm.execute(trajectory, wait=True)))
+    runner.start()
+    rospy.sleep(max(sent + at_place + RELEASE_DWELL / 3.0 - rospy.get_time(), 0.0))
+    why = "" if driver.gripper_open() else driver.last_failure
+    held = not why
+    while held and rospy.get_time() < sent + at_place + RELEASE_DWELL and not rospy.is_shutdown():
+        held = bool(driver.get_object_state(name).attached_to)
+        if held:
+            rospy.sleep(0.02)
+    if not why and name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
+        rospy.logwarn("detaching '%s' in the planning scene failed", name)
+    runner.join()
+    if why:
+        return why
+    if held:
+        return f"place: the cup still holds '{name}' with the vacuum off"
+    driver.forget_held()
+    return "" if executed and executed[0] else f"place: the motion failed: {arm.last_error}"

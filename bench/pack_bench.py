@@ -96,7 +96,7 @@ def run(args: argparse.Namespace, speed: float, count: int, rng: random.Random) 
             "rosrun", "sixdof_scripts", "pack_objects.py", "--box", BOX, "--pattern", args.pattern,
             "--boxes", str(count), "--objects", str(count), "--max-failures", str(count),
             "--timeout", str(count * max(args.interval) * 2.0 + 60.0), "--tolerance", str(args.tolerance),
-            "--json", str(out),
+            "--json", str(out), *args.pack_args,
         ]  # fmt: skip
         wall = time.monotonic()
         packer = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -133,7 +133,8 @@ def report(args: argparse.Namespace, results: list[dict]) -> str:
         "",
         f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}: pack_objects.py "
         f"on bench/pack_world.yaml, simulator in real time, seed {args.seed}, "
-        f"{'the suction variant (demo_suction.launch)' if suction else 'the two-finger gripper (demo.launch)'}.",
+        f"{'the suction variant (demo_suction.launch)' if suction else 'the two-finger gripper (demo.launch)'}"
+        f"{', pack_objects.py ' + ' '.join(args.pack_args) if args.pack_args else ''}.",
         f"Objects spawned onto the belt's upstream end every {args.interval[0]:g}-{args.interval[1]:g} s (simulated, "
         "seeded): boxes and upright cylinders 3-6 cm wide and high; packed",
         f"{args.pattern} into the world's box, which is checked and emptied when full. Placed correctly = in its slot "
@@ -177,6 +178,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--pattern", default="2x2", help="pack_objects.py's --pattern (2x2)")
     parser.add_argument("--tolerance", type=float, default=0.005, help="m from the slot's centre (0.005)")
     parser.add_argument("--seed", type=int, default=1, help="random seed (1)")
+    parser.add_argument("--pick-before", type=float, help="pack_objects.py's --pick-before (its default)")
+    parser.add_argument("--approach", type=float, help="pack_objects.py's --approach (its default)")
     parser.add_argument("--report", help="write the markdown section here")
     args = parser.parse_args(argv)
     runs = []
@@ -192,6 +195,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     if not 0.0 < args.interval[0] <= args.interval[1]:
         parser.error(f"--interval must be 0 < MIN <= MAX, got {args.interval}")
     args.run_list = runs
+    chosen = [(name, getattr(args, name)) for name in ("pick_before", "approach") if getattr(args, name) is not None]
+    args.pack_args = [f"--{name.replace('_', '-')}={value:g}" for name, value in chosen]
     return args
 
 

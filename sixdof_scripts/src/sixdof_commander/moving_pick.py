@@ -317,7 +317,7 @@ class _MovingPick:
         seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
         start = rospy.get_time() + lead
         tries = []
-        for _ in range(3):
+        for attempt in range(4):
             began = rospy.get_time()
             start, times, positions = self.intercept(start, seed)
             self.arm.set_start_state_to_current_state()
@@ -330,8 +330,9 @@ class _MovingPick:
             tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
             if now + duration + self.timing.margin <= start:
                 return plan, start, times, positions
-            # The next try takes about as long as this one did, and a later interception needs a longer approach.
-            start = now + 1.2 * duration + self.timing.margin + (now - began)
+            # The next try takes about as long as this one did, and a later interception needs a longer approach: a
+            # little longer first (the earliest start the arm can make), then more.
+            start = now + (1.05 if attempt == 0 else 1.2) * duration + self.timing.margin + (now - began)
         raise _Failed(MISSED, f"the arm cannot get ahead of the object ({'; '.join(tries)})")
 
     def attached(self) -> bool:

@@ -28,6 +28,9 @@ from .sim_world import Bin, Conveyor
 from .transforms import matrix_from_pose, matrix_from_quaternion
 
 PLACE_FAILED = "place failed"
+# s ahead the packer asks pick_moving to meet an object at the earliest: about the shortest approach from the box;
+# pick_moving meets it later when the approach takes longer.
+PACK_LEAD = 0.6
 # s the cup stays on the place while its vacuum goes off (the command is sent a third of the way into it).
 RELEASE_DWELL = 0.15
 # An object leaning by more than this from upright is not upright in its slot.
@@ -137,7 +140,7 @@ class Packer:
         (found before the arm moved)."""
         state = self.driver.get_object_state(name).object
         height = object_geometry(matrix_from_pose(state.pose), state.shape).height
-        result = pick_moving(self.driver, name, self.timing)
+        result = pick_moving(self.driver, name, self.timing, PACK_LEAD)
         if result.ok and not self.put_down(name, [slot.x, slot.y, self.box.centre[2] + slot.bottom + height / 2.0]):
             result.failure, result.message = PLACE_FAILED, f"{name}: {self.last_failure}"
         if not result.ok and result.failure not in (MISSED, UNREACHABLE):  # those two fail before the arm moves

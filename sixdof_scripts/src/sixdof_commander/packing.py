@@ -28,6 +28,9 @@ from .sim_world import Bin, Conveyor
 from .transforms import matrix_from_pose, matrix_from_quaternion
 
 PLACE_FAILED = "place failed"
+# s an object must have ridden at the belt's speed before it is picked: one that has just landed on the belt may still
+# slide or turn, and its predicted path miss the tool (a suction cup then comes down beside its top).
+SETTLE = 0.3
 # s ahead the packer asks pick_moving to meet an object at the earliest: about the shortest approach from the box;
 # pick_moving meets it later when the approach takes longer.
 PACK_LEAD = 0.6
@@ -67,6 +70,7 @@ class Packer:
         self.claimed: set[str] = set()
         self.passed: dict[str, tuple[float, str]] = {}  # name: (ROS time, how it passed)
         self.seen: set[str] = set()
+        self.riding_since: dict[str, float] = {}  # name: ROS time it has ridden at the belt's speed since
         self.last_failure = ""  # what put_down found failed
         self.delete = rospy.ServiceProxy(resolve(driver.ns, "sixdof_sim/delete_object"), DeleteObject)
         self.belt_speed = math.nan  # m/s, the simulator's current speed of the conveyor (nan until it says)
@@ -82,6 +86,8 @@ class Packer:
             self.states = msg
             on = self._on_belt(msg, riding=False)
             self.seen |= on.keys()
+            riding = self._on_belt(msg, riding=True)
+            self.riding_since = {name: self.riding_since.get(name, now) for name in riding}
             for name, along in on.items():
                 if along >= self.pick_before:
                     self.passed[name] = (now, f"rode past {self.pick_before:g} m along the belt unpicked")
@@ -124,9 +130,13 @@ class Packer:
         return found
 
     def take_next(self) -> str | None:
-        """Claim the object furthest downstream on the belt, riding with it (upstream of pick_before)."""
+        """Claim the object furthest downstream on the belt that has ridden with it for SETTLE s (upstream of
+        pick_before)."""
         with self._lock:
             waiting = self._on_belt(self.states, riding=True) if self.states is not None else {}
+            now = rospy.get_time()
+            settled = now - SETTLE
+            waiting = {name: along for name, along in waiting.items() if self.riding_since.get(name, now) <= settled}
             if not waiting:
                 return None
             name = max(waiting, key=waiting.get)

@@ -19,7 +19,7 @@ from typing import Any
 
 import yaml
 
-from . import grasping, real_robot, suction, templates
+from . import grasping, packing_world, real_robot, suction, templates
 from .answers import load_answers
 from .infer import Plan, complete_gripper_states, infer
 from .xacro_loader import load_description
@@ -276,19 +276,25 @@ def _generate(options: Options, answers: dict[str, Any], urdf_text: str, out_dir
         _sync_plan_with_srdf(plan, report)
 
     command = options.command or "setup_assistant --urdf " + shlex.quote(options.urdf)
+    world_pack = packing_world.packing_world(plan, report, urdf_text, srdf,
+                                             env["ROS_PACKAGE_PATH"].split(os.pathsep))
+    if world_pack is None:
+        result.warnings.append("no config/world_pack.yaml: no belt in front of the arm and box beside it that the "
+                               "tool reaches pointing down")
     files = {
         "package.xml": templates.package_xml(name, plan),
         "CMakeLists.txt": templates.cmakelists(name),
         urdf_rel: urdf_text,
         **_config(analysis, report, srdf, answers),
         "config/world.yaml": templates.world_yaml(plan, report),
+        **({"config/world_pack.yaml": world_pack} if world_pack else {}),
         "config/motion_planning.rviz": templates.rviz_config(plan, report),
         "launch/demo.launch": templates.demo_launch(name, plan),
         "launch/move_group.launch": templates.move_group_launch(name, plan),
         "launch/real.launch": real_robot.real_launch(name, plan.robot, templates.launch_files(name, plan),
                                                      templates.HEADER),
         "README.md": templates.readme(name, plan, report, command)
-        + grasping.readme_sections(plan, model, repairs, answers),
+        + grasping.readme_sections(plan, model, repairs, answers) + packing_world.readme_section(name, world_pack),
     }
     staged = os.path.join(staging_root, name)
     os.makedirs(staged)

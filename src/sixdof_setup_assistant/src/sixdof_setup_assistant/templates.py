@@ -145,9 +145,14 @@ def reach(report: dict[str, Any]) -> float:
     return sum(math.sqrt(sum(c * c for c in joint["xyz"])) for joint in report["joints"])
 
 
+def span(report: dict[str, Any]) -> float:
+    """The reach bound the worlds are sized by: reach() within [0.5, 2] m."""
+    return min(max(reach(report), 0.5), 2.0)
+
+
 def world_yaml(plan: Plan, report: dict[str, Any]) -> str:
-    span = min(max(reach(report), 0.5), 2.0)
-    length, width = round(span + 0.5, 2), round(2 * span + 0.2, 2)
+    span_ = span(report)
+    length, width = round(span_ + 0.5, 2), round(2 * span_ + 0.2, 2)
     table = {"name": "table", "size": [length, width, 0.75], "position": [round(length / 2 - 0.3, 3), 0.0, -0.375],
              "friction": 0.8, "color": [0.55, 0.4, 0.25, 1.0]}
     data = {"name": f"{plan.robot}_table", "gravity": [0.0, 0.0, -9.81], "ground": {"z": -0.75, "friction": 0.8},
@@ -222,12 +227,15 @@ def demo_launch(name: str, plan: Plan) -> str:
      The whole stack for {plan.robot}: sixdof_bringup's demo.launch with this package's files (simulator,
      robot_state_publisher, move_group, scene mirror, rviz with the Motion Planning panel).
        roslaunch {name} demo.launch                  simulation in real time, rviz
-       roslaunch {name} demo.launch headless:=true   as fast as possible, no rviz (tests, CI) -->
+       roslaunch {name} demo.launch headless:=true   as fast as possible, no rviz (tests, CI)
+       roslaunch {name} demo.launch world:=$(rospack find {name})/config/world_pack.yaml
+                                                     the packing world: a conveyor and a box within reach -->
 <launch>
   <arg name="rviz" default="true" doc="start rviz (ignored when headless)"/>
   <arg name="headless" default="false"
        doc="true: no rviz and the simulator runs as fast as possible (real_time_factor ignored)"/>
-  <arg name="world" default="$(find {name})/config/world.yaml" doc="world file (YAML) of the simulator"/>
+  <arg name="world" default="$(find {name})/config/world.yaml"
+       doc="world file (YAML) of the simulator: config/world.yaml (a table) or config/world_pack.yaml (packing)"/>
   <arg name="real_time_factor" default="1.0"
        doc="simulated seconds per wall-clock second when not headless; 0 runs as fast as possible"/>
   <arg name="use_sim_time" default="true" doc="make the ROS graph follow the simulator's /clock"/>
@@ -451,6 +459,7 @@ first), or `driver:=<package>/<class>` (a hardware plugin of your own); see sixd
 | `config/joint_limits.yaml` | velocities from the URDF; accelerations marked `defaulted` where not given |
 | `config/controllers.yaml` | the simulator's controllers and move_group's `controller_list` |
 | `config/world.yaml` | a table under the robot, nothing on it |
+| `config/world_pack.yaml` | a packing world: a conveyor, a box and a camera placed within reach (see Packing world) |
 | `config/grasping.yaml` | a gripper's grasp frame (TCP), open/closed states, opening, pads, grasp fix; or a cup's |
 | `config/motion_planning.rviz` | rviz with the Motion Planning panel (and the TCP's axes) |
 | `launch/demo.launch` | the whole stack (sixdof_bringup's demo.launch with these files) |

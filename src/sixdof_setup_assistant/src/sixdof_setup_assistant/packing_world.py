@@ -25,7 +25,8 @@ PICK_HEIGHTS = (0.015, 0.11)
 # m above the table: the belt heights tried, lowest first (an arm on a pedestal reaches down only so far); above the
 # first, the box stands on a stand as high as the belt.
 BELT_TOPS = (0.03, 0.1, 0.2, 0.3, 0.4)
-BOX_SIDE, BOX_WALL, BOX_WALL_THICKNESS = 0.28, 0.03, 0.01  # m
+BOX_SIDES = (0.28, 0.2)  # m: the box's sides tried, largest first (a small arm reaches round a small box only)
+BOX_WALL, BOX_WALL_THICKNESS = 0.03, 0.01  # m
 # TCP heights checked above the box's bottom: at a 3 cm object's middle, and over the wall with a 6 cm object held.
 PLACE_HEIGHTS = (0.015, 0.12)
 STEP = 0.02  # m between the points searched
@@ -42,7 +43,7 @@ def top_down(x: float, y: float, z: float) -> np.ndarray:
     return np.array([[cy, sy, 0.0, x], [sy, -cy, 0.0, y], [0.0, 0.0, -1.0, z], [0.0, 0.0, 0.0, 1.0]])
 
 
-def slot_points(centre: tuple[float, float], side: float = BOX_SIDE,
+def slot_points(centre: tuple[float, float], side: float,
                 thickness: float = BOX_WALL_THICKNESS) -> list[tuple[float, float]]:
     """The centres of the cells of a 2x2 and a 3x3 pattern in the box's inside (sixdof_commander.pack_pattern's
     equal cells)."""
@@ -91,6 +92,7 @@ class Layout:
     zone: tuple[float, float]  # world y of the reachable stretch (the pick zone)
     box: tuple[float, float]  # the box's centre
     box_z: float  # the box's bottom (on the table, or on a stand that high)
+    box_side: float
 
     @property
     def belt_y(self) -> tuple[float, float]:
@@ -116,17 +118,17 @@ def _zone(reach: TopDownReach, x: float, top: float) -> tuple[float, float] | No
 
 
 def _box(reach: TopDownReach, belt_x: float, belt: Any, zone: tuple[float, float],
-         z: float) -> tuple[float, float] | None:
+         z: float, side: float) -> tuple[float, float] | None:
     """The box's centre: beside the belt on the base's side of it, near the pick zone's upstream half, every slot
     reached at every place height, the robot at home clear of it."""
-    near = belt_x - BELT_WIDTH / 2.0 - 0.03 - BOX_SIDE / 2.0
+    near = belt_x - BELT_WIDTH / 2.0 - 0.03 - side / 2.0
     middle = (zone[0] + zone[1]) / 2.0
-    for dy in np.arange(0.0, 2.0 * BOX_SIDE, 2 * STEP):
-        for x in np.arange(near, near - 2.0 * BOX_SIDE, -2 * STEP):
-            centre = (round(float(x), 3), round(float(middle - BOX_SIDE / 2.0 - dy), 3))
-            if not reach.clear([belt, ([BOX_SIDE, BOX_SIDE, z + BOX_WALL], [*centre, (z + BOX_WALL) / 2.0])]):
+    for dy in np.arange(0.0, 2.0 * side, 2 * STEP):
+        for x in np.arange(near, near - 2.0 * side, -2 * STEP):
+            centre = (round(float(x), 3), round(float(middle - side / 2.0 - dy), 3))
+            if not reach.clear([belt, ([side, side, z + BOX_WALL], [*centre, (z + BOX_WALL) / 2.0])]):
                 continue
-            if all(reach.reaches(px, py, z + h) for px, py in slot_points(centre) for h in PLACE_HEIGHTS):
+            if all(reach.reaches(px, py, z + h) for px, py in slot_points(centre, side) for h in PLACE_HEIGHTS):
                 return centre
     return None
 
@@ -150,9 +152,10 @@ def find_layout(reach: TopDownReach, span: float) -> Layout | None:
         low, high = zone[0] - UPSTREAM, zone[1] + DOWNSTREAM
         belt = ([BELT_WIDTH, high - low, top], [x, (low + high) / 2.0, top / 2.0])
         box_z = 0.0 if top == BELT_TOPS[0] else top
-        box = _box(reach, x, belt, zone, box_z)
-        if box is not None:
-            return Layout(belt_x=x, belt_top=top, zone=zone, box=box, box_z=box_z)
+        for side in BOX_SIDES:
+            box = _box(reach, x, belt, zone, box_z, side)
+            if box is not None:
+                return Layout(belt_x=x, belt_top=top, zone=zone, box=box, box_z=box_z, box_side=side)
     return None
 
 
@@ -165,15 +168,15 @@ def world_pack_yaml(robot: str, layout: Layout, header: str) -> str:
     camera looking down into it (format: sixdof_sim/worlds/README.md)."""
     low, high = layout.belt_y
     length, centre_y = high - low, (low + high) / 2.0
-    x_max = max(layout.belt_x + BELT_WIDTH / 2.0, layout.box[0] + BOX_SIDE / 2.0) + 0.15
-    x_min = min(-0.3, layout.box[0] - BOX_SIDE / 2.0 - 0.1)
-    y_max = max(abs(low), abs(high), abs(layout.box[1]) + BOX_SIDE / 2.0) + 0.1
+    x_max = max(layout.belt_x + BELT_WIDTH / 2.0, layout.box[0] + layout.box_side / 2.0) + 0.15
+    x_min = min(-0.3, layout.box[0] - layout.box_side / 2.0 - 0.1)
+    y_max = max(abs(low), abs(high), abs(layout.box[1]) + layout.box_side / 2.0) + 0.1
     table = {"name": "table", "size": [_r(x_max - x_min), _r(2 * y_max), 0.75],
              "position": [_r((x_max + x_min) / 2), 0.0, -0.375], "friction": 0.8, "color": [0.55, 0.4, 0.25, 1.0]}
     top = layout.belt_top
     tables = [table]
     if layout.box_z > 0.0:
-        tables.append({"name": "box_stand", "size": [BOX_SIDE, BOX_SIDE, _r(layout.box_z)],
+        tables.append({"name": "box_stand", "size": [layout.box_side, layout.box_side, _r(layout.box_z)],
                        "position": [*layout.box, _r(layout.box_z / 2)], "friction": 0.8, "color": [0.5, 0.5, 0.5, 1.0]})
     data = {
         "name": f"{robot}_packing", "gravity": [0.0, 0.0, -9.81], "ground": {"z": -0.75, "friction": 0.8},
@@ -188,7 +191,8 @@ def world_pack_yaml(robot: str, layout: Layout, header: str) -> str:
         "sinks": [{"name": "belt_end", "position": [layout.belt_x, _r(high + 0.1), _r(top)], "size": [0.4, 0.2, 0.2]},
                   {"name": "floor", "below": -0.7}],
         "bins": [{"name": "box", "color": [0.6, 0.45, 0.3], "position": [*layout.box, _r(layout.box_z)],
-                  "size": [BOX_SIDE, BOX_SIDE], "wall_height": BOX_WALL, "wall_thickness": BOX_WALL_THICKNESS}],
+                  "size": [layout.box_side, layout.box_side], "wall_height": BOX_WALL,
+                  "wall_thickness": BOX_WALL_THICKNESS}],
         "cameras": [{"name": "box_cam", "position": [*layout.box, _r(layout.box_z + 0.75)],
                      "rpy": [0.0, math.pi / 2, 0.0], "width": 640, "height": 480, "horizontal_fov_deg": 45, "rate": 2,
                      "near": 0.1, "far": 2.0}],
@@ -238,12 +242,13 @@ def readme_section(name: str, world_text: str | None) -> str:
         return ("\n## Packing world\n\nNo `config/world_pack.yaml`: the setup assistant found no belt in front of the "
                 "arm and box beside it\nthat the tool reaches pointing down.\n")
     zone = pick_zone(world_text)
+    side = yaml.safe_load(world_text)["bins"][0]["size"][0]
     return f"""
 ## Packing world
 
 `config/world_pack.yaml` puts a conveyor belt across the arm's front (running towards +y at {BELT_SPEED} m/s, a
 source dropping 3-5 cm boxes and cylinders onto its upstream end every 4-6 s, a sink at its end), an empty
-{BOX_SIDE * 100:g} cm box `box` on the table beside it and a camera `box_cam` looking down into the box. The setup
+{side * 100:g} cm box `box` on the table beside it and a camera `box_cam` looking down into the box. The setup
 assistant placed them by the robot's IK: the tool reaches pointing down every point of the belt's pick zone
 ({zone[0]} to {zone[1]} m along the belt from its centre) from {PICK_HEIGHTS[0]} to {PICK_HEIGHTS[1]} m above it,
 and the cells of a 2x2 and a 3x3 pattern in the box. Run the stack on it and pack:

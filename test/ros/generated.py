@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import os
 import shutil
-import signal
-import socket
 import subprocess
 import tempfile
 import time
@@ -25,25 +23,9 @@ from e2e import STARTUP_TIMEOUT
 from moveit_msgs.msg import MoveItErrorCodes
 from sensor_msgs.msg import JointState
 
+from sixdof_test_support.processes import free_port, stop
+
 FIXTURES = Path(rospkg.RosPack().get_path("sixdof_test_robots"))
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def stop(process: subprocess.Popen, timeout: float = 60.0) -> None:
-    """SIGINT to the process group (roslaunch stops its nodes), SIGKILL if it is still there after timeout."""
-    if process.poll() is not None:
-        return
-    os.killpg(process.pid, signal.SIGINT)
-    try:
-        process.wait(timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)
-        process.wait()
 
 
 def start(command: list[str], log: Path) -> subprocess.Popen:

@@ -29,6 +29,8 @@ from pathlib import Path
 import pytest
 from moveit_msgs.msg import MoveItErrorCodes
 
+from sixdof_test_support.processes import stop
+
 HERE = Path(__file__).resolve().parent
 DROP_SECONDS = 5.0
 STARTUP_TIMEOUT = 240.0
@@ -106,16 +108,6 @@ def hosts(request: pytest.FixtureRequest) -> Iterator[Hosts]:
             shutil.rmtree(h.log_dir, ignore_errors=True)
 
 
-def stop(process: subprocess.Popen) -> None:
-    if process.poll() is None:
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            process.wait(30)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
-
-
 @pytest.fixture
 def robot_host(hosts: Hosts) -> Iterator[subprocess.Popen]:
     """The robot host's part of the demo (master, simulator in real time, move_group, scene mirror), no rviz."""
@@ -128,7 +120,7 @@ def robot_host(hosts: Hosts) -> Iterator[subprocess.Popen]:
             start_new_session=True,
         )
     yield process
-    stop(process)
+    stop(process, 30.0)
 
 
 def read_lines(stream, lines: queue.Queue) -> None:
@@ -191,7 +183,7 @@ def test_link_drop_mid_motion_fails_cleanly_and_the_next_motion_works(hosts: Hos
         print(f"multihost: link down -> go() returned after {returned:.2f} s: {first}; after the link: {second}")
         assert second["ok"], f"the motion after the link returned failed: {second}"
     finally:
-        stop(client)
+        stop(client, 30.0)
 
 
 def test_driver_on_the_robot_host_move_group_on_the_other(hosts: Hosts):
@@ -233,4 +225,4 @@ def test_driver_on_the_robot_host_move_group_on_the_other(hosts: Hosts):
         assert first["ok"] and second["ok"], (first, second)
     finally:
         for process in reversed(processes):
-            stop(process)
+            stop(process, 30.0)

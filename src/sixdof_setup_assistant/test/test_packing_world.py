@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import math
 import os
-import signal
-import socket
 import subprocess
 import time
 import xml.etree.ElementTree as ET
@@ -21,6 +19,7 @@ from conftest import FIXTURES
 
 import sixdof_core
 from sixdof_setup_assistant.packing_world import pick_zone
+from sixdof_test_support.processes import free_port, stop
 
 # Outcome bound only: the simulator loads a world and a robot in about a second.
 LOAD_TIMEOUT = 60.0
@@ -28,12 +27,6 @@ LOAD_TIMEOUT = 60.0
 
 def load(package: Path, rel: str) -> dict:
     return yaml.safe_load((package / rel).read_text())
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def arm_chain(package: Path, robot: str) -> tuple[str, str]:
@@ -91,18 +84,6 @@ def test_the_tool_reaches_the_belt_and_the_box_pointing_down(generated: dict[str
     assert "config/world_pack.yaml" in (package / "README.md").read_text()
 
 
-def stop(launch: subprocess.Popen) -> None:
-    """SIGINT to the launch's process group (roslaunch stops its nodes and master), SIGKILL after 30 s."""
-    if launch.poll() is not None:
-        return
-    os.killpg(launch.pid, signal.SIGINT)
-    try:
-        launch.wait(30)
-    except subprocess.TimeoutExpired:
-        os.killpg(launch.pid, signal.SIGKILL)
-        launch.wait()
-
-
 @pytest.mark.parametrize("robot", list(FIXTURES))
 def test_the_simulator_loads_it(generated: dict[str, Path], robot: str, tmp_path: Path) -> None:
     package = generated[robot]
@@ -135,7 +116,7 @@ def test_the_simulator_loads_it(generated: dict[str, Path], robot: str, tmp_path
             except (OSError, rosgraph.MasterError):
                 time.sleep(0.2)
     finally:
-        stop(launch)
+        stop(launch, 30.0)
     assert [c["name"] for c in loaded["conveyors"]] == ["belt"]
     assert [s["name"] for s in loaded["sources"]] == ["part"]
     assert [b["name"] for b in loaded["bins"]] == ["box"]

@@ -158,6 +158,21 @@ def report(args: argparse.Namespace, results: list[dict]) -> str:
             + f" | {statistics.median(errors) if errors else math.nan:.1f} / {percentile(errors, 0.95):.1f} mm"
             f" | {r['wall'] / 60.0:.1f} min |"
         )
+    lines += [
+        "",
+        "Cycle of the placed objects (simulated s, median / p95): pick (the approach from the last place, "
+        "the follow path and lift), place (to the slot and release), and from one placement to the next:",
+        "",
+    ]
+    for r in results:
+        placed = [o for o in r["outcomes"] if "pick_s" in o]
+        gaps = [b["time"] - a["time"] for a, b in zip(placed, placed[1:], strict=False)]
+        parts = [(what, [o[key] for o in placed]) for what, key in (("pick", "pick_s"), ("place", "place_s"))]
+        lines.append(
+            f"- {r['speed']:g} m/s: "
+            + ", ".join(f"{what} {statistics.median(v):.2f} / {percentile(v, 0.95):.2f}" for what, v in parts if v)
+            + (f", placement to placement {statistics.median(gaps):.2f} / {percentile(gaps, 0.95):.2f}" if gaps else "")
+        )
     failures = [(r["speed"], o) for r in results for o in r["outcomes"] if o["outcome"] not in ("packed", "passed")]
     if failures:
         lines += ["", "Failures:", ""]

@@ -29,7 +29,7 @@ import time
 import rospy
 from sixdof_commander import ArmDriver, SixdofCommanderError
 from sixdof_commander.pack_pattern import Pattern, PatternError, Slot, load_pattern, parse_pattern
-from sixdof_commander.packing import Packer
+from sixdof_commander.packing import RETREAT_AFTER, Packer
 from sixdof_commander.sim_world import WORLD_PARAMETER, Bin, Conveyor, SimWorldError, wait_for_world
 
 PASSED = "passed"
@@ -141,6 +141,7 @@ class Run:
     def pack_next(self) -> None:
         name = self.packer.take_next()
         if name is None:
+            self.packer.idle(RETREAT_AFTER)
             time.sleep(0.02)
             return
         slot = self.slots[len(self.in_box)]
@@ -151,7 +152,8 @@ class Run:
             print(f"  {name}: {result.failure}: {result.message}", flush=True)
             return
         self.outcomes[name] = {"name": name, "outcome": "packed", "box": self.boxes, "slot": len(self.in_box)}
-        self.outcomes[name].update(slot=[slot.x, slot.y, slot.layer], time=now)
+        pick, place = self.packer.durations
+        self.outcomes[name].update(slot=[slot.x, slot.y, slot.layer], time=now, pick_s=pick, place_s=place)
         self.in_box.append(name)
         self.last_placed = rospy.get_time()
         print(
@@ -231,6 +233,7 @@ def main() -> int:
     run.stop()
     if run.in_box:
         run.close_box(swap=False)
+    packer.idle()
     driver.moveto_named(driver.home)
     summary = run.summary()
     if args.json:

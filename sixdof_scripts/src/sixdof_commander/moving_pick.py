@@ -15,7 +15,8 @@ follow path as one trajectory, so that no command latency falls between them; th
 The gripper is the package's (ArmDriver's: its grasping information through move_group). Fingers close with
 ArmDriver.gripper_close once the tool is at the grasp (Timing's default `close`, 1 s, is their closing time). A
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
-moment its face touches the top (SUCTION_TIMING: 0.2 s down, 0.1 s on the top face, 0.2 s up). Whether the object
+moment its face touches the top (SUCTION_TIMING: 0.2 s down, 0.1 s on the top face, 0.2 s up; at the pre-grasp point
+0.1 s early). Whether the object
 is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
@@ -45,6 +46,7 @@ from sixdof_msgs.msg import DetectedObject
 from ._ros import resolve
 from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .arm_driver import FAILED, UNREACHABLE, ArmDriver, pose_from_matrix
+from .blending import blended, end_state
 from .exceptions import SixdofCommanderError
 from .grasping import object_geometry, raised
 from .suction import SuctionGripper
@@ -142,7 +144,7 @@ class Timing:
 
 # A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close,
 # and a quicker descent and lift (nothing closes around the object: it need not be met as gently).
-SUCTION_TIMING = Timing(descend=0.2, close=0.1, lift=0.2)
+SUCTION_TIMING = Timing(descend=0.2, close=0.1, lift=0.2, margin=0.1)
 
 
 @dataclass
@@ -153,6 +155,7 @@ class MovingPickResult:
     failure: str = ""
     message: str = ""
     grasp_time: float = math.nan  # ROS time the gripper closed on the object (a suction cup's vacuum went on)
+    moved: bool = False  # whether the arm moved (its approach began; not on a failure found before)
 
     @property
     def ok(self) -> bool:
@@ -227,6 +230,7 @@ class _MovingPick:
     def __init__(self, driver: ArmDriver, target: MovingObject, timing: Timing) -> None:
         self.driver, self.target, self.timing = driver, target, timing
         self.arm = driver.arm
+        self.moved = False
         # A conveyor moves objects horizontally: the vertical part of a velocity (a fresh object settling, bouncing)
         # would be extrapolated into the belt.
         self.velocity = np.array([target.velocity[0], target.velocity[1], 0.0])
@@ -311,20 +315,24 @@ class _MovingPick:
             raise _Failed(MISSED, f"the object leaves the arm's reach before a follow path ends ({why or 'no path'})")
         raise _Failed(UNREACHABLE, f"no follow path the arm can run within {timing.search:g} s ({why or 'no IK'})")
 
-    def plan_approach(self, lead: float) -> tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]:
+    def plan_approach(
+        self, lead: float, prefix: RobotTrajectory | None
+    ) -> tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]:
         """(approach plan, follow start time, follow times, follow joint positions): the earliest interception the
-        arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer."""
-        seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
+        arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer. With a
+        prefix (a motion from the current state), the approach is planned from its end and blended with it."""
+        if prefix is None:
+            seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
+        else:
+            names = list(prefix.joint_trajectory.joint_names)
+            last = prefix.joint_trajectory.points[-1].positions
+            seed = np.array([last[names.index(name)] for name in self.joint_names], dtype=float)
         start = rospy.get_time() + lead
         tries = []
         for attempt in range(4):
             began = rospy.get_time()
             start, times, positions = self.intercept(start, seed)
-            self.arm.set_start_state_to_current_state()
-            self.arm.set_joint_value_target(dict(zip(self.joint_names, map(float, positions[0]), strict=True)))
-            ok, plan, _, _ = self.arm.plan()
-            if not ok:
-                raise _Failed(FAILED, f"planning to the pre-grasp point failed: {self.arm.last_error}")
+            plan = self.plan_to(positions[0], prefix)
             now = rospy.get_time()
             duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
             tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
@@ -334,6 +342,28 @@ class _MovingPick:
             # little longer first (the earliest start the arm can make), then more.
             start = now + (1.05 if attempt == 0 else 1.2) * duration + self.timing.margin + (now - began)
         raise _Failed(MISSED, f"the arm cannot get ahead of the object ({'; '.join(tries)})")
+
+    def plan_to(self, pregrasp: np.ndarray, prefix: RobotTrajectory | None) -> RobotTrajectory:
+        """A plan to the pre-grasp joint positions from the current state, or the prefix and a plan from its end
+        as one blended motion."""
+        arm, driver = self.arm, self.driver
+        try:
+            if prefix is None:
+                arm.set_start_state_to_current_state()
+            else:
+                arm.set_start_state(end_state(prefix))
+            arm.set_joint_value_target(dict(zip(self.joint_names, map(float, pregrasp), strict=True)))
+            ok, plan, _, _ = arm.plan()
+        finally:
+            arm.set_start_state_to_current_state()
+        if not ok:
+            raise _Failed(FAILED, f"planning to the pre-grasp point failed: {arm.last_error}")
+        if prefix is None:
+            return plan
+        try:
+            return blended(driver, [prefix, plan])
+        except SixdofCommanderError as err:
+            raise _Failed(FAILED, f"blending the approach: {err}") from err
 
     def attached(self) -> bool:
         return bool(self.driver.get_object_state(self.target.name).attached_to)
@@ -350,11 +380,11 @@ class _MovingPick:
             return grip_time, "" if on else f"the vacuum did not go on: {driver.gripper.last_status_text}"
         return grip_time, "" if driver.gripper_close() else driver.last_failure
 
-    def run(self, lead: float) -> float:
+    def run(self, lead: float, prefix: RobotTrajectory | None) -> float:
         """Pick; the ROS time the gripper closed. _Failed says why not."""
         if not self.driver.gripper_open():
             raise _Failed(FAILED, self.driver.last_failure)
-        plan, start, times, positions = self.plan_approach(lead)
+        plan, start, times, positions = self.plan_approach(lead, prefix)
         # One trajectory: the approach, a wait at the pre-grasp point, the follow path timed to the object.
         offset = start - rospy.get_time()
         if offset < plan.joint_trajectory.points[-1].time_from_start.to_sec():
@@ -363,6 +393,7 @@ class _MovingPick:
         executed: list[bool] = []
         runner = threading.Thread(target=lambda: executed.append(self.arm.execute(trajectory, wait=True)))
         runner.start()
+        self.moved = True
         grasp_time, why_not = self.grip(start)
         # The grasp fix attaches a squeezed object within a few of its updates, a cup the moment it touches the top:
         # until then, or the lift's end.
@@ -386,13 +417,18 @@ class _MovingPick:
 
 
 def pick_moving(
-    driver: ArmDriver, target: str | MovingObject | DetectedObject, timing: Timing | None = None, lead: float = 1.3
+    driver: ArmDriver,
+    target: str | MovingObject | DetectedObject,
+    timing: Timing | None = None,
+    lead: float = 1.3,
+    prefix: RobotTrajectory | None = None,
 ) -> MovingPickResult:
     """Grasp a moving object on the fly and lift it (module docstring). target: a simulator object's name (its
     pose and velocity from the simulator), a MovingObject, or a DetectedObject with a tracked velocity. The follow path
     starts at the earliest `lead` s from now (later when the object is not yet in reach or the approach needs
-    longer). timing: SUCTION_TIMING for a suction tool, Timing() for fingers unless given. On success the driver
-    holds the object (ArmDriver.place puts it down)."""
+    longer). timing: SUCTION_TIMING for a suction tool, Timing() for fingers unless given. prefix: a motion from the
+    arm's current state (e.g. the retreat from a place) the approach continues without stopping at its end. On
+    success the driver holds the object (ArmDriver.place puts it down)."""
     if not isinstance(driver, ArmDriver):
         raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
     if isinstance(target, str):
@@ -404,10 +440,13 @@ def pick_moving(
     if isinstance(lead, bool) or not isinstance(lead, int | float) or not math.isfinite(lead) or lead <= 0.0:
         raise SixdofCommanderError(f"pick_moving lead must be a number > 0, got {lead!r}")
     result = MovingPickResult(target.name)
+    picker = None
     try:
         timing = timing or (SUCTION_TIMING if driver.suction else Timing())
-        result.grasp_time = _MovingPick(driver, target, timing).run(float(lead))
+        picker = _MovingPick(driver, target, timing)
+        result.grasp_time = picker.run(float(lead), prefix)
     except _Failed as failed:
         result.failure, result.message = failed.failure, f"pick_moving '{target.name}': {failed}"
         rospy.logerr(result.message)
+    result.moved = picker is not None and picker.moved
     return result

@@ -12,15 +12,15 @@ from dataclasses import dataclass
 
 import numpy as np
 import rospy
-from moveit_msgs.msg import RobotState, RobotTrajectory
-from sensor_msgs.msg import JointState
-from trajectory_msgs.msg import JointTrajectoryPoint
+from moveit_msgs.msg import RobotTrajectory
 
 from sixdof_msgs.msg import ConveyorStates, ObjectStates
 from sixdof_msgs.srv import DeleteObject
 
 from ._ros import resolve
 from .arm_driver import ArmDriver, pose_from_matrix
+from .blending import blended, end_state
+from .exceptions import SixdofCommanderError
 from .grasping import object_geometry, raised
 from .moving_pick import MISSED, UNREACHABLE, MovingPickResult, Timing, pick_moving
 from .pack_pattern import Slot
@@ -36,9 +36,12 @@ SETTLE = 0.3
 PACK_LEAD = 0.6
 # s the cup stays on the place while its vacuum goes off (the command is sent a third of the way into it).
 RELEASE_DWELL = 0.15
+# s the cup may wait on the place for the next object to pick, whose approach continues the retreat without a stop
+# (a retreat on its own, then the approach, take longer than the two blended and this wait): after that it retreats.
+RETREAT_AFTER = 0.5
 # An object leaning by more than this from upright is not upright in its slot.
 UPRIGHT_TOLERANCE = math.radians(10.0)
-__all__ = ["PLACE_FAILED", "Packer", "SlotCheck"]
+__all__ = ["PLACE_FAILED", "RETREAT_AFTER", "Packer", "SlotCheck"]
 
 
 @dataclass(frozen=True)
@@ -72,6 +75,10 @@ class Packer:
         self.seen: set[str] = set()
         self.riding_since: dict[str, float] = {}  # name: ROS time it has ridden at the belt's speed since
         self.last_failure = ""  # what put_down found failed
+        self.durations = (math.nan, math.nan)  # s (ROS time) the last pack's pick and place took
+        # A suction place's retreat up from the slot, not yet run: the next pick's approach continues it.
+        self.retreat: RobotTrajectory | None = None
+        self.placed_at = math.nan  # ROS time the last suction place ended
         self.delete = rospy.ServiceProxy(resolve(driver.ns, "sixdof_sim/delete_object"), DeleteObject)
         self.belt_speed = math.nan  # m/s, the simulator's current speed of the conveyor (nan until it says)
         self.speeds: list[tuple[float, float]] = []  # (ROS time, belt speed m/s), every 0.5 s
@@ -147,18 +154,33 @@ class Packer:
         """Pick the object (claimed by take_next) off the belt and put it upright into the slot (PLACE_FAILED when
         that fails). After a failure the gripper is open and nothing is held (an object the gripper cannot let go of
         is deleted from the simulator); the arm is back at its home state unless the pick was MISSED or UNREACHABLE
-        (found before the arm moved)."""
+        (found before the arm moved). After a suction place the cup stays on the slot, its retreat pending (the next
+        pack's approach continues it, idle() runs it alone)."""
         state = self.driver.get_object_state(name).object
         height = object_geometry(matrix_from_pose(state.pose), state.shape).height
-        result = pick_moving(self.driver, name, self.timing, PACK_LEAD)
+        began = rospy.get_time()
+        result = pick_moving(self.driver, name, self.timing, PACK_LEAD, self.retreat)
+        picked = rospy.get_time()
+        if result.moved:
+            self.retreat = None
         if result.ok and not self.put_down(name, [slot.x, slot.y, self.box.centre[2] + slot.bottom + height / 2.0]):
             result.failure, result.message = PLACE_FAILED, f"{name}: {self.last_failure}"
+        self.durations = (picked - began, rospy.get_time() - picked)
         if not result.ok and result.failure not in (MISSED, UNREACHABLE):  # those two fail before the arm moves
             self.recover(name)
         return result
 
+    def idle(self, after: float = 0.0) -> None:
+        """Run the retreat from the last place if it is still to run (no next pick continued it) and the place ended
+        `after` s ago or earlier."""
+        if self.retreat is not None and rospy.get_time() >= self.placed_at + after:
+            retreat, self.retreat = self.retreat, None
+            if not self.driver.arm.execute(retreat, wait=True):
+                rospy.logwarn(f"the retreat from the box failed: {self.driver.arm.last_error}")
+
     def recover(self, name: str) -> None:
         driver = self.driver
+        self.idle()
         if not driver.gripper_open() and driver.get_object_state(name).attached_to:
             rospy.logwarn(f"'{name}' stays in the gripper: deleting it")
             self.delete(name)
@@ -169,12 +191,14 @@ class Packer:
         driver.moveto_named(driver.home)
 
     def put_down(self, name: str, position: list[float]) -> bool:
-        """Place the held object at position and retreat: a suction cup in one motion (release_in_one_motion).
+        """Place the held object at position and retreat: a suction cup without stopping above the slot
+        (release_in_one_motion), its retreat left to the next pick's approach (`retreat`; idle() runs it alone).
         Opening fingers may stop at a neighbour or the box's wall, or on the object while the grasp fix still holds it
         (it lets go within a few of its updates): the object is put down when the grasp fix has let it go."""
         driver = self.driver
         if driver.suction:
-            self.last_failure = release_in_one_motion(driver, name, position)
+            self.last_failure, self.retreat = release_in_one_motion(driver, name, position)
+            self.placed_at = rospy.get_time()
             return not self.last_failure
         self.last_failure = ""
         if not driver.release_at(position):
@@ -200,52 +224,35 @@ class Packer:
         return SlotCheck(error, lean, error <= tolerance and lean <= UPRIGHT_TOLERANCE)
 
 
-def _end_state(trajectory: RobotTrajectory) -> RobotState:
-    """The state where `trajectory` ends."""
-    points = trajectory.joint_trajectory
-    return RobotState(joint_state=JointState(name=list(points.joint_names), position=list(points.points[-1].positions)))
-
-
-def _append(trajectory: RobotTrajectory, part: RobotTrajectory, pause: float) -> None:
-    """Append `part` (starting at rest where `trajectory` ends at rest) `pause` s after trajectory's end."""
-    points = trajectory.joint_trajectory.points
-    offset = points[-1].time_from_start + rospy.Duration.from_sec(pause) if points else rospy.Duration(0)
-    for point in part.joint_trajectory.points[1:] if points else part.joint_trajectory.points:
-        points.append(
-            JointTrajectoryPoint(
-                positions=point.positions,
-                velocities=point.velocities,
-                accelerations=point.accelerations,
-                time_from_start=point.time_from_start + offset,
-            )
-        )
-
-
-def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -> str:
-    """Put the object a suction cup holds down at `position` (its centre) and retreat, as one trajectory: a plan to
-    `approach_distance` above the place, straight down, RELEASE_DWELL s on the place while the vacuum goes off, and
-    straight up. The vacuum goes off when the trajectory is at the place (timed from when it was sent); the object is
-    put down once the simulator has let it go. '' on success, else what failed."""
+def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -> tuple[str, RobotTrajectory | None]:
+    """Put the object a suction cup holds down at `position` (its centre) without stopping above it: a plan to
+    `approach_distance` above the place and the straight descent onto it as one blended motion (blending.blended),
+    then RELEASE_DWELL s on the place while the vacuum goes off. The vacuum goes off when the arm is at the place
+    (timed from when the motion was sent); the object is put down once the simulator has let it go. ('' and the
+    straight retreat up from the place, not yet run; or what failed and None)."""
     arm = driver.arm
     place = driver.place_tip(position)
     above = raised(place, driver.approach_distance)
-    arm.set_start_state_to_current_state()
-    arm.set_pose_target(pose_from_matrix(above))
-    ok, trajectory, _, _ = arm.plan()
-    if not ok:
-        return f"place: planning above the slot failed: {arm.last_error}"
     try:
-        for what, target, pause in (("down onto", place, 0.0), ("up from", above, RELEASE_DWELL)):
-            arm.set_start_state(_end_state(trajectory))
+        arm.set_start_state_to_current_state()
+        arm.set_pose_target(pose_from_matrix(above))
+        ok, transit, _, _ = arm.plan()
+        if not ok:
+            return f"place: planning above the slot failed: {arm.last_error}", None
+        paths = []
+        for what, start, target in (("down onto", transit, place), ("up from", None, above)):
+            arm.set_start_state(end_state(start if start is not None else paths[-1]))
             path, fraction = arm.compute_cartesian_path([pose_from_matrix(target)], driver.cartesian_step, 0.0, False)
             if fraction < 1.0 - 1e-6:
-                return f"place: straight {what} the slot only {max(fraction, 0.0) * 100:.0f}% feasible"
-            if not pause:
-                at_place = path.joint_trajectory.points[-1].time_from_start.to_sec()
-                at_place += trajectory.joint_trajectory.points[-1].time_from_start.to_sec()
-            _append(trajectory, path, pause)
+                return f"place: straight {what} the slot only {max(fraction, 0.0) * 100:.0f}% feasible", None
+            paths.append(path)
     finally:
         arm.set_start_state_to_current_state()
+    try:
+        trajectory = blended(driver, [transit, paths[0]])
+    except SixdofCommanderError as err:
+        return f"place: {err}", None
+    at_place = trajectory.joint_trajectory.points[-1].time_from_start.to_sec()
     sent = rospy.get_time()
     executed: list[bool] = []
     runner = threading.Thread(target=lambda: executed.append(arm.execute(trajectory, wait=True)))
@@ -257,12 +264,15 @@ def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -
         held = bool(driver.get_object_state(name).attached_to)
         if held:
             rospy.sleep(0.02)
+    rospy.sleep(max(sent + at_place + RELEASE_DWELL - rospy.get_time(), 0.0))
     if not why and name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
         rospy.logwarn("detaching '%s' in the planning scene failed", name)
     runner.join()
     if why:
-        return why
+        return why, None
     if held:
-        return f"place: the cup still holds '{name}' with the vacuum off"
+        return f"place: the cup still holds '{name}' with the vacuum off", None
     driver.forget_held()
-    return "" if executed and executed[0] else f"place: the motion failed: {arm.last_error}"
+    if not (executed and executed[0]):
+        return f"place: the motion failed: {arm.last_error}", None
+    return "", paths[1]

@@ -33,6 +33,7 @@ from sixdof_commander.packing import RETREAT_AFTER, Packer
 from sixdof_commander.sim_world import WORLD_PARAMETER, Bin, Conveyor, SimWorldError, wait_for_world
 
 PASSED = "passed"
+APPROACH, SUCTION_APPROACH = 0.05, 0.03  # m, --approach's defaults
 ON_BELT = "on belt"
 
 
@@ -56,12 +57,19 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     )
     parser.add_argument("--tolerance", type=float, default=0.015, help="m an object may rest from its slot (0.015)")
     parser.add_argument("--velocity-scaling", type=float, default=1.0, help="max velocity scaling in (0, 1] (1.0)")
-    parser.add_argument("--approach", type=float, default=0.05, help="m above objects and slots to descend from")
+    parser.add_argument(
+        "--approach",
+        type=float,
+        help=f"m above objects and slots to descend from ({APPROACH:g}; a suction cup, which has nothing to clear but "
+        f"its own face, {SUCTION_APPROACH:g})",
+    )
     parser.add_argument("--json", default="", help="write every object's outcome and the totals to this file")
     parser.add_argument("--ns", default="", help="namespace of the planner and simulator nodes")
     args = parser.parse_args(argv)
     for name in ("timeout", "tolerance", "layer_height", "approach"):
         value = getattr(args, name)
+        if value is None:
+            continue
         if not math.isfinite(value) or value <= 0.0:
             parser.error(f"--{name.replace('_', '-')} must be > 0, got {value}")
     if not math.isfinite(args.pick_before):
@@ -212,8 +220,13 @@ def main() -> int:
         slots = pattern.slots(box)
         scaling = args.velocity_scaling
         driver = ArmDriver(
-            ns=args.ns, velocity_scaling=scaling, acceleration_scaling=scaling, approach_distance=args.approach
+            ns=args.ns,
+            velocity_scaling=scaling,
+            acceleration_scaling=scaling,
+            approach_distance=args.approach or APPROACH,
         )
+        if args.approach is None and driver.suction:
+            driver.approach_distance = SUCTION_APPROACH
         packer = Packer(driver, conveyor, box, pick_before=args.pick_before)
     except (SixdofCommanderError, SimWorldError) as err:
         print(f"error: {err}", file=sys.stderr)

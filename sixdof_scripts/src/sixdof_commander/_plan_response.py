@@ -2,15 +2,16 @@
 
 genpy's generated deserializer builds every trajectory point through the message constructors, a struct per array
 and a slice of the buffer per field, which costs more than the rest of the answer together. This decoder reads the
-points in one pass (struct.iter_unpack over the points' common layout) and builds the same message objects, field
-for field the values and types genpy gives (tuples for float64[], lists for string[] and message arrays, genpy.Time
-and genpy.Duration). It reads the answers move_group gives: a start state without multi-DOF joints or attached
-objects, and a trajectory without multi-DOF points, each point's arrays as long as the first point's. Any other
-answer (or bytes that do not parse) is decoded by genpy itself.
+points in one pass (struct.iter_unpack over the points' common layout) and builds the same message objects without
+genpy's constructors (which check every keyword), field for field the values and types genpy gives (tuples for
+float64[], lists for string[] and message arrays, genpy.Time and genpy.Duration). It reads the answers move_group
+gives: a start state without multi-DOF joints or attached objects, and a trajectory without multi-DOF points, each
+point's arrays as long as the first point's. Any other answer (or bytes that do not parse) is decoded by genpy itself.
 """
 
 from __future__ import annotations
 
+import operator
 import struct
 
 import genpy
@@ -64,12 +65,21 @@ class _Reader:
     def header(self) -> Header:
         seq, secs, nsecs = _HEADER.unpack_from(self.data, self.at)
         self.at += 12
-        return Header(seq=seq, stamp=_stamp(genpy.Time, secs, nsecs), frame_id=self.string())
+        return _message(Header, seq=seq, stamp=_stamp(genpy.Time, secs, nsecs), frame_id=self.string())
 
     def empty(self) -> None:
         """An array that must be empty (a shape this decoder does not read otherwise)."""
         if self.u32():
             raise _UnusualAnswerError
+
+
+def _message(kind: type, **fields: object) -> genpy.Message:
+    """A message of type `kind` holding `fields` (every field of the type), made without genpy's constructor, which
+    checks each keyword and fills in defaults."""
+    msg = kind.__new__(kind)
+    for name, value in fields.items():
+        setattr(msg, name, value)
+    return msg
 
 
 def _stamp(kind: type, secs: int, nsecs: int) -> genpy.TVal:
@@ -98,18 +108,20 @@ def _points(reader: _Reader) -> list[JointTrajectoryPoint]:
     if end > len(data):
         raise _UnusualAnswerError
     vi, ai, ei = p + 1, p + v + 2, p + v + a + 3
+    # Per point, in one call each: its four array lengths, and its fields.
+    read_lengths = operator.itemgetter(0, vi, ai, ei)
+    read_fields = operator.itemgetter(slice(1, vi), slice(vi + 1, ai), slice(ai + 1, ei), slice(ei + 1, -2), -2, -1)
+    expected = (p, v, a, e)
     points = []
     new_point, new_duration = JointTrajectoryPoint.__new__, genpy.Duration.__new__
     for fields in layout.iter_unpack(memoryview(data)[at:end]):
-        if fields[0] != p or fields[vi] != v or fields[ai] != a or fields[ei] != e:
+        if read_lengths(fields) != expected:
             raise _UnusualAnswerError
         point = new_point(JointTrajectoryPoint)
-        point.positions = fields[1:vi]
-        point.velocities = fields[vi + 1 : ai]
-        point.accelerations = fields[ai + 1 : ei]
-        point.effort = fields[ei + 1 : -2]
+        point.positions, point.velocities, point.accelerations, point.effort, secs, nsecs = read_fields(fields)
         duration = new_duration(genpy.Duration)
-        duration.secs, duration.nsecs = fields[-2:]
+        duration.secs = secs
+        duration.nsecs = nsecs
         point.time_from_start = duration
         points.append(point)
     reader.at = end
@@ -117,7 +129,8 @@ def _points(reader: _Reader) -> list[JointTrajectoryPoint]:
 
 
 def _decode(reader: _Reader) -> GetMotionPlanResponse:
-    joint_state = JointState(
+    joint_state = _message(
+        JointState,
         header=reader.header(),
         name=reader.strings(),
         position=reader.float64s(),
@@ -130,29 +143,36 @@ def _decode(reader: _Reader) -> GetMotionPlanResponse:
     reader.empty()  # attached_collision_objects
     is_diff = bool(reader.data[reader.at])
     reader.at += 1
-    start = RobotState(
+    start = _message(
+        RobotState,
         joint_state=joint_state,
-        multi_dof_joint_state=MultiDOFJointState(
-            header=multi_dof_header, joint_names=[], transforms=[], twist=[], wrench=[]
+        multi_dof_joint_state=_message(
+            MultiDOFJointState, header=multi_dof_header, joint_names=[], transforms=[], twist=[], wrench=[]
         ),
         attached_collision_objects=[],
         is_diff=is_diff,
     )
     group_name = reader.string()
-    joint_trajectory = JointTrajectory(header=reader.header(), joint_names=reader.strings(), points=_points(reader))
-    multi_dof = MultiDOFJointTrajectory(header=reader.header(), joint_names=reader.strings(), points=[])
+    joint_trajectory = _message(
+        JointTrajectory, header=reader.header(), joint_names=reader.strings(), points=_points(reader)
+    )
+    multi_dof = _message(MultiDOFJointTrajectory, header=reader.header(), joint_names=reader.strings(), points=[])
     reader.empty()  # multi_dof_joint_trajectory.points
     planning_time, code = _TAIL.unpack_from(reader.data, reader.at)
     if reader.at + _TAIL.size != len(reader.data):
         raise _UnusualAnswerError
-    return GetMotionPlanResponse(
-        motion_plan_response=MotionPlanResponse(
+    return _message(
+        GetMotionPlanResponse,
+        motion_plan_response=_message(
+            MotionPlanResponse,
             trajectory_start=start,
             group_name=group_name,
-            trajectory=RobotTrajectory(joint_trajectory=joint_trajectory, multi_dof_joint_trajectory=multi_dof),
+            trajectory=_message(
+                RobotTrajectory, joint_trajectory=joint_trajectory, multi_dof_joint_trajectory=multi_dof
+            ),
             planning_time=planning_time,
-            error_code=MoveItErrorCodes(val=code),
-        )
+            error_code=_message(MoveItErrorCodes, val=code),
+        ),
     )
 
 

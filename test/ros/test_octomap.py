@@ -54,6 +54,8 @@ MAP_TIMEOUT = 60.0
 SWEEP = 0.9  # rad the first joint turns either way from the middle state
 STEPS = 24  # states checked along a straight joint motion
 OBSTACLE = "octomap_wall"
+# The wall's thickness as a fraction of the map's cell: inside one layer of cells with a margin each side.
+WALL_CELL_FRACTION = 0.8
 # How far (m) the obstacle may move while the robot passes it: any touch moves a light wall far more.
 UNTOUCHED = 0.003
 
@@ -176,15 +178,20 @@ class OccupancyMapTest(unittest.TestCase):
         with case(step="straight motion before the obstacle"):
             self.assertEqual(self.blocked_states(), [])
 
-        # 2. A thin wall facing the camera, in the simulator only, where the middle state's tip passes: thin, so
-        #    that the cells of its visible face cover it (the map knows nothing behind a surface).
+        # 2. A thin wall facing the camera, in the simulator only, where the middle state's tip passes. The map
+        #    knows nothing behind a surface: the cells of the visible face hold the whole wall only if its
+        #    thickness lies inside one layer of cells, so it is thinner than a cell and centred in the layer
+        #    around the tip (the map's grid has a cell boundary at every multiple of the resolution). A wall
+        #    reaching behind that layer leaves a slab the planner may pass through.
         fk = self.fk(fk_link_names=[self.tip], robot_state=self.state(self.middle))
         self.assertEqual(fk.error_code.val, MoveItErrorCodes.SUCCESS, "compute_fk")
         tip = fk.pose_stamped[0].pose.position
+        resolution = rospy.get_param("move_group/octomap_resolution")
         height = tip.z + 0.12
         wall = SimObject(name=OBSTACLE, mass=0.3, friction=0.8)
-        wall.shape = SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.02, 0.16, height])
-        wall.pose.position.x, wall.pose.position.y, wall.pose.position.z = tip.x, tip.y, height / 2
+        wall.shape = SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[WALL_CELL_FRACTION * resolution, 0.16, height])
+        wall.pose.position.x = (math.floor(tip.x / resolution) + 0.5) * resolution
+        wall.pose.position.y, wall.pose.position.z = tip.y, height / 2
         wall.pose.orientation.w = 1.0
         wall.color.r, wall.color.a = 0.8, 1.0
         spawned = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)(object=wall)

@@ -11,12 +11,14 @@ import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import MoveItErrorCodes
+from moveit_msgs.srv import GetStateValidity, GetStateValidityRequest
+from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 
 from sixdof_msgs.srv import GetObjectState
 
 from ._ros import ServerWaiter, query_robot_model, resolve
-from ._service import SERVICE_TIMEOUT, call_service
+from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
@@ -139,6 +141,9 @@ class ArmDriver:
             )
             self._spec = grasp_spec(g, link_in_link(urdf, self.arm.get_end_effector_link(), g.parent_link))
         self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
+        self._validity = PersistentService(resolve(ns, "check_state_validity"), GetStateValidity)
+        self._validity_request = GetStateValidityRequest(group_name=self.arm.get_name())
+        self._validity_request.robot_state.is_diff = True
         self.cartesian_step = 0.005
         self.last_failure = ""
         self.last_failure_kind = ""
@@ -257,6 +262,16 @@ class ArmDriver:
         if not self.arm.execute(trajectory, wait=True):
             return self._fail(f"{what}: execution failed", self.arm.last_error)
         return True
+
+    def state_valid(self, joints: Sequence[str], positions: Sequence[float]) -> bool:
+        """move_group's check_state_validity of the arm group with these joints at these positions (on the current
+        scene, held objects included); SixdofCommanderError when the call fails."""
+        request = self._validity_request
+        request.robot_state.joint_state = JointState(name=list(joints), position=[float(v) for v in positions])
+        try:
+            return bool(call_service(self._validity, request, SERVICE_TIMEOUT).valid)
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise SixdofCommanderError(f"check_state_validity failed: {err}") from err
 
     def _current_tip(self) -> np.ndarray:
         return matrix_from_pose(self.arm.get_current_pose().pose)

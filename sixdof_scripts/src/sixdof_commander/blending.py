@@ -14,14 +14,10 @@ import math
 from collections.abc import Callable
 
 import numpy as np
-import rospy
 from moveit_msgs.msg import RobotState, RobotTrajectory
-from moveit_msgs.srv import GetStateValidity, GetStateValidityRequest
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from ._ros import resolve
-from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .arm_driver import ArmDriver
 from .exceptions import SixdofCommanderError
 
@@ -54,24 +50,6 @@ def _length(path: np.ndarray) -> float:
     return float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1)))
 
 
-class _Validity:
-    """move_group's check_state_validity of the arm group's joint positions (on the current scene, held objects
-    included)."""
-
-    def __init__(self, driver: ArmDriver, joints: list[str]) -> None:
-        self.service = PersistentService(resolve(driver.ns, "check_state_validity"), GetStateValidity)
-        self.request = GetStateValidityRequest(group_name=driver.arm.get_name())
-        self.request.robot_state.is_diff = True
-        self.joints = joints
-
-    def __call__(self, q: np.ndarray) -> bool:
-        self.request.robot_state.joint_state = JointState(name=self.joints, position=list(map(float, q)))
-        try:
-            return bool(call_service(self.service, self.request, SERVICE_TIMEOUT).valid)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"check_state_validity failed: {err}") from err
-
-
 def round_corner(a: np.ndarray, b: np.ndarray, valid: Callable[[np.ndarray], bool]) -> np.ndarray:
     """Joint path a (points x joints) then path b (starting where a ends), the corner between them rounded (module
     docstring) when every state of the curve is valid(state)."""
@@ -97,10 +75,10 @@ def blended(driver: ArmDriver, parts: list[RobotTrajectory]) -> RobotTrajectory:
     names = list(parts[0].joint_trajectory.joint_names)
     if any(list(part.joint_trajectory.joint_names) != names for part in parts):
         raise SixdofCommanderError("blended: the motions do not move the same joints")
-    valid = _Validity(driver, names)
     path = np.array([p.positions for p in parts[0].joint_trajectory.points], dtype=float)
     for part in parts[1:]:
-        path = round_corner(path, np.array([p.positions for p in part.joint_trajectory.points], dtype=float), valid)
+        following = np.array([p.positions for p in part.joint_trajectory.points], dtype=float)
+        path = round_corner(path, following, lambda q: driver.state_valid(names, q))
     kept = [path[0]]
     for q in path[1:-1]:
         if np.linalg.norm(q - kept[-1]) >= WAYPOINT_SPACING:

@@ -219,14 +219,8 @@ def main() -> int:
         box, conveyor = world_parts(args)
         slots = pattern.slots(box)
         scaling = args.velocity_scaling
-        driver = ArmDriver(
-            ns=args.ns,
-            velocity_scaling=scaling,
-            acceleration_scaling=scaling,
-            approach_distance=args.approach or APPROACH,
-        )
-        if args.approach is None and driver.suction:
-            driver.approach_distance = SUCTION_APPROACH
+        driver = ArmDriver(ns=args.ns, velocity_scaling=scaling, acceleration_scaling=scaling)
+        driver.approach_distance = args.approach or (SUCTION_APPROACH if driver.suction else APPROACH)
         packer = Packer(driver, conveyor, box, pick_before=args.pick_before)
     except (SixdofCommanderError, SimWorldError) as err:
         print(f"error: {err}", file=sys.stderr)

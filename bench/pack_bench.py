@@ -1,17 +1,18 @@
 #!/usr/bin/env python3
 """Packing from a running belt against a running stack (`make bench-pack`; scripts/bench_pack.sh starts the stack on
-bench/pack_world.yaml in real time, with the two-finger gripper or with --tool suction the suction variant, and runs
-this; --launch-file prints the tool's launch file and exits).
+its world, bench/pack_world.yaml unless --world, in real time, with the two-finger gripper or with --tool suction the
+suction variant, and runs this; --launch-file prints the tool's launch file and exits).
 
-For each run (a belt speed and a number of objects) the belt is set to that speed and the benchmark spawns the
-objects onto its upstream end at seeded random intervals: boxes and upright cylinders, 3-6 cm wide and high, random
-yaw (boxes) and lateral offset. pack_objects.py packs them into the world's box (--pattern, --boxes enough for every
-object: a full box is checked and emptied) and writes every arriving object's outcome. Each spawned object is
-accounted for: placed correctly (in its slot within --tolerance and upright), misplaced, passed (rode past the
-last point it could be picked at, by the belt's end, or off the belt, seen also while the arm was busy), its pick's
-failure class (missed, not grasped, dropped, unreachable, failed, place failed), or still on the belt when packing
-stopped; the classes add up to the objects spawned. Picks per minute are simulated time, from the start of packing
-to the last placement.
+The belt and the box are the simulator's world's (its ~world parameter): --conveyor and --box name them, by default
+its first conveyor and first bin. For each run (a belt speed and a number of objects) the belt is set to that speed
+and the benchmark spawns the objects onto its upstream end (SPAWN_INSET from it) at seeded random intervals: boxes
+and upright cylinders, 3-6 cm wide and high, random yaw (boxes) and lateral offset (up to LATERAL either side).
+pack_objects.py packs them into the box (--pattern, --boxes enough for every object: a full box is checked and
+emptied) and writes every arriving object's outcome. Each spawned object is accounted for: placed correctly (in its
+slot within --tolerance and upright), misplaced, passed (rode past the last point it could be picked at, by the
+belt's end, or off the belt, seen also while the arm was busy), its pick's failure class (missed, not grasped,
+dropped, unreachable, failed, place failed), or still on the belt when packing stopped; the classes add up to the
+objects spawned. Picks per minute are simulated time, from the start of packing to the last placement.
 
     bench/pack_bench.py --runs 0.2:100 0.1:10 0.3:10 --seed 1 --report report.md
     bench/pack_bench.py --tool suction --runs 0.2:100 --report report.md
@@ -32,16 +33,19 @@ import time
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
+from sixdof_commander.sim_world import Bin, Conveyor, SimWorld, SimWorldError, wait_for_world
+from sixdof_commander.transforms import matrix_from_quaternion
 from std_msgs.msg import ColorRGBA
 
 from sixdof_msgs.msg import SimObject
 from sixdof_msgs.srv import DeleteObject, SetConveyor, SpawnObject
 
-BELT, BOX = "belt", "box"
-BELT_X, BELT_TOP, SPAWN_Y = 0.45, 0.03, -0.45
+# m: arrivals are spawned this far in from the belt's upstream end, up to LATERAL either side of its centre line.
+SPAWN_INSET, LATERAL = 0.05, 0.02
 COLOURS = ((0.9, 0.1, 0.1), (0.1, 0.7, 0.2), (0.1, 0.3, 0.9), (0.95, 0.85, 0.1))
 # The launch file (sixdof_bringup) of each tool, and its arrivals' default interval (s): a suction pick's cycle is
 # shorter (the cup seals as it touches, where fingers take 1 s to close).
@@ -51,7 +55,19 @@ CLASSES = (
 )  # fmt: skip
 
 
-def random_object(rng: random.Random, name: str) -> SimObject:
+class Belt:
+    """Where arrivals go onto a conveyor: its upstream end's centre on the belt's top face, and the axis across it."""
+
+    def __init__(self, conveyor: Conveyor) -> None:
+        self.name = conveyor.name
+        rotation = matrix_from_quaternion(conveyor.orientation)
+        along = rotation[:, 0] if np.dot(conveyor.direction, rotation[:, 0]) > 0.0 else -rotation[:, 0]
+        top = np.asarray(conveyor.position) + rotation[:, 2] * conveyor.size[2] / 2.0
+        self.start = top - along * (conveyor.size[0] / 2.0 - SPAWN_INSET)
+        self.across = np.cross(along, rotation[:, 2])
+
+
+def random_object(rng: random.Random, name: str, belt: Belt) -> SimObject:
     shape = rng.choice(("box", "cylinder"))
     width, height = rng.uniform(0.03, 0.06), rng.uniform(0.03, 0.06)
     obj = SimObject(name=name, mass=0.05, friction=0.8, color=ColorRGBA(*rng.choice(COLOURS), 1.0))
@@ -62,20 +78,22 @@ def random_object(rng: random.Random, name: str) -> SimObject:
         obj.shape = SolidPrimitive(type=SolidPrimitive.CYLINDER, dimensions=[height, width / 2.0])
     yaw = rng.uniform(-math.pi, math.pi) if shape == "box" else 0.0
     obj.pose = Pose()
-    obj.pose.position.x = BELT_X + rng.uniform(-0.02, 0.02)
-    obj.pose.position.y, obj.pose.position.z = SPAWN_Y, BELT_TOP + height / 2.0 + 0.002
+    x, y, z = belt.start + belt.across * rng.uniform(-LATERAL, LATERAL) + [0.0, 0.0, height / 2.0 + 0.002]
+    obj.pose.position.x, obj.pose.position.y, obj.pose.position.z = x, y, z
     obj.pose.orientation.z, obj.pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
     return obj
 
 
-def spawner(rng: random.Random, prefix: str, count: int, interval: tuple[float, float], names: list[str]) -> None:
+def spawner(
+    rng: random.Random, belt: Belt, prefix: str, count: int, interval: tuple[float, float], names: list[str]
+) -> None:
     """Spawn `count` objects at random intervals (simulated seconds), appending their names."""
     spawn = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)
     for i in range(count):
         if rospy.is_shutdown():
             return
         name = f"{prefix}_{i:03d}"
-        response = spawn(random_object(rng, name))
+        response = spawn(random_object(rng, name, belt))
         if not response.success:
             rospy.logerr(f"spawning {name}: {response.status_message}")
         else:
@@ -83,9 +101,9 @@ def spawner(rng: random.Random, prefix: str, count: int, interval: tuple[float, 
         rospy.sleep(rng.uniform(*interval))
 
 
-def run(args: argparse.Namespace, speed: float, count: int, rng: random.Random) -> dict:
+def run(args: argparse.Namespace, belt: Belt, box: Bin, speed: float, count: int, rng: random.Random) -> dict:
     set_conveyor = rospy.ServiceProxy("sixdof_sim/set_conveyor", SetConveyor)
-    response = set_conveyor(BELT, speed)
+    response = set_conveyor(belt.name, speed)
     if not response.success:
         raise RuntimeError(f"set_conveyor: {response.status_message}")
     names: list[str] = []
@@ -93,7 +111,8 @@ def run(args: argparse.Namespace, speed: float, count: int, rng: random.Random) 
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "pack.json"
         command = [
-            "rosrun", "sixdof_scripts", "pack_objects.py", "--box", BOX, "--pattern", args.pattern,
+            "rosrun", "sixdof_scripts", "pack_objects.py", "--box", box.name, "--conveyor", belt.name,
+            "--pattern", args.pattern,
             "--boxes", str(count), "--objects", str(count), "--max-failures", str(count),
             "--timeout", str(count * max(args.interval) * 2.0 + 60.0), "--tolerance", str(args.tolerance),
             "--json", str(out), *args.pack_args,
@@ -101,7 +120,8 @@ def run(args: argparse.Namespace, speed: float, count: int, rng: random.Random) 
         wall = time.monotonic()
         packer = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         rospy.sleep(2.0)  # pack_objects at home
-        thread = threading.Thread(target=spawner, args=(rng, prefix, count, tuple(args.interval), names), daemon=True)
+        arrivals = (rng, belt, prefix, count, tuple(args.interval), names)
+        thread = threading.Thread(target=spawner, args=arrivals, daemon=True)
         thread.start()
         log = packer.communicate()[0]
         wall = time.monotonic() - wall
@@ -125,14 +145,14 @@ def percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, max(0, math.ceil(q * len(ordered)) - 1))]
 
 
-def report(args: argparse.Namespace, results: list[dict]) -> str:
+def report(args: argparse.Namespace, world: SimWorld, results: list[dict]) -> str:
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     suction = args.tool == "suction"
     lines = [
         "## pack, suction (scripts/bench_pack.sh --tool suction)" if suction else "## pack (scripts/bench_pack.sh)",
         "",
         f"Run {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit {commit or 'unknown'}: pack_objects.py "
-        f"on bench/pack_world.yaml, simulator in real time, seed {args.seed}, "
+        f"on the world '{world.name}', simulator in real time, seed {args.seed}, "
         f"{'the suction variant (demo_suction.launch)' if suction else 'the two-finger gripper (demo.launch)'}"
         f"{', pack_objects.py ' + ' '.join(args.pack_args) if args.pack_args else ''}.",
         f"Objects spawned onto the belt's upstream end every {args.interval[0]:g}-{args.interval[1]:g} s (simulated, "
@@ -184,12 +204,27 @@ def report(args: argparse.Namespace, results: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def world_parts(world: SimWorld, args: argparse.Namespace) -> tuple[Belt, Bin]:
+    """The conveyor and the bin of the world the run uses (--conveyor, --box: by default its first ones)."""
+    conveyors = {c.name: c for c in world.conveyors}
+    bins = {b.name: b for b in world.bins}
+    conveyor = args.conveyor or next(iter(conveyors), "")
+    box = args.box or next(iter(bins), "")
+    if conveyor not in conveyors:
+        raise SimWorldError(f"the world '{world.name}' has no conveyor '{conveyor}' (conveyors: {list(conveyors)})")
+    if box not in bins:
+        raise SimWorldError(f"the world '{world.name}' has no bin '{box}' (bins: {list(bins)})")
+    return Belt(conveyors[conveyor]), bins[box]
+
+
 def parse_args(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", nargs="+", default=["0.2:100", "0.1:10", "0.3:10"], help="SPEED:OBJECTS ...")
     parser.add_argument("--tool", choices=TOOLS, default="fingers", help="the stack's tool (fingers)")
     parser.add_argument("--launch-file", action="store_true", help="print the tool's launch file and exit")
     parser.add_argument("--interval", nargs=2, type=float, help="s between arrivals (fingers 6 7, suction 2.5 3)")
+    parser.add_argument("--conveyor", default="", help="the world's conveyor objects arrive on (its first)")
+    parser.add_argument("--box", default="", help="the world's bin to pack into (its first)")
     parser.add_argument("--pattern", default="2x2", help="pack_objects.py's --pattern (2x2)")
     parser.add_argument("--tolerance", type=float, default=0.005, help="m from the slot's centre (0.005)")
     parser.add_argument("--seed", type=int, default=1, help="random seed (1)")
@@ -222,13 +257,19 @@ def main() -> int:
         return 0
     rospy.init_node("pack_bench", anonymous=True)
     rospy.wait_for_service("sixdof_sim/spawn_object", timeout=120.0)
+    try:
+        world = wait_for_world()
+        belt, box = world_parts(world, args)
+    except SimWorldError as err:
+        print(f"pack_bench.py: error: {err}", file=sys.stderr)
+        return 2
     rng = random.Random(args.seed)
     results = []
     for speed, count in args.run_list:
         print(f"[bench-pack] {count} objects at {speed:g} m/s", flush=True)
-        results.append(run(args, speed, count, rng))
-        print(report(args, results[-1:]), flush=True)
-    text = report(args, results)
+        results.append(run(args, belt, box, speed, count, rng))
+        print(report(args, world, results[-1:]), flush=True)
+    text = report(args, world, results)
     print(text)
     if args.report:
         Path(args.report).write_text(text)

@@ -188,6 +188,9 @@ def report(args: argparse.Namespace, world: SimWorld, results: list[dict]) -> st
         placed = [o for o in r["outcomes"] if "pick_s" in o]
         gaps = [b["time"] - a["time"] for a, b in zip(placed, placed[1:], strict=False)]
         parts = [(what, [o[key] for o in placed]) for what, key in (("pick", "pick_s"), ("place", "place_s"))]
+        if not placed:
+            lines.append(f"- {r['speed']:g} m/s: none placed")
+            continue
         lines.append(
             f"- {r['speed']:g} m/s: "
             + ", ".join(f"{what} {statistics.median(v):.2f} / {percentile(v, 0.95):.2f}" for what, v in parts if v)

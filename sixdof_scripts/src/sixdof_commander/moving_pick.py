@@ -57,6 +57,8 @@ NOT_GRASPED = "not grasped"
 DROPPED = "dropped"
 # rad: the largest change of a joint between two follow-path points (0.1 s apart) that is not a jump to another branch.
 MAX_JUMP = 0.4
+# s: an approach that would wait longer than this at the pre-grasp point (beyond Timing.margin) tries an earlier start.
+SPARE = 0.05
 __all__ = [
     "DROPPED",
     "FAILED",
@@ -319,8 +321,9 @@ class _MovingPick:
         self, lead: float, prefix: RobotTrajectory | None
     ) -> tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]:
         """(approach plan, follow start time, follow times, follow joint positions): the earliest interception the
-        arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer. With a
-        prefix (a motion from the current state), the approach is planned from its end and blended with it."""
+        arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer, earlier
+        (once) when it would wait more than SPARE s beyond that. With a prefix (a motion from the current state), the
+        approach is planned from its end and blended with it."""
         if prefix is None:
             seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
         else:
@@ -328,20 +331,44 @@ class _MovingPick:
             last = prefix.joint_trajectory.points[-1].positions
             seed = np.array([last[names.index(name)] for name in self.joint_names], dtype=float)
         start = rospy.get_time() + lead
-        tries = []
+        tries: list[str] = []
+        fits = None  # an approach that fits with more than SPARE s to spare, while an earlier one is tried
         for attempt in range(4):
             began = rospy.get_time()
-            start, times, positions = self.intercept(start, seed)
+            try:
+                start, times, positions = self.intercept(start, seed)
+            except _Failed:
+                if fits is None or not self.fits_still(fits[0], fits[1]):
+                    raise
+                return fits
             plan = self.plan_to(positions[0], prefix)
             now = rospy.get_time()
             duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
             tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
-            if now + duration + self.timing.margin <= start:
+            spare = start - (now + duration + self.timing.margin)
+            if spare >= 0.0 and (fits is not None or spare <= SPARE):
                 return plan, start, times, positions
-            # The next try takes about as long as this one did, and a later interception needs a longer approach: a
-            # little longer first (the earliest start the arm can make), then more.
-            start = now + (1.05 if attempt == 0 else 1.2) * duration + self.timing.margin + (now - began)
+            if fits is not None:  # the earlier one does not fit: the one that did, if it still does
+                if self.fits_still(fits[0], fits[1]):
+                    return fits
+                fits = None
+            elif spare >= 0.0:
+                # A later interception can need a shorter approach (nearer the box): the arm would wait out the spare
+                # time at the pre-grasp point. An earlier start, SPARE s after this approach would end, is tried.
+                fits = (plan, start, times, positions)
+                start = now + duration + self.timing.margin + SPARE + (now - began)
+                continue
+            # The next try takes about as long as this one did, and a later interception may need a longer approach:
+            # the earliest start the arm can make first, then more.
+            start = now + (1.0 if attempt == 0 else 1.2) * duration + self.timing.margin + (now - began)
+        if fits is not None and self.fits_still(fits[0], fits[1]):  # the last try was the earlier one, and failed
+            return fits
         raise _Failed(MISSED, f"the arm cannot get ahead of the object ({'; '.join(tries)})")
+
+    def fits_still(self, approach: RobotTrajectory, start: float) -> bool:
+        """Whether the approach, sent now, ends `Timing.margin` s before the follow path starts at ROS time `start`."""
+        duration = approach.joint_trajectory.points[-1].time_from_start.to_sec()
+        return rospy.get_time() + duration + self.timing.margin <= start
 
     def plan_to(self, pregrasp: np.ndarray, prefix: RobotTrajectory | None) -> RobotTrajectory:
         """A plan to the pre-grasp joint positions from the current state, or the prefix and a plan from its end

@@ -263,18 +263,40 @@ class ServerWaiter:
 
 
 class JointStateMonitor:
-    """Keeps the latest position of every joint seen on joint_states."""
+    """Keeps the latest position of every joint seen on joint_states, and the stamp of the latest message (its
+    arrival time when unstamped)."""
 
     def __init__(self, topic: str) -> None:
         self.topic = topic
         self._positions: dict[str, float] = {}
+        self._stamp = -math.inf
         self._condition = threading.Condition()
         self._subscriber = rospy.Subscriber(topic, JointState, self._callback, queue_size=10)
 
     def _callback(self, msg: JointState) -> None:
+        stamp = msg.header.stamp.to_sec() if not msg.header.stamp.is_zero() else rospy.get_time()
         with self._condition:
             self._positions.update(zip(msg.name, msg.position, strict=False))
+            self._stamp = max(self._stamp, stamp)
             self._condition.notify_all()
+
+    def wait_newer(self, stamp: float, timeout: float) -> bool:
+        """Waits up to `timeout` s (wall clock) for a message stamped at or after `stamp` (ROS time, s); whether
+        one arrived."""
+        end = time.monotonic() + timeout
+        with self._condition:
+            while self._stamp < stamp:
+                remaining = end - time.monotonic()
+                if remaining <= 0.0 or rospy.is_shutdown():
+                    return False
+                self._condition.wait(remaining)
+            return True
+
+    @property
+    def stamp(self) -> float:
+        """The latest message's stamp (ROS time, s); -inf before the first."""
+        with self._condition:
+            return self._stamp
 
     def _wait_for(self, names: list[str], timeout: float) -> dict[str, float]:
         end = time.monotonic() + timeout

@@ -3,10 +3,14 @@ robot's state with mimic joints computed from their sources."""
 
 from __future__ import annotations
 
+import rospy
 from moveit_msgs.msg import RobotState
 
 from ._ros import JointStateMonitor
 from .robot_model import RobotDescription
+
+# Wall seconds current_state waits for joint_states stamped at or after the call, as MoveIt's getCurrentState(1.0).
+CURRENT_STATE_WAIT = 1.0
 
 
 class StateMonitor:
@@ -22,9 +26,19 @@ class StateMonitor:
         return self._joint_states.positions(names)
 
     def current_state(self) -> RobotState:
-        """The current joint positions of the whole robot, as a RobotState. A mimic joint's value is computed
-        from its source joint, as MoveIt's RobotState does: joint_states reports what a physical mimic coupling
-        measures, which may lag its source (a parallel gripper squeezing an object)."""
+        """The current joint positions of the whole robot, as a RobotState: from joint_states stamped at or after
+        the call (waited for up to CURRENT_STATE_WAIT wall seconds, then the latest with a warning), as MoveIt's
+        getCurrentState: a simulator running faster than real time sends joint_states at most about 100 times a
+        wall second, so the latest can be a tenth of a simulated second old, from before a motion that has since
+        ended. A mimic joint's value is computed from its source joint, as MoveIt's RobotState does: joint_states
+        reports what a physical mimic coupling measures, which may lag its source (a parallel gripper squeezing
+        an object)."""
+        now = rospy.get_time()
+        if not self._joint_states.wait_newer(now, CURRENT_STATE_WAIT):
+            rospy.logwarn(
+                f"no joint state stamped at or after {now:.3f} within {CURRENT_STATE_WAIT:g} s: using the latest, "
+                f"stamped {self._joint_states.stamp:.3f}"
+            )
         measured = self._joint_states.joint_state()
         values = dict(zip(measured.name, measured.position, strict=True))
         state = RobotState()

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""rostest: the commander's errors when its servers or parameters are missing, joint_states reading, and how it
-matches move_group's error reports to its calls."""
+"""rostest: the commander's errors when its servers or parameters are missing, joint_states reading (and waiting
+for a state stamped after a given time), and how it matches move_group's error reports to its calls."""
 
 import threading
 import time
@@ -151,6 +151,20 @@ class CommanderWithoutServers(unittest.TestCase):
             monitor.positions(["joint1", "joint9"], timeout=0.2)
         state = monitor.joint_state()
         self.assertEqual(dict(zip(state.name, state.position, strict=True)), {"joint1": 0.25, "joint2": -0.5})
+
+    def test_joint_state_monitor_waits_for_a_state_stamped_after_a_time(self):
+        monitor = JointStateMonitor("stamped_joint_states")
+        publisher = rospy.Publisher("stamped_joint_states", JointState, queue_size=1, latch=True)
+        self.assertFalse(monitor.wait_newer(0.0, timeout=0.1))  # nothing received yet
+        message = JointState(name=["joint1"], position=[0.25])
+        message.header.stamp = rospy.Time(5.0)
+        publisher.publish(message)
+        self.assertTrue(monitor.wait_newer(5.0, timeout=10.0))
+        self.assertEqual(monitor.stamp, 5.0)
+        self.assertFalse(monitor.wait_newer(5.5, timeout=0.2))  # older than asked: times out
+        message.header.stamp = rospy.Time(6.0)
+        threading.Timer(0.1, publisher.publish, (message,)).start()
+        self.assertTrue(monitor.wait_newer(5.5, timeout=10.0))
 
     def test_error_reports_are_matched_by_node_and_interface_in_order(self):
         publisher = rospy.Publisher("move_group/error_reports", ErrorReport, queue_size=10)

@@ -2,6 +2,7 @@
 scene diffs."""
 
 import math
+from types import SimpleNamespace
 
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped
@@ -11,8 +12,10 @@ from moveit_msgs.msg import (
     JointConstraint,
     OrientationConstraint,
     PositionConstraint,
+    RobotState,
     VisibilityConstraint,
 )
+from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import SixdofCommanderError
 from sixdof_commander.path_constraints import check_path_constraints
@@ -24,6 +27,7 @@ from sixdof_commander.planning_scene import (
     resolve_resource,
     scene_diff,
 )
+from sixdof_commander.targets import Targets
 
 
 def pose(x, y, z):
@@ -182,3 +186,12 @@ def test_resource_paths():
     assert resolve_resource("/tmp/x.stl") == "/tmp/x.stl"
     with pytest.raises(SixdofCommanderError, match="package 'no_such_package_xyz' of mesh"):
         resolve_resource("package://no_such_package_xyz/meshes/x.stl")
+
+
+def test_set_start_state_keeps_a_copy(builder):
+    targets = Targets(SimpleNamespace(goal=builder), current=None)
+    state = RobotState(joint_state=JointState(name=["joint1"], position=[0.5]), is_diff=True)
+    targets.set_start_state(state)
+    builder.set_named_target("home pose")
+    state.joint_state.position = [1.5]
+    assert builder.move_group_goal().request.start_state.joint_state.position == [0.5]

@@ -3,6 +3,7 @@ remembered states, random values) and the start state it is planned from."""
 
 from __future__ import annotations
 
+import copy
 import numbers
 from collections.abc import Mapping, Sequence
 
@@ -211,7 +212,8 @@ class Targets:
         self._context.goal.clear_pose_targets()
 
     def set_start_state(self, msg: RobotState) -> None:
-        """Plan from this state instead of the current one."""
+        """Plan from this state instead of the current one: a copy of `msg`, as MoveIt's commander takes it, so that
+        changing the message afterwards does not change the next plan's start."""
         if not isinstance(msg, RobotState):
             raise SixdofCommanderError(f"set_start_state needs a RobotState, got {type(msg).__name__}")
         if len(msg.joint_state.name) != len(msg.joint_state.position):
@@ -219,7 +221,7 @@ class Targets:
                 f"start state has {len(msg.joint_state.name)} joint names but {len(msg.joint_state.position)} "
                 "positions: they must match"
             )
-        self._context.goal.start_state = msg
+        self._context.goal.start_state = copy.deepcopy(msg)
 
     def set_start_state_to_current_state(self) -> None:
         """Plan from the planner's current state (the default)."""

@@ -84,7 +84,11 @@ class Solver {
     // both ends of each of their intervals, on the interval's own segment (a point on a segment boundary has one
     // curvature per side).
     line_limits_.reserve(segments_.size());
-    for (const Segment& seg : segments_) line_limits_.push_back(seg.circular ? 0.0 : directionSpeedLimit(seg.x));
+    line_accelerations_.reserve(segments_.size());
+    for (const Segment& seg : segments_) {
+      line_limits_.push_back(seg.circular ? 0.0 : directionSpeedLimit(seg.x));
+      line_accelerations_.push_back(seg.circular ? 0.0 : directionAccelerationLimit(seg.x));
+    }
     std::size_t arc_intervals = 0;
     for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
       if (segmentOf(i).circular) slots_[i] = arc_intervals++;
@@ -170,6 +174,17 @@ class Solver {
     return x;
   }
 
+  // Largest path acceleration |u| along direction d1 within every joint's acceleration limit (on a line, where
+  // joint j's acceleration is d1[j] u).
+  template <class Vector>
+  double directionAccelerationLimit(const Vector& d1) const {
+    double u = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < d1.size(); ++j) {
+      if (d1[j] != 0.0) u = std::min(u, limits_.acceleration[j] / std::abs(d1[j]));
+    }
+    return u;
+  }
+
   // Largest x at grid point p, for one adjacent interval, with some admissible acceleration.
   double speedLimit(std::size_t interval, int end) const {
     if (!segmentOf(interval).circular) return line_limits_[grid_[interval].segment];
@@ -212,12 +227,12 @@ class Solver {
     const double h = 2.0 * step(i);
     const Segment& seg = segmentOf(i);
     if (!seg.circular) {
-      // Both ends read a (x' - x) / h with the direction a: one constraint per joint.
-      bool ok = true;
-      for (Eigen::Index j = 0; j < seg.x.size(); ++j) {
-        ok &= intersect(-seg.x[j] * x / h, seg.x[j] / h, limits_.acceleration[j], lo, hi);
-      }
-      return ok;
+      // Both ends read a (x' - x) / h with the direction a: every joint's limit A bounds |x' - x| by h A / |a|,
+      // the segment's acceleration limit times h.
+      const double reach = h * line_accelerations_[grid_[i].segment];
+      *lo = std::max(*lo, x - reach);
+      *hi = std::min(*hi, x + reach);
+      return *lo <= *hi;
     }
     const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
@@ -240,7 +255,9 @@ class Solver {
     if (limit == 0.0) return 0.0;
     const double h = 2.0 * step(i);
     const Segment& seg = segmentOf(i);
-    if (!seg.circular) return maxStartStraight(seg.x, h, limit, next_upper);
+    // On a line every joint's constraint -A <= a (x_{i+1} - x_i) / h <= A lets x_{i+1} fall below x_i by at most h
+    // times the segment's acceleration limit, which bounds x_i against x_{i+1} <= next_upper.
+    if (!seg.circular) return std::max(0.0, std::min(limit, next_upper + h * line_accelerations_[grid_[i].segment]));
     const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
     const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
@@ -276,22 +293,6 @@ class Solver {
     return std::max(0.0, best);
   }
 
-  // maxStart on a straight interval of direction a: each joint's constraint -A <= p (x_{i+1} - x_i) <= A, with
-  // p = a_j / h, gives the lines x_{i+1} = x_i -+ A / |p|; only the lowest of them against x_{i+1} <= next_upper
-  // bounds x_i.
-  template <class Vector>
-  double maxStartStraight(const Vector& a, double h, double limit, double next_upper) const {
-    double best = limit;
-    for (Eigen::Index j = 0; j < a.size(); ++j) {
-      const double p = a[j] / h;
-      if (std::abs(p) < 1e-14) continue;
-      const double A = limits_.acceleration[j];
-      const double lower = p < 0.0 ? A / p : -A / p;
-      best = std::min(best, next_upper - lower);
-    }
-    return std::max(0.0, best);
-  }
-
   static std::vector<double> toStd(const Eigen::VectorXd& v) {
     return std::vector<double>(v.data(), v.data() + v.size());
   }
@@ -316,7 +317,8 @@ class Solver {
   std::vector<PathPoint> grid_;
   Limits limits_;
   Eigen::Index joints_;
-  std::vector<double> line_limits_;  // per segment: a line's speed limit
+  std::vector<double> line_limits_;         // per segment: a line's speed limit
+  std::vector<double> line_accelerations_;  // per segment: a line's path acceleration limit
   std::vector<std::size_t> slots_;   // per interval on an arc: its place in ends_
   // Per arc interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
   std::vector<double> ends_;

@@ -97,10 +97,16 @@ class Solver {
     for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
       const Segment& seg = segmentOf(i);
       if (!seg.circular) continue;
-      for (int e = 0; e < 2; ++e) {
-        const double s = std::clamp(grid_[i + e].s - seg.start, 0.0, seg.length);
-        seg.derivatives(s, slot(i, e, kTangent), slot(i, e, kCurvature));
+      // Inside the arc an interval starts where the previous one ends.
+      if (i > 0 && grid_[i - 1].segment == grid_[i].segment) {
+        slot(i, 0, kTangent) = slot(i - 1, 1, kTangent);
+        slot(i, 0, kCurvature) = slot(i - 1, 1, kCurvature);
+      } else {
+        seg.derivatives(std::clamp(grid_[i].s - seg.start, 0.0, seg.length), slot(i, 0, kTangent),
+                        slot(i, 0, kCurvature));
       }
+      seg.derivatives(std::clamp(grid_[i + 1].s - seg.start, 0.0, seg.length), slot(i, 1, kTangent),
+                      slot(i, 1, kCurvature));
     }
   }
 
@@ -186,35 +192,32 @@ class Solver {
   }
 
   // Largest x at grid point p, for one adjacent interval, with some admissible acceleration.
-  double speedLimit(std::size_t interval, int end) const {
+  double speedLimit(std::size_t interval, int end) {
     if (!segmentOf(interval).circular) return line_limits_[grid_[interval].segment];
     const Eigen::Map<const Eigen::VectorXd> d1 = this->end(interval, end, kTangent);
     const Eigen::Map<const Eigen::VectorXd> d2 = this->end(interval, end, kCurvature);
     double x = directionSpeedLimit(d1);
-    const Eigen::Index m = d1.size();
     // On a straight stretch any x allows u = 0.
     if (d2.isZero()) return x;
-    // u must lie in every joint's band [(-A - b x) / a, (A - b x) / a]; bands with a = 0 bound x directly.
-    for (Eigen::Index j = 0; j < m; ++j) {
+    // u must lie in every joint's band [(-A - b x) / a, (A - b x) / a], i.e. between the lines -A / |a| - (b / a) x
+    // and A / |a| - (b / a) x; bands with a = 0 bound x directly.
+    lower_lines_.clear();
+    upper_lines_.clear();
+    for (Eigen::Index j = 0; j < d1.size(); ++j) {
       const double aj = d1[j], bj = d2[j], Aj = limits_.acceleration[j];
       if (std::abs(aj) <= 1e-12) {
         if (std::abs(bj) > 1e-12) x = std::min(x, Aj / std::abs(bj));
         continue;
       }
-      for (Eigen::Index k = 0; k < m; ++k) {
-        const double ak = d1[k], bk = d2[k], Ak = limits_.acceleration[k];
-        if (k == j || std::abs(ak) <= 1e-12) continue;
-        // lower_j(x) = (-Aj sgn aj - bj x) / aj <= upper_k(x) = (Ak sgn ak - bk x) / ak
-        const double l0 = -Aj / std::abs(aj), l1 = -bj / aj;
-        const double h0 = Ak / std::abs(ak), h1 = -bk / ak;
-        const double coeff = l1 - h1;
-        if (coeff > 1e-12) x = std::min(x, (h0 - l0) / coeff);
-      }
+      lower_lines_.push_back({-Aj / std::abs(aj), -bj / aj});
+      upper_lines_.push_back({Aj / std::abs(aj), -bj / aj});
     }
-    return x;
+    return largestFeasible(lower_lines_, upper_lines_, x, 1e-12);
   }
 
-  double pointLimit(std::size_t p) const {
+  double pointLimit(std::size_t p) {
+    // Inside a segment both intervals see the same tangent and curvature at p.
+    if (p > 0 && p + 1 < grid_.size() && grid_[p - 1].segment == grid_[p].segment) return speedLimit(p, 0);
     double x = std::numeric_limits<double>::infinity();
     if (p > 0) x = std::min(x, speedLimit(p - 1, 1));
     if (p + 1 < grid_.size()) x = std::min(x, speedLimit(p, 0));
@@ -283,14 +286,34 @@ class Solver {
       add(a0[j] / h, b0[j] - a0[j] / h, A);
       add(a1[j] / h + b1[j], -a1[j] / h, A);
     }
-    for (const auto& [lc, lm] : lower) {
-      for (const auto& [hc, hm] : upper) {
-        // lc + lm x <= hc + hm x; it holds at x = 0 ((0, 0) is feasible), so only a rising gap bounds x.
-        const double slope = lm - hm;
-        if (slope > 1e-14) best = std::min(best, (hc - lc) / slope);
+    return std::max(0.0, largestFeasible(lower, upper, best, 1e-14));
+  }
+
+  // Largest x in [0, cap] where no line of `lower` (pairs {c, m}: c + m x) is above a line of `upper`, given that
+  // none is at x = 0: the smallest x where a lower line rising against an upper line (slopes differing by more than
+  // min_slope) meets it, or cap. max(lower) - min(upper) is convex in x, so Newton's steps from cap, each to where
+  // the lines highest and lowest at the current x meet, fall onto that x through a few of the pairs, not all.
+  static double largestFeasible(const std::vector<std::pair<double, double>>& lower,
+                                const std::vector<std::pair<double, double>>& upper, double cap, double min_slope) {
+    double x = cap;
+    if (lower.empty() || upper.empty()) return x;
+    for (;;) {
+      std::size_t top = 0, bottom = 0;
+      for (std::size_t k = 1; k < lower.size(); ++k) {
+        if (lower[k].first + lower[k].second * x > lower[top].first + lower[top].second * x) top = k;
       }
+      for (std::size_t k = 1; k < upper.size(); ++k) {
+        if (upper[k].first + upper[k].second * x < upper[bottom].first + upper[bottom].second * x) bottom = k;
+      }
+      const auto& [lc, lm] = lower[top];
+      const auto& [hc, hm] = upper[bottom];
+      if (lc + lm * x <= hc + hm * x) return x;
+      const double slope = lm - hm;
+      if (slope <= min_slope) return x;
+      const double meet = (hc - lc) / slope;
+      if (!(meet < x)) return x;
+      x = meet;
     }
-    return std::max(0.0, best);
   }
 
   static std::vector<double> toStd(const Eigen::VectorXd& v) {
@@ -324,7 +347,7 @@ class Solver {
   std::vector<double> ends_;
   std::vector<double> x_;
   std::vector<double> u_;
-  std::vector<std::pair<double, double>> lower_lines_;  // maxStart's scratch space
+  std::vector<std::pair<double, double>> lower_lines_;  // speedLimit's and maxStart's scratch space
   std::vector<std::pair<double, double>> upper_lines_;
 };
 

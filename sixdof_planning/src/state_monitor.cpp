@@ -113,4 +113,11 @@ bool CurrentStateMonitor::waitForStateNewerThan(const ros::Time& time, double ti
   return true;
 }
 
+bool CurrentStateMonitor::waitForPositions(const std::function<bool(const std::map<std::string, double>&)>& reached,
+                                           double timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout);
+  return changed_.wait_until(lock, deadline, [&] { return reached(positions_); });
+}
+
 }  // namespace sixdof_planning

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -20,6 +21,9 @@ namespace {
 constexpr double kServerWaitSeconds = 1.0;
 // Wall-clock seconds of silence that end an execution once the wall clock is past its time limit.
 constexpr double kLateSilence = 0.2;
+// Wall-clock seconds a succeeded execution waits for joint_states to show the trajectory's end (MoveIt's
+// waitForRobotToStop's bound).
+constexpr double kEndWaitSeconds = 1.0;
 
 std::string followErrorName(int code) {
   using R = control_msgs::FollowJointTrajectoryResult;
@@ -46,6 +50,20 @@ std::string seconds(double value) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(1) << value;
   return out.str();
+}
+
+// The first of the trajectory's joints whose position (`position(name)`) is more than `tolerance` from `point` (a joint
+// without limits modulo 2 pi), as its index; -1 when none is.
+template <typename Position>
+int deviatingJoint(const sixdof_core::RobotModel& model, const trajectory_msgs::JointTrajectory& trajectory,
+                   const trajectory_msgs::JointTrajectoryPoint& point, double tolerance, const Position& position) {
+  for (size_t i = 0; i < trajectory.joint_names.size(); ++i) {
+    const auto& joint = model.joint(trajectory.joint_names[i]);
+    double delta = point.positions[i] - position(joint.name);
+    if (!joint.limits.bounded) delta = std::remainder(delta, 2.0 * M_PI);
+    if (!(std::abs(delta) <= tolerance)) return static_cast<int>(i);  // NaN (never received) too
+  }
+  return -1;
 }
 
 }  // namespace
@@ -137,10 +155,10 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   // first messages on their way).
   const double stale = context_->config().joint_state_timeout;
   const ros::WallTime state_deadline = ros::WallTime::now() + ros::WallDuration(stale);
-  double age = context_->stateLiveness().joint_states_age;
+  double age = context_->stateMonitor().liveness().joint_states_age;
   while (age > stale && ros::WallTime::now() < state_deadline && ros::ok()) {
     ros::WallDuration(0.01).sleep();
-    age = context_->stateLiveness().joint_states_age;
+    age = context_->stateMonitor().liveness().joint_states_age;
   }
   if (age > stale) {
     return makeError(ErrorCode::CONTROL_FAILED,
@@ -152,17 +170,15 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   const double tolerance = context_->config().start_state_tolerance;
   if (tolerance > 0.0) {
     const auto& first = trajectory.points.front();
-    for (size_t i = 0; i < trajectory.joint_names.size(); ++i) {
-      const auto& joint = context_->model()->joint(trajectory.joint_names[i]);
-      double delta = first.positions[i] - current.jointPosition(joint.name);
-      if (!joint.limits.bounded) delta = std::remainder(delta, 2.0 * M_PI);
-      if (std::abs(delta) > tolerance) {
-        return makeError(ErrorCode::CONTROL_FAILED,
-                         "Invalid trajectory: start point deviates from current robot state more than " +
-                             str(tolerance) + " at joint '" + joint.name + "' (trajectory " + str(first.positions[i]) +
-                             ", current " + str(current.jointPosition(joint.name)) + ")",
-                         source);
-      }
+    const int i = deviatingJoint(*context_->model(), trajectory, first, tolerance,
+                                 [&](const std::string& name) { return current.jointPosition(name); });
+    if (i >= 0) {
+      const std::string& name = trajectory.joint_names[i];
+      return makeError(ErrorCode::CONTROL_FAILED,
+                       "Invalid trajectory: start point deviates from current robot state more than " + str(tolerance) +
+                           " at joint '" + name + "' (trajectory " + str(first.positions[i]) + ", current " +
+                           str(current.jointPosition(name)) + ")",
+                       source);
     }
   }
 
@@ -219,6 +235,7 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
       }
     }
     if (all_done) {
+      waitForEnd(trajectory, source);
       return makeSuccess(source, "executed " + str(expected) + " s trajectory on " + std::to_string(parts.size()) +
                                      " controller(s)");
     }
@@ -246,6 +263,26 @@ ErrorCode TrajectoryExecutor::execute(const trajectory_msgs::JointTrajectory& tr
   return makeError(ErrorCode::PREEMPTED, "node shutting down", source);
 }
 
+void TrajectoryExecutor::waitForEnd(const trajectory_msgs::JointTrajectory& trajectory,
+                                    const std::string& source) const {
+  const double tolerance = context_->config().start_state_tolerance;
+  if (tolerance <= 0.0) return;  // nothing compares the next start with the current state (MoveIt skips it too)
+  const auto& model = *context_->model();
+  const auto& end = trajectory.points.back();
+  // Trajectory joints are active joints (validate()): a joint never received counts as far away.
+  const auto at_end = [&](const std::map<std::string, double>& positions) {
+    return deviatingJoint(model, trajectory, end, tolerance, [&](const std::string& name) {
+             const auto it = positions.find(name);
+             return it != positions.end() ? it->second : std::numeric_limits<double>::infinity();
+           }) < 0;
+  };
+  if (!context_->stateMonitor().waitForPositions(at_end, kEndWaitSeconds)) {
+    ROS_WARN_STREAM(source << ": the controllers report success but joint_states have not shown the trajectory's end "
+                              "within "
+                           << kEndWaitSeconds << " s: the next request may start from an older state");
+  }
+}
+
 std::string TrajectoryExecutor::serverName(const std::string& controller) const {
   return context_->nodeHandle().resolveName(action_names_.at(controller));
 }
@@ -268,7 +305,7 @@ std::string TrajectoryExecutor::controllerSilence(const std::map<std::string, tr
       return "controller '" + part.first + "': action server '" + serverName(part.first) + "' lost";
     }
   }
-  const StateLiveness live = context_->stateLiveness();
+  const StateLiveness live = context_->stateMonitor().liveness();
   if (live.clock_still > limit) {
     return "/clock has not advanced for " + seconds(live.clock_still) + " s (is the simulator running?)";
   }

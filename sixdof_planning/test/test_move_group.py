@@ -228,6 +228,24 @@ class MoveGroupTest(MoveGroupTestCase):
             trajectory.points.append(JointTrajectoryPoint(positions=first, time_from_start=rospy.Duration(t)))
         self.execute_trajectory(trajectory, MoveItErrorCodes.CONTROL_FAILED, "deviates", "joint2")
 
+    def test_22b_the_next_motion_starts_where_an_execution_ended(self) -> None:
+        # joint_states half a second behind the motion, stamped when sent: what move_group sees of a simulator faster
+        # than real time when its own /clock lags behind. An execution ends once they show its end, so the next
+        # motion from there passes the start check.
+        current = self.current()
+        start = [current[n] for n in ARM]
+        end = [start[0] + 0.4, *start[1:]]
+        there, back = JointTrajectory(joint_names=ARM), JointTrajectory(joint_names=ARM)
+        for t, a, b in ((0.0, start, end), (0.8, end, start)):
+            there.points.append(JointTrajectoryPoint(positions=a, time_from_start=rospy.Duration(t)))
+            back.points.append(JointTrajectoryPoint(positions=b, time_from_start=rospy.Duration(t)))
+        rospy.set_param(FIXTURE + "/state_lag", 0.5)
+        try:
+            self.execute_trajectory(there, MoveItErrorCodes.SUCCESS)
+            self.execute_trajectory(back, MoveItErrorCodes.SUCCESS)
+        finally:
+            rospy.set_param(FIXTURE + "/state_lag", 0.0)
+
     def test_23_slow_controller_times_out(self) -> None:
         trajectory = self.plan_to(self.states[("arm", "after pick pose")]).trajectory.joint_trajectory
         rospy.set_param(FIXTURE + "/slowdown", 4.0)

@@ -7,10 +7,13 @@ Knobs (private parameters, read per goal, set by the tests):
   ~initial_positions  {joint: value} at start-up and after ~reset (others 0)
   ~slowdown           plays trajectories this many times slower (1.0); > 1.2 makes move_group time out
   ~fail_with          when non-empty, aborts every goal with GOAL_TOLERANCE_VIOLATED and this error string
+  ~state_lag          joint_states show the joints as they were this many seconds earlier (0.0; at most
+                      HISTORY s), stamped when sent: a planner whose clock lags behind the robot's sees such states
 Service ~reset (std_srvs/Empty): every joint back at ~initial_positions, the known start each test begins from.
 """
 
 import bisect
+import collections
 import threading
 
 import actionlib
@@ -25,6 +28,7 @@ CONTROLLERS = {
     "gripper_controller": JOINTS[6:],
 }
 RATE_HZ = 100.0
+HISTORY = 2.0  # s of positions kept for ~state_lag
 
 
 class TrajectoryFixture:
@@ -33,6 +37,8 @@ class TrajectoryFixture:
         self._initial = {name: float(initial.get(name, 0.0)) for name in JOINTS}
         self._lock = threading.Lock()
         self._positions = dict(self._initial)
+        self._lag = 0.0
+        self._history: collections.deque = collections.deque()  # (time, positions), the last HISTORY s
         self._publisher = rospy.Publisher("joint_states", JointState, queue_size=10)
         self._reset = rospy.Service("~reset", Empty, self._on_reset)
         self._servers = []
@@ -49,7 +55,15 @@ class TrajectoryFixture:
     def _on_reset(self, _request: object) -> EmptyResponse:
         with self._lock:
             self._positions = dict(self._initial)
+            self._lag = self._state_lag()
         return EmptyResponse()
+
+    @staticmethod
+    def _state_lag() -> float:
+        lag = float(rospy.get_param("~state_lag", 0.0))
+        if not 0.0 <= lag <= HISTORY:
+            raise ValueError(f"~state_lag must be in [0, {HISTORY}], got {lag}")
+        return lag
 
     def _server(self, controller: str) -> actionlib.SimpleActionServer:
         return dict(self._servers)[controller]
@@ -58,9 +72,18 @@ class TrajectoryFixture:
         """Publishes joint_states until shutdown."""
         rate = rospy.Rate(RATE_HZ)
         while not rospy.is_shutdown():
+            now = rospy.Time.now()
             with self._lock:
-                msg = JointState(name=list(JOINTS), position=[self._positions[n] for n in JOINTS])
-            msg.header.stamp = rospy.Time.now()
+                self._history.append((now.to_sec(), dict(self._positions)))
+                while self._history[0][0] < now.to_sec() - HISTORY:
+                    self._history.popleft()
+                shown = self._history[0][1]  # the latest positions at least ~state_lag old
+                for t, positions in self._history:
+                    if t > now.to_sec() - self._lag:
+                        break
+                    shown = positions
+                msg = JointState(name=list(JOINTS), position=[shown[n] for n in JOINTS])
+            msg.header.stamp = now
             self._publisher.publish(msg)
             try:
                 rate.sleep()
@@ -78,6 +101,9 @@ class TrajectoryFixture:
             server.set_aborted(result, result.error_string)
             return
         fail_with = rospy.get_param("~fail_with", "")
+        lag = self._state_lag()
+        with self._lock:
+            self._lag = lag
         slowdown = float(rospy.get_param("~slowdown", 1.0))
         times = [p.time_from_start.to_sec() * slowdown for p in trajectory.points]
         start = rospy.Time.now()

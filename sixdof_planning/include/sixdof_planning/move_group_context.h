@@ -46,8 +46,8 @@ class MoveGroupContext {
   // state, as in MoveIt, with a warning naming its age: planning keeps answering; execution refuses (see
   // TrajectoryExecutor).
   ErrorCode currentState(const std::string& source, sixdof_core::RobotState* state) const;
-  // How long (wall clock) joint_states and /clock have been silent.
-  StateLiveness stateLiveness() const { return state_monitor_->liveness(); }
+  // joint_states as received: how long (wall clock) joint_states and /clock have been silent, and waits for them.
+  const CurrentStateMonitor& stateMonitor() const { return *state_monitor_; }
   // A request's robot state: its joints on top of the current state (the current state is only needed for
   // joints the message leaves out), and `base_scene` (null: the current scene) with the message's attached
   // objects: added to the scene's with is_diff, instead of the scene's without. `what` names the field; a

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -41,6 +42,11 @@ class CurrentStateMonitor {
   // as MoveIt's waitForCurrentState does before planning from the current state: under load the subscriber may still
   // be working through older messages. False on timeout, and at once when the publisher does not stamp its messages.
   bool waitForStateNewerThan(const ros::Time& time, double timeout) const;
+
+  // Waits (wall clock, at most timeout s) until `reached` holds for the latest positions of the active joints (by
+  // name; a joint never received is absent). False on timeout.
+  bool waitForPositions(const std::function<bool(const std::map<std::string, double>&)>& reached,
+                        double timeout) const;
 
   StateLiveness liveness() const;
 

@@ -36,6 +36,12 @@ class TrajectoryExecutor {
   // One goal per controller that has joints in the trajectory (plus mimic joints of trajectory joints).
   ErrorCode split(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source,
                   std::map<std::string, trajectory_msgs::JointTrajectory>* parts) const;
+  // After the controllers reported success: waits (up to 1 s of wall time) until joint_states show every joint of the
+  // trajectory within start_state_tolerance of its last point, as MoveIt's waitForRobotToStop waits for the robot to
+  // settle. The next request's current state is then the motion's end even when this node's /clock lags behind the
+  // simulator's (a simulator many times faster than real time under load: joint_states stamped after the request's
+  // ROS time can predate the motion's end). A warning on timeout; the execution still succeeded.
+  void waitForEnd(const trajectory_msgs::JointTrajectory& trajectory, const std::string& source) const;
   void cancelAll(const std::map<std::string, trajectory_msgs::JointTrajectory>& parts);
   std::string serverName(const std::string& controller) const;
   // Waits up to kServerWaitSeconds of wall-clock time for the controller's action server.

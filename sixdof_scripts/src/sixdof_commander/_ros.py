@@ -263,28 +263,40 @@ class ServerWaiter:
 
 
 class JointStateMonitor:
-    """Keeps the latest position of every joint seen on joint_states, and the stamp of the latest message (its
-    arrival time when unstamped)."""
+    """Keeps the latest position of every joint seen on joint_states, and the largest stamp seen (a message's arrival
+    time when unstamped). When ROS time goes backwards (a restarted simulator, a replayed bag starting over), the
+    stamps seen before are of another timeline: they are forgotten, as MoveIt's state monitor does on a jump back."""
 
     def __init__(self, topic: str) -> None:
         self.topic = topic
         self._positions: dict[str, float] = {}
         self._stamp = -math.inf
+        self._clock = -math.inf  # the latest ROS time seen, to notice a jump back
         self._condition = threading.Condition()
         self._subscriber = rospy.Subscriber(topic, JointState, self._callback, queue_size=10)
 
+    def _note_time(self, now: float) -> None:
+        """With the condition held: forget the stamps when ROS time `now` is earlier than the latest seen."""
+        if now < self._clock:
+            rospy.logwarn(f"ROS time moved back from {self._clock:.3f} to {now:.3f}: joint_states stamps reset")
+            self._stamp = -math.inf
+        self._clock = now
+
     def _callback(self, msg: JointState) -> None:
-        stamp = msg.header.stamp.to_sec() if not msg.header.stamp.is_zero() else rospy.get_time()
+        now = rospy.get_time()
+        stamp = msg.header.stamp.to_sec() if not msg.header.stamp.is_zero() else now
         with self._condition:
+            self._note_time(now)
             self._positions.update(zip(msg.name, msg.position, strict=False))
             self._stamp = max(self._stamp, stamp)
             self._condition.notify_all()
 
     def wait_newer(self, stamp: float, timeout: float) -> bool:
-        """Waits up to `timeout` s (wall clock) for a message stamped at or after `stamp` (ROS time, s); whether
-        one arrived."""
+        """Waits up to `timeout` s (wall clock) for a message stamped at or after `stamp` (ROS time, s) since ROS time
+        last went backwards; whether one arrived."""
         end = time.monotonic() + timeout
         with self._condition:
+            self._note_time(rospy.get_time())
             while self._stamp < stamp:
                 remaining = end - time.monotonic()
                 if remaining <= 0.0 or rospy.is_shutdown():
@@ -294,7 +306,7 @@ class JointStateMonitor:
 
     @property
     def stamp(self) -> float:
-        """The latest message's stamp (ROS time, s); -inf before the first."""
+        """The largest stamp seen since ROS time last went backwards (ROS time, s); -inf before the first."""
         with self._condition:
             return self._stamp
 

@@ -11,7 +11,7 @@ import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import MoveItErrorCodes
-from moveit_msgs.srv import GetStateValidity, GetStateValidityRequest
+from moveit_msgs.srv import GetPositionIK, GetPositionIKRequest, GetStateValidity, GetStateValidityRequest
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 
@@ -144,6 +144,12 @@ class ArmDriver:
         self._validity = PersistentService(resolve(ns, "check_state_validity"), GetStateValidity)
         self._validity_request = GetStateValidityRequest(group_name=self.arm.get_name())
         self._validity_request.robot_state.is_diff = True
+        self._ik = PersistentService(resolve(ns, "compute_ik"), GetPositionIK)
+        self._ik_request = GetPositionIKRequest()
+        ik = self._ik_request.ik_request
+        ik.group_name, ik.ik_link_name = self.arm.get_name(), self.arm.get_end_effector_link()
+        ik.robot_state.is_diff = True
+        ik.pose_stamped.header.frame_id = self.arm.get_planning_frame()
         self.cartesian_step = 0.005
         self.last_failure = ""
         self.last_failure_kind = ""
@@ -272,6 +278,23 @@ class ArmDriver:
             return bool(call_service(self._validity, request, SERVICE_TIMEOUT).valid)
         except (rospy.ServiceException, rospy.ROSException) as err:
             raise SixdofCommanderError(f"check_state_validity failed: {err}") from err
+
+    def tip_ik(self, tip: np.ndarray, seed: Sequence[float], avoid_collisions: bool = True) -> np.ndarray | None:
+        """move_group's compute_ik of the arm's tip link at `tip` (4x4, planning frame), seeded with `seed` (the arm's
+        active joints, in order): the solution in that order, None when there is none; SixdofCommanderError when the
+        call fails."""
+        request, names = self._ik_request, self.arm.get_active_joints()
+        request.ik_request.robot_state.joint_state = JointState(name=names, position=[float(v) for v in seed])
+        request.ik_request.pose_stamped.pose = pose_from_matrix(tip)
+        request.ik_request.avoid_collisions = avoid_collisions
+        try:
+            response = call_service(self._ik, request, SERVICE_TIMEOUT)
+        except (rospy.ServiceException, rospy.ROSException) as err:
+            raise SixdofCommanderError(f"compute_ik failed: {err}") from err
+        if response.error_code.val != MoveItErrorCodes.SUCCESS:
+            return None
+        solution = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True))
+        return np.array([solution[name] for name in names])
 
     def _current_tip(self) -> np.ndarray:
         return matrix_from_pose(self.arm.get_current_pose().pose)

@@ -35,17 +35,13 @@ from dataclasses import dataclass
 
 import numpy as np
 import rospy
-from moveit_msgs.msg import MoveItErrorCodes, RobotTrajectory
-from moveit_msgs.srv import GetPositionIK, GetPositionIKRequest
-from sensor_msgs.msg import JointState
+from moveit_msgs.msg import RobotTrajectory
 from shape_msgs.msg import SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import DetectedObject
 
-from ._ros import resolve
-from ._service import SERVICE_TIMEOUT, PersistentService, call_service
-from .arm_driver import FAILED, UNREACHABLE, ArmDriver, pose_from_matrix
+from .arm_driver import FAILED, UNREACHABLE, ArmDriver
 from .blending import blended, end_state
 from .exceptions import SixdofCommanderError
 from .grasping import object_geometry, raised
@@ -236,7 +232,6 @@ class _MovingPick:
         # A conveyor moves objects horizontally: the vertical part of a velocity (a fresh object settling, bouncing)
         # would be extrapolated into the belt.
         self.velocity = np.array([target.velocity[0], target.velocity[1], 0.0])
-        self.ik_service = PersistentService(resolve(driver.ns, "compute_ik"), GetPositionIK)
         geometry = object_geometry(target.pose, target.shape)
         self.height = geometry.height
         try:
@@ -244,12 +239,6 @@ class _MovingPick:
         except SixdofCommanderError as err:
             raise _Failed(UNREACHABLE, f"no top-down grasp: {err}") from err
         self.joint_names = self.arm.get_active_joints()
-        self.request = GetPositionIKRequest()
-        self.request.ik_request.group_name = self.arm.get_name()
-        self.request.ik_request.ik_link_name = self.arm.get_end_effector_link()
-        self.request.ik_request.avoid_collisions = False  # the tool meets the object, and the belt under it
-        self.request.ik_request.robot_state.is_diff = True
-        self.request.ik_request.pose_stamped.header.frame_id = self.arm.get_planning_frame()
 
     def grasp_at(self, t: float) -> np.ndarray:
         """The tip's grasp pose over the object at ROS time t."""
@@ -264,17 +253,9 @@ class _MovingPick:
         )
 
     def ik(self, pose: np.ndarray, seed: np.ndarray) -> np.ndarray | None:
-        """One IK solution of the tip pose near `seed` (move_group's compute_ik), None when there is none."""
-        self.request.ik_request.robot_state.joint_state = JointState(name=self.joint_names, position=list(seed))
-        self.request.ik_request.pose_stamped.pose = pose_from_matrix(pose)
-        try:
-            response = call_service(self.ik_service, self.request, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"compute_ik failed: {err}") from err
-        if response.error_code.val != MoveItErrorCodes.SUCCESS:
-            return None
-        solution = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True))
-        return np.array([solution[name] for name in self.joint_names])
+        """One IK solution of the tip pose near `seed`, None when there is none. Collisions are not checked: the tool
+        meets the object, and the belt under it."""
+        return self.driver.tip_ik(pose, seed, avoid_collisions=False)
 
     def follow(self, start: float, seed: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]] | str:
         """(times, joint positions) of the follow path starting at ROS time `start`, each point one IK solution

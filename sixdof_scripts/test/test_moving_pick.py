@@ -1,12 +1,12 @@
 """The follow path of pick_moving: at rest at both ends, over the object (matching its velocity) from the end of the
-ramp until the gripper has closed, down on it while it closes; and the timing's checks."""
+ramp until the gripper has closed, down on it while it closes; the timing's checks; the approach's rule."""
 
 import math
 
 import numpy as np
 import pytest
 from sixdof_commander import SixdofCommanderError
-from sixdof_commander.moving_pick import Timing, follow_path
+from sixdof_commander.moving_pick import EARLIER, NEXT, SPARE, TAKE, Timing, approach_step, follow_path
 from sixdof_commander.transforms import homogeneous
 
 
@@ -52,3 +52,17 @@ def test_timing_refuses_bad_durations(name):
     for bad in (0.0, -1.0, float("nan"), True, "1"):
         with pytest.raises(SixdofCommanderError, match=name):
             Timing(**{name: bad})
+
+
+def test_approach_step_takes_the_first_approach_that_fits_without_much_to_spare():
+    assert approach_step(0.0, kept=False, last=False) == TAKE
+    assert approach_step(SPARE, kept=False, last=False) == TAKE
+    # More to spare: an earlier start is tried first, unless no try follows.
+    assert approach_step(SPARE + 0.01, kept=False, last=False) == EARLIER
+    assert approach_step(SPARE + 0.01, kept=False, last=True) == TAKE
+    # The earlier start's approach is taken whenever it fits.
+    assert approach_step(1.0, kept=True, last=False) == TAKE
+    # Too late, or no interception: the next try (the kept approach first, while it still fits).
+    for kept in (False, True):
+        assert approach_step(-0.01, kept=kept, last=False) == NEXT
+        assert approach_step(-math.inf, kept=kept, last=True) == NEXT

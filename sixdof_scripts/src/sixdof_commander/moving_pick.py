@@ -55,6 +55,10 @@ DROPPED = "dropped"
 MAX_JUMP = 0.4
 # s: an approach that would wait longer than this at the pre-grasp point (beyond Timing.margin) tries an earlier start.
 SPARE = 0.05
+# Interception starts plan_approach tries at most.
+APPROACH_TRIES = 4
+# approach_step's answers: take this try's approach; keep it and try an earlier start; none from this try.
+TAKE, EARLIER, NEXT = "take", "earlier", "next"
 __all__ = [
     "DROPPED",
     "FAILED",
@@ -199,6 +203,18 @@ def follow_path(
     return times, poses
 
 
+def approach_step(spare: float, kept: bool, last: bool) -> str:
+    """plan_approach's rule for one try. `spare`: how long its approach would wait at the pre-grasp point beyond
+    Timing.margin (negative: it arrives too late; -inf: no interception); `kept`: an earlier try's approach fits with
+    more than SPARE s to spare and this try is the earlier start; `last`: no try follows. An approach that fits is
+    taken when it has at most SPARE s to spare, is the earlier start or the last try (TAKE); one with more is kept
+    while an earlier start is tried (EARLIER). A try without one (NEXT) falls back to the kept approach while it still
+    fits, else the next try starts later."""
+    if spare < 0.0:
+        return NEXT
+    return TAKE if kept or last or spare <= SPARE else EARLIER
+
+
 def joined(approach: RobotTrajectory, times: np.ndarray, positions: list[np.ndarray]) -> RobotTrajectory:
     """The approach plan, then the follow path's positions at `times` (from the approach's start, the first after the
     approach's end): the arm waits at the approach's last state until the follow path begins there. The follow
@@ -303,8 +319,8 @@ class _MovingPick:
     ) -> tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]:
         """(approach plan, follow start time, follow times, follow joint positions): the earliest interception the
         arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer, earlier
-        (once) when it would wait more than SPARE s beyond that. With a prefix (a motion from the current state), the
-        approach is planned from its end and blended with it."""
+        when it would wait more than SPARE s beyond that (approach_step's rule). With a prefix (a motion from the
+        current state), the approach is planned from its end and blended with it."""
         if prefix is None:
             seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
         else:
@@ -313,37 +329,37 @@ class _MovingPick:
             seed = np.array([last[names.index(name)] for name in self.joint_names], dtype=float)
         start = rospy.get_time() + lead
         tries: list[str] = []
-        fits = None  # an approach that fits with more than SPARE s to spare, while an earlier one is tried
-        for attempt in range(4):
+        kept = None  # (plan, start, times, positions) of an approach that fits, while an earlier start is tried
+        for attempt in range(APPROACH_TRIES):
             began = rospy.get_time()
+            failure = None
             try:
                 start, times, positions = self.intercept(start, seed)
-            except _Failed:
-                if fits is None or not self.fits_still(fits[0], fits[1]):
-                    raise
-                return fits
-            plan = self.plan_to(positions[0], prefix)
-            now = rospy.get_time()
-            duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
-            tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
-            spare = start - (now + duration + self.timing.margin)
-            if spare >= 0.0 and (fits is not None or spare <= SPARE):
+            except _Failed as failed:
+                failure, spare = failed, -math.inf
+            else:
+                plan = self.plan_to(positions[0], prefix)
+                now = rospy.get_time()
+                duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
+                tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
+                spare = start - (now + duration + self.timing.margin)
+            step = approach_step(spare, kept is not None, attempt == APPROACH_TRIES - 1)
+            if step == TAKE:
                 return plan, start, times, positions
-            if fits is not None:  # the earlier one does not fit: the one that did, if it still does
-                if self.fits_still(fits[0], fits[1]):
-                    return fits
-                fits = None
-            elif spare >= 0.0:
+            if step == EARLIER:
                 # A later interception can need a shorter approach (nearer the box): the arm would wait out the spare
                 # time at the pre-grasp point. An earlier start, SPARE s after this approach would end, is tried.
-                fits = (plan, start, times, positions)
+                kept = (plan, start, times, positions)
                 start = now + duration + self.timing.margin + SPARE + (now - began)
                 continue
+            if kept is not None and self.fits_still(kept[0], kept[1]):
+                return kept
+            kept = None
+            if failure is not None:
+                raise failure
             # The next try takes about as long as this one did, and a later interception may need a longer approach:
             # the earliest start the arm can make first, then more.
             start = now + (1.0 if attempt == 0 else 1.2) * duration + self.timing.margin + (now - began)
-        if fits is not None and self.fits_still(fits[0], fits[1]):  # the last try was the earlier one, and failed
-            return fits
         raise _Failed(MISSED, f"the arm cannot get ahead of the object ({'; '.join(tries)})")
 
     def fits_still(self, approach: RobotTrajectory, start: float) -> bool:

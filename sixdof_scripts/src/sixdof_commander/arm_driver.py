@@ -121,7 +121,6 @@ class ArmDriver:
         )
         self.arm.set_max_velocity_scaling_factor(velocity)
         self.arm.set_max_acceleration_scaling_factor(acceleration)
-        self.velocity_scaling, self.acceleration_scaling = velocity, acceleration  # the arm's, for retiming
         self.home = home_state(srdf, self.arm.get_name())
         self.gripper: Gripper | SuctionGripper | None = None
         self._spec: GraspSpec | None = None

@@ -71,7 +71,7 @@ def round_corner(a: np.ndarray, b: np.ndarray, valid: Callable[[np.ndarray], boo
 def blended(driver: ArmDriver, parts: list[RobotTrajectory]) -> RobotTrajectory:
     """One trajectory through the positions of `parts` (each starting where the previous one ends, all of the same
     joints), its corners rounded (module docstring) and its points WAYPOINT_SPACING apart, from rest to rest,
-    time-optimal within the joint limits times the driver's scaling factors. A failure raises SixdofCommanderError."""
+    time-optimal within the joint limits times the arm's scaling factors. A failure raises SixdofCommanderError."""
     names = list(parts[0].joint_trajectory.joint_names)
     if any(list(part.joint_trajectory.joint_names) != names for part in parts):
         raise SixdofCommanderError("blended: the motions do not move the same joints")
@@ -92,7 +92,7 @@ def blended(driver: ArmDriver, parts: list[RobotTrajectory]) -> RobotTrajectory:
     return driver.arm.retime_trajectory(
         RobotState(),
         joined,
-        driver.velocity_scaling,
-        driver.acceleration_scaling,
+        driver.arm.get_max_velocity_scaling_factor(),
+        driver.arm.get_max_acceleration_scaling_factor(),
         algorithm="time_optimal_trajectory_generation",
     )

@@ -31,6 +31,14 @@ class PlanningOptions:
         self._context = context
         self._support_surface = ""
 
+    def get_max_velocity_scaling_factor(self) -> float:
+        """The velocity scaling factor plans and Cartesian paths are timed with (sixdof extension, for symmetry)."""
+        return self._context.goal.max_velocity_scaling_factor
+
+    def get_max_acceleration_scaling_factor(self) -> float:
+        """The acceleration scaling factor plans and Cartesian paths are timed with (sixdof extension, for symmetry)."""
+        return self._context.goal.max_acceleration_scaling_factor
+
     def get_planning_time(self) -> float:
         """Time allowed to plan, seconds."""
         return self._context.goal.planning_time

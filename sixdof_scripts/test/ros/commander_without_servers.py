@@ -107,6 +107,16 @@ class CommanderWithoutServers(unittest.TestCase):
         with self.assertRaisesRegex(SixdofCommanderError, "robot_description 'other_description'.*not supported"):
             MoveGroup("arm", ns="/stuck", wait_for_servers=60.0, robot_description="other_description")
 
+    def test_scaling_factors_read_back(self):
+        # What plans, Cartesian paths and ArmDriver's blended motions are timed with: one value, the MoveGroup's.
+        arm = MoveGroup("arm", ns="/stuck", wait_for_servers=60.0)
+        scaling = (arm.get_max_velocity_scaling_factor(), arm.get_max_acceleration_scaling_factor())
+        self.assertEqual(scaling, (0.1, 0.1))  # MoveIt's default without robot_description_planning's
+        arm.set_max_velocity_scaling_factor(0.3)
+        arm.set_max_acceleration_scaling_factor(0.7)
+        scaling = (arm.get_max_velocity_scaling_factor(), arm.get_max_acceleration_scaling_factor())
+        self.assertEqual(scaling, (0.3, 0.7))
+
     def test_action_client_keeps_the_first_status_and_feedback_of_a_goal(self):
         # actionlib's own client drops them and logs an error: the race this client fixes.
         errors, active, feedback = send_with_fast_reply(

@@ -25,18 +25,30 @@ GripperControllerConfig fingerConfig(bool allow_stalling) {
   return c;
 }
 
+constexpr double kRockPeriod = 0.1;  // s
+
 // A finger servoing towards the command at a bounded speed, blocked below `obstacle` (an object between
-// the fingers). Pressed against the obstacle it jitters by `jitter` each step (a contact in physics).
+// the fingers). Pressed against the obstacle it jitters by `jitter` each step (a contact in physics), rocks
+// back and forth up to `rock` away from it (a linkage pressed on a round object), and the obstacle gives way
+// towards the target at `creep` speed.
 struct Finger {
   double q = 0.04;
   double obstacle = -1.0;
   double speed = 0.05;
   double jitter = 0.0;
+  double rock = 0.0;
+  double creep = 0.0;
+  bool pressed = false;
   int steps = 0;
   void apply(const GripperUpdate& u) {
     const double step = std::clamp(u.command_position - q, -speed * kDt, speed * kDt);
     q = std::max(q + step, obstacle);
-    if (q == obstacle && jitter > 0.0) q = obstacle + (++steps % 2 ? jitter : 0.0);
+    pressed = u.command_position < obstacle && (pressed || q == obstacle);
+    if (pressed) {
+      ++steps;
+      obstacle -= creep * kDt;
+      q = obstacle + (steps % 2 ? jitter : 0.0) + rock * 0.5 * (1.0 - std::cos(2.0 * M_PI * steps * kDt / kRockPeriod));
+    }
   }
 };
 
@@ -105,6 +117,33 @@ TEST(GripperController, AFingerJitteringOnAnObjectStalls) {
   EXPECT_EQ(u.state, GoalState::kSucceeded);
   EXPECT_TRUE(u.stalled);
   EXPECT_NEAR(rig.now, 0.4 + 0.2, 0.01);
+}
+
+TEST(GripperController, AFingerRockingOnAnObjectStalls) {
+  // A back-and-forth of 2 mm every 0.1 s: the velocity swings up to +-0.06 m/s, 60 times the stall threshold, and
+  // the finger keeps moving by more than the threshold allows in stall_timeout, but comes no closer to the target.
+  Rig rig(true);
+  rig.f.obstacle = 0.02;
+  rig.f.rock = 0.002;
+  const GripperUpdate u = rig.runGoal({0.0, 0.0});
+  EXPECT_EQ(u.state, GoalState::kSucceeded);
+  EXPECT_TRUE(u.stalled);
+  EXPECT_FALSE(u.reached_goal);
+  EXPECT_NEAR(rig.now, 0.4 + 0.2, 0.01);
+  EXPECT_GE(u.position, 0.02);
+  EXPECT_LE(u.position, 0.022);
+}
+
+TEST(GripperController, AFingerCreepingOnAnObjectStalls) {
+  // The object gives way at half the threshold speed while the finger rocks on it.
+  Rig rig(false);
+  rig.f.obstacle = 0.02;
+  rig.f.rock = 0.001;
+  rig.f.creep = 0.0005;
+  const GripperUpdate u = rig.runGoal({0.0, 0.0});
+  EXPECT_EQ(u.state, GoalState::kAborted);
+  EXPECT_TRUE(u.stalled);
+  EXPECT_LT(rig.now, 0.4 + 0.2 + 0.1);
 }
 
 TEST(GripperController, AFingerMovingSlowlyButSteadilyIsNotStalled) {

@@ -55,8 +55,8 @@ GripperResult GripperController::setGoal(const GripperGoal& goal, double now) {
   has_command_ = true;
   command_position_ = goal.position;
   command_effort_ = goal.max_effort > 0.0 ? goal.max_effort : config_.effort_limit;
-  movement_time_ = now;
-  movement_anchored_ = false;
+  progress_time_ = now;
+  progress_anchored_ = false;
   state_ = GoalState::kActive;
   return r;
 }
@@ -83,19 +83,20 @@ GripperUpdate GripperController::update(double now, double position) {
   GripperUpdate out;
   out.position = position;
   if (state_ == GoalState::kActive) {
-    if (!movement_anchored_) {
-      movement_anchored_ = true;
-      movement_position_ = position;
+    const double distance = std::abs(command_position_ - position);
+    if (!progress_anchored_) {
+      progress_anchored_ = true;
+      progress_distance_ = distance;
     }
-    if (std::abs(command_position_ - position) < config_.goal_tolerance) {
+    if (distance < config_.goal_tolerance) {
       out.reached_goal = true;
       out.finished = true;
       state_ = GoalState::kSucceeded;
-    } else if (std::abs(position - movement_position_) > config_.stall_velocity_threshold * config_.stall_timeout) {
-      // Moved on by more than the threshold speed allows in stall_timeout: not stalled.
-      movement_position_ = position;
-      movement_time_ = now;
-    } else if (now - movement_time_ > config_.stall_timeout) {
+    } else if (progress_distance_ - distance > config_.stall_velocity_threshold * config_.stall_timeout) {
+      // Came closer to the target than the threshold speed allows in stall_timeout: not stalled.
+      progress_distance_ = distance;
+      progress_time_ = now;
+    } else if (now - progress_time_ > config_.stall_timeout) {
       out.stalled = true;
       out.finished = true;
       state_ = config_.allow_stalling ? GoalState::kSucceeded : GoalState::kAborted;

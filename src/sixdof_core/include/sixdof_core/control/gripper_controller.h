@@ -16,11 +16,13 @@ struct GripperControllerConfig {
   double upper = 0.0;
   double effort_limit = 0.0;             // URDF effort limit (N); max_effort 0 means this
   double goal_tolerance = 0.01;          // |target - position| below which the goal is reached
-  // Average speed below which the finger counts as not moving. gripper_action_controller compares the
-  // instantaneous velocity, which a finger squeezing an object in physics never settles below: it jitters
-  // (measured: +-0.01 m/s at a standstill within 20 um), so here the net movement over stall_timeout counts.
+  // The finger's progress towards the target, averaged over stall_timeout, below which it counts as stalled.
+  // gripper_action_controller compares the instantaneous velocity, which a finger pressed on an object in physics
+  // never settles below: it jitters (a prismatic finger by +-0.01 m/s within 20 um) or rocks back and forth (a
+  // revolute linkage's master between 0.249 and 0.270 rad on a sphere at rest). Only movement towards the target
+  // counts: going back and forth makes no progress.
   double stall_velocity_threshold = 0.001;
-  double stall_timeout = 1.0;               // s without movement until "stalled"
+  double stall_timeout = 1.0;               // s without progress until "stalled"
   // Whether a stall ends the goal as succeeded (a grasp: the fingers closed on an object) rather than
   // aborted. gripper_action_controller aborts on stall (newer versions: allow_stalling, default false).
   bool allow_stalling = false;
@@ -53,12 +55,11 @@ struct GripperUpdate {
 };
 
 // GripperCommand semantics (gripper_action_controller): the finger servos to the target with bounded
-// force. The goal succeeds as soon as |target - position| < goal_tolerance (reached_goal). Otherwise, once
-// the finger's average speed stayed below stall_velocity_threshold for longer than stall_timeout (it moved
-// less than threshold x stall_timeout since then), it ends stalled: succeeded
-// when allow_stalling (closing on an object is a grasp), aborted otherwise. The command stays in force
-// after either, so a stalled grip keeps squeezing with max_effort. Cancel holds the actual position with
-// the default effort.
+// force. The goal succeeds as soon as |target - position| < goal_tolerance (reached_goal). Otherwise it ends
+// stalled once the finger has not come closer to the target by more than stall_velocity_threshold x stall_timeout
+// for longer than stall_timeout (its progress averaged below the threshold speed): succeeded when allow_stalling
+// (closing on an object is a grasp), aborted otherwise. The command stays in force after either, so a stalled grip
+// keeps squeezing with max_effort. Cancel holds the actual position with the default effort.
 class GripperController {
  public:
   // Throws std::invalid_argument on a bad config (limits, non-positive effort limit, negative values).
@@ -84,10 +85,11 @@ class GripperController {
   bool has_command_ = false;
   double command_position_ = 0.0;
   double command_effort_ = 0.0;
-  // Where and when the finger last moved on by more than stall_velocity_threshold x stall_timeout.
-  bool movement_anchored_ = false;
-  double movement_position_ = 0.0;
-  double movement_time_ = 0.0;
+  // The finger's distance to the target (|target - position|) when it last came closer by more than
+  // stall_velocity_threshold x stall_timeout (or the goal started), and when that was.
+  bool progress_anchored_ = false;
+  double progress_distance_ = 0.0;
+  double progress_time_ = 0.0;
   GoalState state_ = GoalState::kIdle;
 };
 

@@ -6,52 +6,22 @@
 #include <limits>
 
 #include "time_parameterization_inputs.h"
+#include "time_parameterization_path.h"
 
 namespace sixdof_core {
 namespace {
 
+using blended_path::kSamePoint;
+using blended_path::Segment;
+
 // Limits used internally are this fraction of the requested ones, so that the curvature error of the
 // grid on blends (evaluated at interval ends only) cannot push a sampled state over a limit.
 constexpr double kLimitMargin = 0.999;
-// Waypoints closer than this (joint-space norm) are the same point.
-constexpr double kSamePoint = 1e-9;
-
-// One piece of the path: a straight line or a circular arc in joint space, parameterized by arc length.
-struct Segment {
-  bool circular = false;
-  double start = 0.0;   // arc length at the segment's start
-  double length = 0.0;
-  Eigen::VectorXd a;    // the segment's start point
-  Eigen::VectorXd x;    // line: unit direction; arc: unit normal from the arc start towards the centre
-  Eigen::VectorXd y;    // arc: unit tangent at the arc start
-  double radius = 0.0;
-
-  // An arc is written from its start point, not its centre: a nearly straight corner has a huge radius, and
-  // centre + radius * (...) would lose every digit of the small difference (positions went astray by 10^4).
-  Eigen::VectorXd position(double s) const {
-    if (!circular) return a + x * s;
-    const double angle = s / radius;
-    const double half_sin = std::sin(0.5 * angle);
-    return a + y * (radius * std::sin(angle)) + x * (2.0 * radius * half_sin * half_sin);
-  }
-  // Tangent and curvature at s, written into `tangent` and `curvature` (x.size() values each).
-  void derivatives(double s, Eigen::Ref<Eigen::VectorXd> tangent, Eigen::Ref<Eigen::VectorXd> curvature) const {
-    if (!circular) {
-      tangent = x;
-      curvature.setZero();
-      return;
-    }
-    const double angle = s / radius;
-    const double c = std::cos(angle), sn = std::sin(angle);
-    tangent = y * c + x * sn;
-    curvature = (x * c - y * sn) / radius;
-  }
-};
 
 struct PathPoint {
   double s = 0.0;
-  int segment = 0;         // segment of the interval that starts here (the last point: the last segment)
-  bool stop = false;       // path speed must be zero here (ends, sharp corners)
+  int segment = 0;    // segment of the interval that starts here (the last point: the last segment)
+  bool stop = false;  // path speed must be zero here (ends, sharp corners)
 };
 
 // Joint velocities are q' * sd and accelerations q' * sdd + q'' * sd^2 with x = sd^2 and u = sdd.
@@ -342,7 +312,7 @@ class Solver {
   Eigen::Index joints_;
   std::vector<double> line_limits_;         // per segment: a line's speed limit
   std::vector<double> line_accelerations_;  // per segment: a line's path acceleration limit
-  std::vector<std::size_t> slots_;   // per interval on an arc: its place in ends_
+  std::vector<std::size_t> slots_;          // per interval on an arc: its place in ends_
   // Per arc interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
   std::vector<double> ends_;
   std::vector<double> x_;
@@ -350,70 +320,6 @@ class Solver {
   std::vector<std::pair<double, double>> lower_lines_;  // speedLimit's and maxStart's scratch space
   std::vector<std::pair<double, double>> upper_lines_;
 };
-
-Segment line(const Eigen::VectorXd& from, const Eigen::VectorXd& to) {
-  Segment seg;
-  seg.length = (to - from).norm();
-  seg.a = from;
-  seg.x = (to - from) / seg.length;
-  return seg;
-}
-
-// Lines between waypoints with a circular blend at each interior corner (Kunz & Stilman's construction),
-// and the arc-length positions where the path must stop (corners that cannot be blended).
-void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation, std::vector<Segment>* segments,
-               std::vector<double>* stops) {
-  const std::size_t m = points.size();
-  // Trim at each interior corner: how much of each adjacent line the blend replaces.
-  std::vector<double> trim(m, 0.0);
-  std::vector<Segment> arcs(m);
-  std::vector<bool> blended(m, false), sharp(m, false);
-  for (std::size_t i = 1; i + 1 < m; ++i) {
-    const Eigen::VectorXd in = (points[i] - points[i - 1]).normalized();
-    const Eigen::VectorXd out = (points[i + 1] - points[i]).normalized();
-    const double angle = std::acos(std::clamp(in.dot(out), -1.0, 1.0));
-    if (angle < 1e-9) continue;  // straight through
-    const double half = 0.5 * angle;
-    // max_deviation * sin(half) / (1 - cos(half)), without the cancellation of 1 - cos for small angles.
-    const double by_deviation = max_deviation / std::tan(0.5 * half);
-    const double length = std::min({0.5 * (points[i] - points[i - 1]).norm(),
-                                    0.5 * (points[i + 1] - points[i]).norm(), by_deviation});
-    const double radius = length / std::tan(half);
-    if (angle > M_PI - 1e-6 || length < 1e-9 || radius < 1e-9) {
-      sharp[i] = true;
-      continue;
-    }
-    trim[i] = length;
-    Segment& arc = arcs[i];
-    arc.circular = true;
-    arc.radius = radius;
-    arc.a = points[i] - in * length;
-    arc.x = (out - in * in.dot(out)).normalized();  // the part of `out` across `in`: towards the centre
-    arc.y = in;
-    arc.length = radius * angle;
-    blended[i] = true;
-  }
-  double s = 0.0;
-  for (std::size_t i = 0; i + 1 < m; ++i) {
-    const Eigen::VectorXd dir = (points[i + 1] - points[i]).normalized();
-    const Eigen::VectorXd from = points[i] + dir * trim[i];
-    const Eigen::VectorXd to = points[i + 1] - dir * trim[i + 1];
-    if ((to - from).norm() > kSamePoint) {
-      Segment seg = line(from, to);
-      seg.start = s;
-      s += seg.length;
-      segments->push_back(seg);
-    }
-    if (blended[i + 1]) {
-      Segment arc = arcs[i + 1];
-      arc.start = s;
-      s += arc.length;
-      segments->push_back(arc);
-    } else if (sharp[i + 1]) {
-      stops->push_back(s);
-    }
-  }
-}
 
 }  // namespace
 
@@ -441,7 +347,7 @@ TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::s
 
   std::vector<Segment> segments;
   std::vector<double> stops;
-  buildPath(points, options.max_deviation, &segments, &stops);
+  blended_path::buildPath(points, options.max_deviation, &segments, &stops);
 
   // Grid: every segment split into equal steps no longer than the resolution (at least two, so that a
   // segment between two stops has an interior point to move through). On a blend the step also turns

@@ -112,13 +112,14 @@ class Solver {
     Trajectory trajectory;
     trajectory.joint_names = names;
     const double total = times.back();
-    std::vector<double> sample_times;
-    for (long k = 0; k * period < total - 1e-9; ++k) sample_times.push_back(k * period);
-    sample_times.push_back(total);
+    long samples = 0;
+    while (samples * period < total - 1e-9) ++samples;
+    trajectory.points.resize(samples + 1);
     std::size_t interval = 0;
-    for (double t : sample_times) {
+    for (long k = 0; k <= samples; ++k) {
+      const double t = k < samples ? k * period : total;
       while (interval + 2 < n && times[interval + 1] <= t) ++interval;
-      trajectory.points.push_back(state(interval, t - times[interval], t));
+      state(interval, t - times[interval], t, &trajectory.points[k]);
     }
     std::fill(trajectory.points.back().velocities.begin(), trajectory.points.back().velocities.end(), 0.0);
     return trajectory;
@@ -286,24 +287,24 @@ class Solver {
     }
   }
 
-  static std::vector<double> toStd(const Eigen::VectorXd& v) {
-    return std::vector<double>(v.data(), v.data() + v.size());
-  }
-
-  TrajectoryPoint state(std::size_t i, double tau, double t) const {
+  // The state at time tau into interval i (time t from the start), written into `point`.
+  void state(std::size_t i, double tau, double t, TrajectoryPoint* point) const {
     const Segment& seg = segmentOf(i);
     const double sd0 = std::sqrt(x_[i]);
     const double ds = std::clamp(sd0 * tau + 0.5 * u_[i] * tau * tau, 0.0, step(i));
     const double sd = std::max(0.0, sd0 + u_[i] * tau);
     const double s = std::clamp(grid_[i].s + ds - seg.start, 0.0, seg.length);
-    TrajectoryPoint point;
-    point.time_from_start = t;
-    point.positions = toStd(seg.position(s));
-    Eigen::VectorXd d1(joints_), d2(joints_);
+    point->time_from_start = t;
+    point->positions.resize(joints_);
+    point->velocities.resize(joints_);
+    point->accelerations.resize(joints_);
+    seg.position(s, Eigen::Map<Eigen::VectorXd>(point->positions.data(), joints_));
+    // The tangent into velocities and the curvature into accelerations, then each scaled in place.
+    Eigen::Map<Eigen::VectorXd> d1(point->velocities.data(), joints_);
+    Eigen::Map<Eigen::VectorXd> d2(point->accelerations.data(), joints_);
     seg.derivatives(s, d1, d2);
-    point.velocities = toStd(d1 * sd);
-    point.accelerations = toStd(d1 * u_[i] + d2 * sd * sd);
-    return point;
+    d2 = d1 * u_[i] + d2 * sd * sd;
+    d1 *= sd;
   }
 
   std::vector<Segment> segments_;
@@ -354,21 +355,31 @@ TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::s
   // the tangent by at most kMaxStepAngle: the limits hold at interval ends, and between them the error
   // grows with the square of that angle (1e-2 rad: ~1e-5 of a limit, well inside the margin).
   constexpr double kMaxStepAngle = 0.01;
-  std::vector<PathPoint> grid;
+  std::vector<int> steps(segments.size());
+  std::size_t grid_size = 1;
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const Segment& seg = segments[k];
     const double max_step =
         seg.circular ? std::min(options.path_resolution, kMaxStepAngle * seg.radius) : options.path_resolution;
-    const int steps = std::max(2, static_cast<int>(std::ceil(seg.length / max_step)));
-    for (int i = 0; i < steps; ++i) grid.push_back(PathPoint{seg.start + seg.length * i / steps, static_cast<int>(k)});
+    steps[k] = std::max(2, static_cast<int>(std::ceil(seg.length / max_step)));
+    grid_size += steps[k];
+  }
+  std::vector<PathPoint> grid;
+  grid.reserve(grid_size);
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const Segment& seg = segments[k];
+    for (int i = 0; i < steps[k]; ++i) {
+      grid.push_back(PathPoint{seg.start + seg.length * i / steps[k], static_cast<int>(k)});
+    }
   }
   grid.push_back(PathPoint{segments.back().start + segments.back().length, static_cast<int>(segments.size() - 1)});
   grid.front().stop = true;
   grid.back().stop = true;
+  // The grid's arc lengths ascend: each stop marks the points within 1e-12 of it, found by bisection.
   for (double stop : stops) {
-    for (PathPoint& p : grid) {
-      if (std::abs(p.s - stop) < 1e-12) p.stop = true;
-    }
+    auto p = std::lower_bound(grid.begin(), grid.end(), stop,
+                              [](const PathPoint& point, double s) { return point.s - s <= -1e-12; });
+    for (; p != grid.end() && p->s - stop < 1e-12; ++p) p->stop = true;
   }
 
   Limits limits;

@@ -23,11 +23,15 @@ struct Segment {
 
   // An arc is written from its start point, not its centre: a nearly straight corner has a huge radius, and
   // centre + radius * (...) would lose every digit of the small difference (positions went astray by 10^4).
-  Eigen::VectorXd position(double s) const {
-    if (!circular) return a + x * s;
+  // The point at s, written into `point` (x.size() values).
+  void position(double s, Eigen::Ref<Eigen::VectorXd> point) const {
+    if (!circular) {
+      point = a + x * s;
+      return;
+    }
     const double angle = s / radius;
     const double half_sin = std::sin(0.5 * angle);
-    return a + y * (radius * std::sin(angle)) + x * (2.0 * radius * half_sin * half_sin);
+    point = a + y * (radius * std::sin(angle)) + x * (2.0 * radius * half_sin * half_sin);
   }
   // Tangent and curvature at s, written into `tangent` and `curvature` (x.size() values each).
   void derivatives(double s, Eigen::Ref<Eigen::VectorXd> tangent, Eigen::Ref<Eigen::VectorXd> curvature) const {

@@ -34,7 +34,8 @@ struct Limits {
 bool intersect(double c0, double c1, double limit, double* lo, double* hi) {
   const double tol = 1e-12 * (1.0 + limit);
   if (std::abs(c1) < 1e-14) return std::abs(c0) <= limit + tol;
-  double a = (-limit - c0) / c1, b = (limit - c0) / c1;
+  const double inverse = 1.0 / c1;
+  double a = (-limit - c0) * inverse, b = (limit - c0) * inverse;
   if (a > b) std::swap(a, b);
   *lo = std::max(*lo, a);
   *hi = std::min(*hi, b);
@@ -180,8 +181,10 @@ class Solver {
         if (std::abs(bj) > 1e-12) x = std::min(x, Aj / std::abs(bj));
         continue;
       }
-      lower_lines_.push_back({-Aj / std::abs(aj), -bj / aj});
-      upper_lines_.push_back({Aj / std::abs(aj), -bj / aj});
+      const double inverse = 1.0 / aj;
+      const double reach = Aj * std::abs(inverse), slope = -bj * inverse;
+      lower_lines_.push_back({-reach, slope});
+      upper_lines_.push_back({reach, slope});
     }
     return largestFeasible(lower_lines_, upper_lines_, x, 1e-12);
   }
@@ -212,12 +215,14 @@ class Solver {
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
     const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b1 = end(i, 1, kCurvature);
+    const double inverse_h = 1.0 / h;
     bool ok = true;
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
       // Start: a0 (x' - x) / h + b0 x;  end: a1 (x' - x) / h + b1 x'.
-      ok &= intersect(-a0[j] * x / h + b0[j] * x, a0[j] / h, A, lo, hi);
-      ok &= intersect(-a1[j] * x / h, a1[j] / h + b1[j], A, lo, hi);
+      const double p0 = a0[j] * inverse_h, p1 = a1[j] * inverse_h;
+      ok &= intersect(-p0 * x + b0[j] * x, p0, A, lo, hi);
+      ok &= intersect(-p1 * x, p1 + b1[j], A, lo, hi);
     }
     return ok;
   }
@@ -236,6 +241,7 @@ class Solver {
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
     const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b1 = end(i, 1, kCurvature);
+    const double inverse_h = 1.0 / h;
     // Lines x_{i+1} = c + m x_i.
     std::vector<std::pair<double, double>>& lower = lower_lines_;
     std::vector<std::pair<double, double>>& upper = upper_lines_;
@@ -247,15 +253,18 @@ class Solver {
         if (std::abs(r) > 1e-14) best = std::min(best, A / std::abs(r));
         return;
       }
-      std::pair<double, double> lo{-A / p, -r / p}, hi{A / p, -r / p};
+      const double inverse = 1.0 / p;
+      const double reach = A * inverse, slope = -r * inverse;
+      std::pair<double, double> lo{-reach, slope}, hi{reach, slope};
       if (p < 0.0) std::swap(lo, hi);
       lower.push_back(lo);
       upper.push_back(hi);
     };
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
-      add(a0[j] / h, b0[j] - a0[j] / h, A);
-      add(a1[j] / h + b1[j], -a1[j] / h, A);
+      const double p0 = a0[j] * inverse_h, p1 = a1[j] * inverse_h;
+      add(p0, b0[j] - p0, A);
+      add(p1 + b1[j], -p1, A);
     }
     return std::max(0.0, largestFeasible(lower, upper, best, 1e-14));
   }

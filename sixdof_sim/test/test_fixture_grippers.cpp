@@ -288,6 +288,7 @@ TEST_P(FixtureGripper, HoldsThroughLiftAndTransportAndReleasesOnOpening) {
   EXPECT_TRUE(out.held) << "dropped while carried";
   EXPECT_GT(out.lifted, 0.09);
   EXPECT_LT(out.slip, 0.003);
+  EXPECT_LT(out.mimic_gap, 1e-3) << "the linkage gave way under the squeeze";
   ASSERT_GE(out.release_after, 0.0) << "not released on opening";
   EXPECT_LT(out.release_after, 0.5);
   EXPECT_LT(out.place_error, 0.015);

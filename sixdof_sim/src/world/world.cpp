@@ -1,8 +1,7 @@
-#include "world_impl.h"
-
 #include <set>
 
 #include "sixdof_sim/conveyor.h"
+#include "world_impl.h"
 
 namespace sixdof_sim {
 
@@ -67,31 +66,44 @@ const btTransform& World::Impl::bodyWorld(int body) const {
 }
 
 void World::Impl::applyCommands() {
+  // A linkage's squeeze: its master's bound plus that of each mimic joint beside it (on the same parent body, as the
+  // other finger of a parallel gripper), a mimic joint's bound being its own limit unless its master's command
+  // lowered it. Mimic joints in series (a pad on a knuckle) move with the master's finger and add no squeeze.
+  for (JointRuntime& runtime : joints) runtime.linkage_bound = runtime.max_effort;
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const int master = joints[j].master;
+    if (master < 0 || joint_parent_body[j] != joint_parent_body[static_cast<size_t>(master)]) continue;
+    joints[master].linkage_bound +=
+        std::abs(joint_infos[j].mimic_multiplier) * std::min(joint_infos[j].max_effort, joints[master].max_effort);
+  }
   for (size_t j = 0; j < joints.size(); ++j) {
     JointRuntime& runtime = joints[j];
     const JointInfo& info = joint_infos[j];
-    const JointRuntime& source = runtime.master >= 0 ? joints[runtime.master] : runtime;
-    const double scale = runtime.master >= 0 ? info.mimic_multiplier : 1.0;
-    const double offset = runtime.master >= 0 ? info.mimic_offset : 0.0;
     const int link = bodies[runtime.body].bullet_link;
-    if (runtime.master >= 0) runtime.mode = source.mode;
-    switch (runtime.mode) {
-      case JointControlMode::kPosition:
-      case JointControlMode::kVelocity: {
-        const double position = scale * source.target_position + offset;
-        const double velocity = scale * source.target_velocity;
-        const double gain = runtime.mode == JointControlMode::kPosition ? options.position_gain * dt() : 0.0;
-        // A mimic joint is bounded by its own limit unless its master's command lowered the bound.
-        const double bound = runtime.master >= 0 ? std::min(info.max_effort, source.max_effort) : runtime.max_effort;
-        runtime.servo->setPositionTarget(position, gain);
-        runtime.servo->setVelocityTarget(velocity, 1.0);
-        runtime.servo->setMaxAppliedImpulse(bound * dt());
-        break;
+    if (runtime.master >= 0) {
+      // No servo: its master's drives the whole linkage through the coupling (gears and projectMimicMotion); a servo
+      // of its own would pull a single light link against the coupling in the solver. In effort mode it gets its
+      // share of the master's effort.
+      const JointRuntime& master = joints[runtime.master];
+      runtime.mode = master.mode;
+      if (runtime.mode == JointControlMode::kEffort) {
+        multibody->addJointTorque(link, info.mimic_multiplier * master.effort);
       }
-      case JointControlMode::kEffort:
-        runtime.servo->setMaxAppliedImpulse(0.0);
-        multibody->addJointTorque(link, scale * source.effort);
-        break;
+    } else {
+      switch (runtime.mode) {
+        case JointControlMode::kPosition:
+        case JointControlMode::kVelocity: {
+          const double gain = runtime.mode == JointControlMode::kPosition ? options.position_gain * dt() : 0.0;
+          runtime.servo->setPositionTarget(runtime.target_position, gain);
+          runtime.servo->setVelocityTarget(runtime.target_velocity, 1.0);
+          runtime.servo->setMaxAppliedImpulse(runtime.linkage_bound * dt());
+          break;
+        }
+        case JointControlMode::kEffort:
+          runtime.servo->setMaxAppliedImpulse(0.0);
+          multibody->addJointTorque(link, runtime.effort);
+          break;
+      }
     }
     if (info.damping > 0.0) multibody->addJointTorque(link, -info.damping * multibody->getJointVel(link));
     // Coulomb friction acts on an unservoed joint only: a second velocity constraint on a servoed
@@ -106,6 +118,22 @@ void World::Impl::applyCommands() {
       }
       runtime.friction_in_world = want_friction;
     }
+  }
+}
+
+// Each joint's applied effort after a step: a master's servo pushes for its whole linkage, of which the master
+// reports its own share (its bound's part of the linkage's); a mimic joint reports its multiplier times that.
+void World::Impl::readAppliedEfforts() {
+  for (JointRuntime& runtime : joints) {
+    if (runtime.master >= 0) continue;
+    runtime.applied_effort = runtime.mode == JointControlMode::kEffort ? runtime.effort
+                                                                       : runtime.servo->getAppliedImpulse(0) / dt() *
+                                                                             runtime.max_effort / runtime.linkage_bound;
+  }
+  for (size_t j = 0; j < joints.size(); ++j) {
+    JointRuntime& runtime = joints[j];
+    if (runtime.master >= 0)
+      runtime.applied_effort = joint_infos[j].mimic_multiplier * joints[runtime.master].applied_effort;
   }
 }
 
@@ -194,16 +222,7 @@ void World::step(std::uint64_t n) {
     // adaptive gripper of test_fixture_grippers 3 of 6 carried objects were dropped).
     for (btMultiBodyGearConstraint* gear : d.gears) gear->internalSetAppliedImpulse(0, 0.0);
     d.body_world_current = false;
-    for (size_t j = 0; j < d.joints.size(); ++j) {
-      JointRuntime& runtime = d.joints[j];
-      if (runtime.mode != JointControlMode::kEffort) {
-        runtime.applied_effort = runtime.servo->getAppliedImpulse(0) / d.dt();
-      } else if (runtime.master >= 0) {
-        runtime.applied_effort = d.joint_infos[j].mimic_multiplier * d.joints[runtime.master].effort;
-      } else {
-        runtime.applied_effort = runtime.effort;
-      }
-    }
+    d.readAppliedEfforts();
     if (d.grasp_enabled) {
       d.collectGraspContacts();
       const GraspDecision decision = d.grasp_fix->update(simTime(), d.grasp_contacts);

@@ -135,6 +135,7 @@ Eigen::Vector3d beltVelocity(const ConveyorSpec& conveyor, double speed) { retur
 void DynamicsWorld::solveConstraints(btContactSolverInfo& solver_info) {
   if (before_solve) before_solve();
   btMultiBodyDynamicsWorld::solveConstraints(solver_info);
+  if (after_solve) after_solve();
 }
 
 // Belts are static objects like tables; the solver's friction directions of their top-face contacts are set here

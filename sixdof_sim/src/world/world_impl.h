@@ -1,14 +1,16 @@
 #pragma once
 // The Bullet world's private state (World::Impl), shared by the world_*.cpp sources:
 //   world.cpp          construction, build() as named steps, reset, stepping, state
-//   world_robot.cpp    the robot: fixed-link merging, the multibody, colliders, servos and limits, mimic gears
+//   world_robot.cpp    the robot: fixed-link merging, the multibody, colliders, servos and limits
+//   world_mimic.cpp    mimic joints: gears in the solver, the exact coupling after it
 //   world_joints.cpp   joint and link readings, joint commands
 //   world_objects.cpp  shapes, the ground, object validation, spawning and the object API
 //   world_contacts.cpp contacts of a step, the grasp fix's attach/detach and its API
 //   world_conveyors.cpp conveyor belts (surface velocity), sources and sinks
 //   suction.cpp        the suction cup: seal test, attach/release, its configuration
 
-#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/BroadphaseCollision/btAxisSweep3.h>
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -17,9 +19,9 @@
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
-#include <BulletCollision/BroadphaseCollision/btAxisSweep3.h>
-#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <btBulletDynamicsCommon.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -102,17 +104,17 @@ struct RobotBody {
   double mass = 0.0;
   Eigen::Vector3d principal_inertia = Eigen::Vector3d::Zero();
   Eigen::Isometry3d head_to_body = Eigen::Isometry3d::Identity();  // Bullet body frame in the head link frame
-  std::vector<std::string> links;                                   // links[0] is the head link
-  std::vector<std::string> shape_links;                             // URDF link of each compound child
+  std::vector<std::string> links;                                  // links[0] is the head link
+  std::vector<std::string> shape_links;                            // URDF link of each compound child
 };
 
 struct LinkRef {
-  int body = 0;                                                      // index into bodies
-  Eigen::Isometry3d body_to_link = Eigen::Isometry3d::Identity();    // link frame in the body frame
+  int body = 0;                                                    // index into bodies
+  Eigen::Isometry3d body_to_link = Eigen::Isometry3d::Identity();  // link frame in the body frame
 };
 
 struct JointRuntime {
-  int body = 0;  // child body (bullet_link = body's bullet link)
+  int body = 0;     // child body (bullet_link = body's bullet link)
   int master = -1;  // joint index of the mimic master, -1 if none
   JointControlMode mode = JointControlMode::kPosition;
   double target_position = 0.0;
@@ -120,7 +122,8 @@ struct JointRuntime {
   double max_effort = 0.0;  // servo bound in force units
   double effort = 0.0;      // kEffort command
   double applied_effort = 0.0;
-  btMultiBodyJointMotor* servo = nullptr;
+  double linkage_bound = 0.0;  // a master's servo bound: its own and its mimic joints' beside it (applyCommands)
+  btMultiBodyJointMotor* servo = nullptr;  // none on a mimic joint
   // Coulomb friction motor: in the world only while the joint is in kEffort mode (see applyCommands).
   std::unique_ptr<btMultiBodyJointMotor> friction;
   bool friction_in_world = false;
@@ -143,6 +146,8 @@ class DynamicsWorld : public btMultiBodyDynamicsWorld {
   // Runs before_solve between collision detection and the solver (the conveyor belts' contact motion).
   void solveConstraints(btContactSolverInfo& solver_info) override;
   std::function<void()> before_solve;
+  // Runs after the solver, before the positions are integrated (the mimic joints' exact coupling).
+  std::function<void()> after_solve;
 };
 
 struct ObjectRuntime {
@@ -168,11 +173,20 @@ struct SuctionRuntime {
   std::unique_ptr<btMultiBodyFixedConstraint> constraint;
 };
 
+// A mimic joint's coupling to its master: q = multiplier * q_master + offset (Bullet link and velocity indices).
+struct MimicRow {
+  int link = 0;
+  int master_link = 0;
+  int dof = 0;
+  int master_dof = 0;
+  double multiplier = 1.0;
+  double offset = 0.0;
+};
 
 struct World::Impl {
   WorldOptions options;
   WorldSpec spec;
-  sixdof_core::PackageResolver resolver;  // from options.package_search_roots
+  sixdof_core::PackageResolver resolver;                 // from options.package_search_roots
   std::shared_ptr<const sixdof_core::RobotModel> model;  // the URDF's one model; robot is read from it
   RobotDescription robot;
 
@@ -191,6 +205,16 @@ struct World::Impl {
   std::vector<std::unique_ptr<btCollisionShape>> robot_shapes;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> robot_constraints;
   std::vector<btMultiBodyGearConstraint*> gears;  // the mimic couplings among robot_constraints
+  // The exact mimic coupling (world_mimic.cpp): its rows, and storage kept from step to step.
+  std::vector<MimicRow> mimic_rows;
+  std::vector<btScalar> mimic_unit;  // a row's generalized impulse
+  Eigen::MatrixXd mimic_response;    // velocity change of every dof per unit impulse of each row
+  Eigen::MatrixXd mimic_matrix;      // J M^-1 J^T
+  Eigen::VectorXd mimic_rhs, mimic_impulse, mimic_delta, mimic_linkage_delta;
+  std::vector<int> mimic_dofs;  // velocity indices of the masters and mimic joints
+  Eigen::LDLT<Eigen::MatrixXd> mimic_solver;
+  btAlignedObjectArray<btScalar> mimic_scratch_r;
+  btAlignedObjectArray<btVector3> mimic_scratch_v;
   std::unique_ptr<btCollisionShape> ground_shape;
   std::unique_ptr<btRigidBody> ground;
   std::vector<std::unique_ptr<ObjectRuntime>> objects;  // spawn order
@@ -202,6 +226,7 @@ struct World::Impl {
   std::vector<std::string> link_order;
   std::vector<JointInfo> joint_infos;
   std::vector<int> joint_description_index;  // into robot.joints
+  std::vector<int> joint_parent_body;        // index into bodies of each joint's parent link
   std::vector<JointRuntime> joints;
   std::map<std::string, int> joint_index;
   std::vector<double> initial_positions;
@@ -237,18 +262,20 @@ struct World::Impl {
   void addRobotColliders();
   void addJointConstraints();
   void addMimicConstraints();
+  void projectMimicMotion();  // after the solver: every mimic joint exactly at its share of its master
   void addEnvironment();
   void destroy();
   std::unique_ptr<btCollisionShape> makeShape(const Shape& shape, Eigen::Vector3d* centre);
   Result addObject(const ObjectSpec& spec);
   ObjectRuntime* findObject(const std::string& name) const;
-  void removeObject(ObjectRuntime* object);  // releases it first if held; wakes the other objects
-  void refreshKinematics();  // after teleporting joints: the colliders follow the links
+  void removeObject(ObjectRuntime* object);      // releases it first if held; wakes the other objects
+  void refreshKinematics();                      // after teleporting joints: the colliders follow the links
   const btTransform& bodyWorld(int body) const;  // a body frame in the world (forward kinematics once a step)
   Eigen::Isometry3d objectPose(const ObjectRuntime& object) const;
   Twist objectTwist(const ObjectRuntime& object) const;
   bool linkWorldPose(const std::string& link, Eigen::Isometry3d* pose) const;
   void applyCommands();
+  void readAppliedEfforts();  // after a step: each joint's applied_effort
   void collectGraspContacts();
   std::string shapeName(const btCollisionObject* object, int shape_index) const;
   void wakeObjects();

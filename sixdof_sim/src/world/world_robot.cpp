@@ -1,6 +1,6 @@
-#include "world_impl.h"
-
 #include <Eigen/Eigenvalues>
+
+#include "world_impl.h"
 
 namespace sixdof_sim {
 
@@ -89,6 +89,7 @@ void World::Impl::buildStructure() {
     joint_description_index.push_back(static_cast<int>(j));
     JointRuntime runtime;
     runtime.body = links.at(joint.info.child_link).body;
+    joint_parent_body.push_back(links.at(joint.info.parent_link).body);
     joints.push_back(std::move(runtime));
   }
   for (size_t j = 0; j < joints.size(); ++j) {
@@ -269,7 +270,7 @@ void World::Impl::addRobotColliders() {
   }
 }
 
-// Joint servos, friction, limits (not on mimic joints).
+// Joint servos and limits (not on mimic joints: their master drives them), friction.
 void World::Impl::addJointConstraints() {
   for (size_t j = 0; j < joints.size(); ++j) {
     JointRuntime& runtime = joints[j];
@@ -281,11 +282,14 @@ void World::Impl::addJointConstraints() {
     runtime.max_effort = info.max_effort;
     runtime.effort = 0.0;
     runtime.applied_effort = 0.0;
-    auto servo = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.max_effort * dt());
-    servo->setErp(1.0);
-    runtime.servo = servo.get();
-    world->addMultiBodyConstraint(servo.get());
-    robot_constraints.push_back(std::move(servo));
+    runtime.servo = nullptr;
+    if (info.mimic_of.empty()) {
+      auto servo = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.max_effort * dt());
+      servo->setErp(1.0);
+      runtime.servo = servo.get();
+      world->addMultiBodyConstraint(servo.get());
+      robot_constraints.push_back(std::move(servo));
+    }
     runtime.friction.reset();
     runtime.friction_in_world = false;
     if (info.friction > 0.0) {
@@ -302,28 +306,6 @@ void World::Impl::addJointConstraints() {
     }
     multibody->setJointPos(link, initial_positions[j]);
     multibody->setJointVel(link, 0.0);
-  }
-}
-
-// Mimic joints: a gear constraint q_mimic - multiplier * q_master = offset couples them rigidly, so a
-// parallel gripper stays symmetric when an object pushes one finger (independent servos alone let a
-// squeezed object and both fingers drift sideways as a unit once both servos saturate).
-void World::Impl::addMimicConstraints() {
-  for (size_t j = 0; j < joints.size(); ++j) {
-    if (joints[j].master < 0) continue;
-    const JointInfo& info = joint_infos[j];
-    const int link = bodies[joints[j].body].bullet_link;
-    const int master_link = bodies[joints[joints[j].master].body].bullet_link;
-    auto gear = std::make_unique<btMultiBodyGearConstraint>(multibody.get(), link, multibody.get(), master_link,
-                                                            btVector3(0, 0, 0), btVector3(0, 0, 0),
-                                                            btMatrix3x3::getIdentity(), btMatrix3x3::getIdentity());
-    gear->setGearRatio(-info.mimic_multiplier);
-    gear->setRelativePositionTarget(info.mimic_offset);
-    gear->setErp(kGearErp);
-    gear->setMaxAppliedImpulse(kGearMaxForce * dt());
-    world->addMultiBodyConstraint(gear.get());
-    gears.push_back(gear.get());
-    robot_constraints.push_back(std::move(gear));
   }
 }
 

@@ -113,6 +113,7 @@ ObjectSpec object(Kind kind, double size) {
 
 struct Outcome {
   double attach_after = -1.0;   // s from the close command
+  double closed_after = -1.0;   // s from the close command until the gripper controller ended it (-1: not by then)
   bool held = true;             // attached at every step of lift and transport
   double lifted = 0.0;          // m the object rose
   double slip = 0.0;            // m: largest change of the object's position in the TCP frame while carried
@@ -157,7 +158,12 @@ class Rig {
       each();
     }
   }
-  void setFinger(double position) { EXPECT_TRUE(gripper_.setGoal({position, 0.0}, world_.simTime()).ok()); }
+  void setFinger(double position) {
+    EXPECT_TRUE(gripper_.setGoal({position, 0.0}, world_.simTime()).ok());
+    finished_at_ = -1.0;
+  }
+  // Sim time at which the gripper controller ended the last goal (reached or stalled), -1 while it is active.
+  double finishedAt() const { return finished_at_; }
   bool holding() const { return !world_.attachedObjects().empty(); }
   Eigen::Isometry3d tcp() const { return test::linkPose(world_, g_.palm) * g_.grasp.tcp; }
   // The largest |q_mimic - (multiplier * q_master + offset)| over the mimic joints.
@@ -209,6 +215,7 @@ class Rig {
     const char* const names[] = {"gantry_x_joint", "gantry_y_joint", "gantry_z_joint"};
     for (int i = 0; i < 3; ++i) EXPECT_TRUE(world_.setPositionTarget(names[i], position[i], velocity[i]).ok());
     const GripperUpdate u = gripper_.update(t, world_.jointPositions()[finger_]);
+    if (u.finished) finished_at_ = t;
     EXPECT_TRUE(world_.setPositionTarget(g_.finger, u.command_position, 0.0, u.command_max_effort).ok());
   }
 
@@ -220,6 +227,7 @@ class Rig {
   Eigen::Vector3d to_ = Eigen::Vector3d::Zero();
   double start_ = 0.0;
   double duration_ = 0.0;
+  double finished_at_ = -1.0;
 };
 
 // Pick at the origin (TCP at the object's centre, or higher where the fingers would reach the ground), lift 10 cm,
@@ -256,6 +264,7 @@ Outcome pickAndPlace(const GantryGripper& g, Kind kind, double size) {
   rig.move(place, 1.5, carried);
   rig.move(Eigen::Vector3d(place.x(), place.y(), grasp_z + 0.002), 1.0);
   rig.run(0.2);
+  if (rig.finishedAt() >= 0.0) out.closed_after = rig.finishedAt() - closing;
   rig.setFinger(open);
   const double opening = rig.world().simTime();
   for (int i = 0; i < 1000 && rig.holding(); ++i) rig.run(0.001);
@@ -279,9 +288,11 @@ TEST_P(FixtureGripper, HoldsThroughLiftAndTransportAndReleasesOnOpening) {
   const auto& [file, kind, size] = GetParam();
   const GantryGripper g = gantryGripper(file);
   const Outcome out = pickAndPlace(g, kind, size);
-  std::printf("%s %s %.0f mm: attached after %.3f s, slip %.2f mm and mimic gap %.4f while carried, released after "
-              "%.3f s, placed %.1f mm off, at rest %.1f mm from its height\n",
-              file.c_str(), kindName(kind), size * 1000.0, out.attach_after, out.slip * 1000.0, out.mimic_gap,
+  std::printf("%s %s %.0f mm: attached after %.3f s, close ended after %.3f s (-1: not by the put-down), slip "
+              "%.2f mm and mimic gap %.4f while carried, released after %.3f s, placed %.1f mm off, at rest %.1f mm "
+              "from its height\n",
+              file.c_str(), kindName(kind), size * 1000.0, out.attach_after, out.closed_after, out.slip * 1000.0,
+              out.mimic_gap,
               out.release_after, out.place_error * 1000.0, out.rest_height_error * 1000.0);
   ASSERT_GE(out.attach_after, 0.0) << "never attached";
   EXPECT_LT(out.attach_after, 2.5);

@@ -33,7 +33,6 @@ void World::Impl::destroy() {
   grasp_constraint.reset();
   suction = SuctionRuntime();
   robot_constraints.clear();
-  gears.clear();
   for (JointRuntime& j : joints) j.friction.reset();
   objects.clear();
   ground.reset();
@@ -218,9 +217,6 @@ void World::step(std::uint64_t n) {
     // leaves the robot's colliders where its links are; their frames (body_world) follow when asked for.
     d.world->stepSimulation(d.dt(), 0, d.dt());
     ++d.steps;
-    // The mimic gears start every step's solve from zero, unlike the servos and limits (warm-started, with the
-    // adaptive gripper of test_fixture_grippers 3 of 6 carried objects were dropped).
-    for (btMultiBodyGearConstraint* gear : d.gears) gear->internalSetAppliedImpulse(0, 0.0);
     d.body_world_current = false;
     d.readAppliedEfforts();
     if (d.grasp_enabled) {

@@ -53,8 +53,9 @@ inline constexpr int kMaxCollisionObjects = 4096;
 // (PyBullet's default); solver_iterations stays the bound.
 inline constexpr double kSolverResidualThreshold = 1e-7;
 // The robot's joint servos and limits start each step's solve from the impulses of the step before (scaled by
-// this), so the solver mostly converges in one or two iterations instead of ten to twenty. Not the mimic gears
-// (World::step clears their impulses).
+// this), so the solver mostly converges in one or two iterations instead of ten to twenty; the mimic gears too
+// (started from zero, the squeezed adaptive gripper of test_fixture_grippers chattered at +-10 rad/s and its
+// gripper controller never saw the close end).
 // Off while the grasp fix holds an object: Bullet then warm-starts the multibody side of the fixed
 // constraint but not the object's, which would press the held object's last impulse onto the arm again.
 inline constexpr double kArticulatedWarmstartingFactor = 1.0;
@@ -204,7 +205,6 @@ struct World::Impl {
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   std::vector<std::unique_ptr<btCollisionShape>> robot_shapes;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> robot_constraints;
-  std::vector<btMultiBodyGearConstraint*> gears;  // the mimic couplings among robot_constraints
   // The exact mimic coupling (world_mimic.cpp): its rows, and storage kept from step to step.
   std::vector<MimicRow> mimic_rows;
   std::vector<btScalar> mimic_unit;  // a row's generalized impulse

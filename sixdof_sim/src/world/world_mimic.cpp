@@ -20,7 +20,6 @@ void World::Impl::addMimicConstraints() {
     gear->setErp(kGearErp);
     gear->setMaxAppliedImpulse(kGearMaxForce * dt());
     world->addMultiBodyConstraint(gear.get());
-    gears.push_back(gear.get());
     robot_constraints.push_back(std::move(gear));
     MimicRow row;
     row.link = link;

@@ -331,5 +331,28 @@ TEST(FixtureGripper, TheAdaptiveGrippersMimicJointWithDisagreeingLimitsFollowsIt
   EXPECT_NEAR(q[world.jointIndex("left_inner_finger_joint")], -0.6, 0.01);
 }
 
+TEST(FixtureGripper, TheAdaptiveGrippersLinkageStaysWithinItsMastersLimits) {
+  const GantryGripper g = gantryGripper("adaptive_gripper.urdf");
+  WorldOptions options;
+  options.grasp_fix_enabled = false;
+  World world(g.urdf, WorldSpec(), options);
+  ASSERT_TRUE(world.setJointPositions({"gantry_z_joint"}, {0.5}).ok());  // clear of the ground
+  const int finger = world.jointIndex("finger_joint");
+  const JointInfo& info = world.joints()[static_cast<size_t>(finger)];
+  double lowest = 1e9, highest = -1e9;
+  for (const double target : {info.upper, info.lower, info.upper}) {
+    ASSERT_TRUE(world.setPositionTarget("finger_joint", target).ok());
+    for (int i = 0; i < 1500; ++i) {
+      world.step(1);
+      const double q = world.jointPositions()[static_cast<size_t>(finger)];
+      lowest = std::min(lowest, q);
+      highest = std::max(highest, q);
+    }
+  }
+  std::printf("finger_joint within [%.4f, %.4f], limits [%.4f, %.4f]\n", lowest, highest, info.lower, info.upper);
+  EXPECT_GE(lowest, info.lower - 0.01);
+  EXPECT_LE(highest, info.upper + 0.01);
+}
+
 }  // namespace
 }  // namespace sixdof_sim

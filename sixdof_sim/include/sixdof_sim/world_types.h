@@ -41,17 +41,17 @@ struct JointInfo {
   bool bounded = true;
   double lower = 0.0;         // URDF <limit lower>
   double upper = 0.0;         // URDF <limit upper>
-  double max_velocity = 0.0;  // URDF <limit velocity>: information for controllers, not enforced
+  double max_velocity = 0.0;  // URDF <limit velocity>: for controllers; a linkage's master ramps at it
   double max_effort = 0.0;    // URDF <limit effort> (N m or N)
   double damping = 0.0;       // URDF <dynamics damping>: viscous, always applied
   // URDF <dynamics friction> (Coulomb, N m or N): applied in kEffort mode only. Not modelled in the
   // servo modes: a second velocity constraint on a servoed joint fights the servo in Bullet's
   // iterative solver and makes light links jitter.
   double friction = 0.0;
-  // Mimic joints (URDF <mimic>): q = multiplier * q_master + offset, enforced by a gear constraint
-  // (a parallel gripper stays symmetric when an object pushes one finger); they also get their own
-  // servo following the master's command, bounded by their own effort limit. They cannot be
-  // commanded directly (Status::kMimicJoint).
+  // Mimic joints (URDF <mimic>): q = multiplier * q_master + offset, enforced by a gear constraint and
+  // an exact velocity coupling after the solver (a parallel gripper stays symmetric when an object pushes
+  // one finger); no servo of their own: the master's drives the linkage, bounded by its own effort limit
+  // plus theirs for mimic joints beside it. They cannot be commanded directly (Status::kMimicJoint).
   std::string mimic_of;  // empty: not a mimic joint
   double mimic_multiplier = 1.0;
   double mimic_offset = 0.0;

@@ -68,9 +68,13 @@ void World::Impl::applyCommands() {
   // A linkage's squeeze: its master's bound plus that of each mimic joint beside it (on the same parent body, as the
   // other finger of a parallel gripper), a mimic joint's bound being its own limit unless its master's command
   // lowered it. Mimic joints in series (a pad on a knuckle) move with the master's finger and add no squeeze.
-  for (JointRuntime& runtime : joints) runtime.linkage_bound = runtime.max_effort;
+  for (JointRuntime& runtime : joints) {
+    runtime.linkage_bound = runtime.max_effort;
+    runtime.drives_linkage = false;
+  }
   for (size_t j = 0; j < joints.size(); ++j) {
     const int master = joints[j].master;
+    if (master >= 0) joints[master].drives_linkage = true;
     if (master < 0 || joint_parent_body[j] != joint_parent_body[static_cast<size_t>(master)]) continue;
     joints[master].linkage_bound +=
         std::abs(joint_infos[j].mimic_multiplier) * std::min(joint_infos[j].max_effort, joints[master].max_effort);
@@ -93,8 +97,13 @@ void World::Impl::applyCommands() {
         case JointControlMode::kPosition:
         case JointControlMode::kVelocity: {
           const double gain = runtime.mode == JointControlMode::kPosition ? options.position_gain * dt() : 0.0;
-          runtime.servo->setPositionTarget(runtime.target_position, gain);
-          runtime.servo->setVelocityTarget(runtime.target_velocity, 1.0);
+          double position = runtime.target_position;
+          double velocity = runtime.target_velocity;
+          if (runtime.drives_linkage && runtime.mode == JointControlMode::kPosition && info.max_velocity > 0.0) {
+            rampLinkage(runtime, info.max_velocity, multibody->getJointPos(link), &position, &velocity);
+          }
+          runtime.servo->setPositionTarget(position, gain);
+          runtime.servo->setVelocityTarget(velocity, 1.0);
           runtime.servo->setMaxAppliedImpulse(runtime.linkage_bound * dt());
           break;
         }

@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -123,7 +124,11 @@ struct JointRuntime {
   double max_effort = 0.0;  // servo bound in force units
   double effort = 0.0;      // kEffort command
   double applied_effort = 0.0;
-  double linkage_bound = 0.0;  // a master's servo bound: its own and its mimic joints' beside it (applyCommands)
+  double linkage_bound = 0.0;   // a master's servo bound: its own and its mimic joints' beside it (applyCommands)
+  bool drives_linkage = false;  // a mimic joint's master (applyCommands)
+  // A linkage drive's ramped setpoint towards its last command (NaN: not ramping; rampLinkage).
+  double ramp_command = std::numeric_limits<double>::quiet_NaN();
+  double ramp_setpoint = std::numeric_limits<double>::quiet_NaN();
   btMultiBodyJointMotor* servo = nullptr;  // none on a mimic joint
   // Coulomb friction motor: in the world only while the joint is in kEffort mode (see applyCommands).
   std::unique_ptr<btMultiBodyJointMotor> friction;
@@ -275,6 +280,7 @@ struct World::Impl {
   Twist objectTwist(const ObjectRuntime& object) const;
   bool linkWorldPose(const std::string& link, Eigen::Isometry3d* pose) const;
   void applyCommands();
+  void rampLinkage(JointRuntime& runtime, double max_velocity, double q, double* position, double* velocity) const;
   void readAppliedEfforts();  // after a step: each joint's applied_effort
   void collectGraspContacts();
   std::string shapeName(const btCollisionObject* object, int shape_index) const;

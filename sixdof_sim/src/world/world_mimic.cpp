@@ -91,4 +91,25 @@ void World::Impl::projectMimicMotion() {
   multibody->applyDeltaVeeMultiDof(mimic_linkage_delta.data(), 1.0);
 }
 
+// A linkage's drive moves at most at its URDF velocity limit, as a gripper's motor does: a jump of its command (open,
+// close) becomes a setpoint ramping from where the linkage is, so both fingers leave an object together. Commanded
+// at once, the servo opened a jaw at 57 rad/s while the solver still pressed the other finger against the object
+// (coupled by its gear only), flinging a released sphere off its target. Against an object the ramp goes on to
+// the command, so the squeeze is the servo's full bound as without it; commands within the limit pass unchanged.
+void World::Impl::rampLinkage(JointRuntime& runtime, double max_velocity, double q, double* position,
+                              double* velocity) const {
+  const double step = max_velocity * dt();
+  if (std::abs(*position - runtime.ramp_command) > step) runtime.ramp_setpoint = q;
+  runtime.ramp_command = *position;
+  if (std::isnan(runtime.ramp_setpoint)) return;
+  const double remaining = *position - runtime.ramp_setpoint;
+  if (std::abs(remaining) <= step) {
+    runtime.ramp_setpoint = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  runtime.ramp_setpoint += std::copysign(step, remaining);
+  *position = runtime.ramp_setpoint;
+  *velocity = std::copysign(max_velocity, remaining);
+}
+
 }  // namespace sixdof_sim

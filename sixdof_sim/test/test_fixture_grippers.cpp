@@ -119,6 +119,7 @@ struct Outcome {
   double slip = 0.0;            // m: largest change of the object's position in the TCP frame while carried
   double mimic_gap = 0.0;       // rad or m: largest gap of a mimic joint from its master's share while carried
   double release_after = -1.0;  // s from the open command
+  double release_speed = 0.0;   // m/s: the object's largest horizontal speed in the 0.1 s after the release
   double place_error = 0.0;     // m from the place point (xy), 0.1 s after the release
   double rest_height_error = 0.0;
 };
@@ -182,6 +183,11 @@ class Rig {
     ObjectState state;
     EXPECT_TRUE(world_.objectState("object", &state).ok());
     return state.spec.pose.translation();
+  }
+  Eigen::Vector3d objectVelocity() const {
+    ObjectState state;
+    EXPECT_TRUE(world_.objectState("object", &state).ok());
+    return state.twist.linear;
   }
 
  private:
@@ -271,7 +277,7 @@ Outcome pickAndPlace(const GantryGripper& g, Kind kind, double size) {
   if (rig.holding()) return out;
   out.release_after = rig.world().simTime() - opening;
   // Where it was let go (a sphere rolls on from there), then at rest once the gripper is gone.
-  rig.run(0.1);
+  rig.run(0.1, [&] { out.release_speed = std::max(out.release_speed, rig.objectVelocity().head<2>().norm()); });
   out.place_error = (rig.objectPosition().head<2>() - place.head<2>()).norm();
   rig.move(Eigen::Vector3d(place.x(), place.y(), grasp_z + 0.08), 0.8);
   rig.run(0.5);
@@ -289,11 +295,11 @@ TEST_P(FixtureGripper, HoldsThroughLiftAndTransportAndReleasesOnOpening) {
   const GantryGripper g = gantryGripper(file);
   const Outcome out = pickAndPlace(g, kind, size);
   std::printf("%s %s %.0f mm: attached after %.3f s, close ended after %.3f s (-1: not by the put-down), slip "
-              "%.2f mm and mimic gap %.4f while carried, released after %.3f s, placed %.1f mm off, at rest %.1f mm "
-              "from its height\n",
+              "%.2f mm and mimic gap %.4f while carried, released after %.3f s at up to %.1f mm/s, placed %.1f mm "
+              "off, at rest %.1f mm from its height\n",
               file.c_str(), kindName(kind), size * 1000.0, out.attach_after, out.closed_after, out.slip * 1000.0,
-              out.mimic_gap,
-              out.release_after, out.place_error * 1000.0, out.rest_height_error * 1000.0);
+              out.mimic_gap, out.release_after, out.release_speed * 1000.0, out.place_error * 1000.0,
+              out.rest_height_error * 1000.0);
   ASSERT_GE(out.attach_after, 0.0) << "never attached";
   EXPECT_LT(out.attach_after, 2.5);
   EXPECT_TRUE(out.held) << "dropped while carried";
@@ -302,6 +308,8 @@ TEST_P(FixtureGripper, HoldsThroughLiftAndTransportAndReleasesOnOpening) {
   EXPECT_LT(out.mimic_gap, 1e-3) << "the linkage gave way under the squeeze";
   ASSERT_GE(out.release_after, 0.0) << "not released on opening";
   EXPECT_LT(out.release_after, 0.5);
+  // A sphere rolls on from any speed it is let go with (boxes and cylinders land flat).
+  if (kind == Kind::kSphere) EXPECT_LT(out.release_speed, 0.01) << "the opening fingers kicked the sphere";
   EXPECT_LT(out.place_error, 0.015);
   EXPECT_LT(out.rest_height_error, 0.005);
 }
@@ -331,7 +339,8 @@ TEST(FixtureGripper, TheAdaptiveGrippersMimicJointWithDisagreeingLimitsFollowsIt
   EXPECT_NEAR(q[world.jointIndex("left_inner_finger_joint")], -0.6, 0.01);
 }
 
-TEST(FixtureGripper, TheAdaptiveGrippersLinkageStaysWithinItsMastersLimits) {
+// A jump of its command (open, close) ramps at the master's URDF velocity limit, as a gripper's motor moves.
+TEST(FixtureGripper, TheAdaptiveGrippersLinkageStaysWithinItsMastersLimitsAndSpeed) {
   const GantryGripper g = gantryGripper("adaptive_gripper.urdf");
   WorldOptions options;
   options.grasp_fix_enabled = false;
@@ -341,13 +350,20 @@ TEST(FixtureGripper, TheAdaptiveGrippersLinkageStaysWithinItsMastersLimits) {
   const JointInfo& info = world.joints()[static_cast<size_t>(finger)];
   double lowest = 1e9, highest = -1e9;
   for (const double target : {info.upper, info.lower, info.upper}) {
+    const double travel = std::abs(target - world.jointPositions()[static_cast<size_t>(finger)]);
     ASSERT_TRUE(world.setPositionTarget("finger_joint", target).ok());
+    double reached = -1.0;  // s until within 0.01 of the target
     for (int i = 0; i < 1500; ++i) {
       world.step(1);
       const double q = world.jointPositions()[static_cast<size_t>(finger)];
       lowest = std::min(lowest, q);
       highest = std::max(highest, q);
+      if (reached < 0.0 && std::abs(q - target) < 0.01) reached = (i + 1) * world.timeStep();
     }
+    std::printf("finger_joint to %.3f: %.3f travelled in %.3f s, limit %.3f rad/s\n", target, travel, reached,
+                info.max_velocity);
+    ASSERT_GE(reached, 0.0) << "never reached " << target;
+    EXPECT_GE(reached, 0.95 * (travel - 0.01) / info.max_velocity);
   }
   std::printf("finger_joint within [%.4f, %.4f], limits [%.4f, %.4f]\n", lowest, highest, info.lower, info.upper);
   EXPECT_GE(lowest, info.lower - 0.01);

@@ -282,7 +282,8 @@ void World::Impl::addJointConstraints() {
     runtime.max_effort = info.max_effort;
     runtime.effort = 0.0;
     runtime.applied_effort = 0.0;
-    runtime.ramp_command = runtime.ramp_setpoint = std::numeric_limits<double>::quiet_NaN();
+    runtime.ramp_command = runtime.target_position;
+    runtime.ramp_setpoint = std::numeric_limits<double>::quiet_NaN();
     runtime.servo = nullptr;
     if (info.mimic_of.empty()) {
       auto servo = std::make_unique<btMultiBodyJointMotor>(multibody.get(), link, 0.0, info.max_effort * dt());

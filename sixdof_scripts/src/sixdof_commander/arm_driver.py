@@ -248,6 +248,17 @@ class ArmDriver:
         fraction = (position - gripper.close_position) / (gripper.open_position - gripper.close_position)
         return g.closed_width + fraction * (g.max_opening - g.closed_width)
 
+    def gripper_closing_time(self, width: float) -> float:
+        """The time (s) the fingers take from the open state to `width` between the pads (gripper_opening's linear
+        map, clipped to the gripper's range) at the finger joint's URDF velocity limit; 0 without a limit."""
+        gripper = self._require_gripper("gripper_closing_time")[0]
+        if isinstance(gripper, SuctionGripper):
+            raise SixdofCommanderError("ArmDriver.gripper_closing_time: a suction tool has no fingers")
+        g = self.gripper_model
+        assert g is not None
+        fraction = min(max((width - g.closed_width) / (g.max_opening - g.closed_width), 0.0), 1.0)
+        return (1.0 - fraction) * abs(gripper.open_position - gripper.close_position) / gripper.velocity
+
     # Cartesian moves ---------------------------------------------------------------------------------
     def move_straight(
         self, tip_target: np.ndarray, what: str, avoid_collisions: bool, infeasible_kind: str = FAILED

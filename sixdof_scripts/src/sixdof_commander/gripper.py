@@ -69,6 +69,11 @@ class Gripper:
         return self._joint.name
 
     @property
+    def velocity(self) -> float:
+        """The finger joint's URDF velocity limit (inf when the URDF gives none): the speed the fingers move at."""
+        return self._joint.velocity
+
+    @property
     def open_position(self) -> float:
         """The finger joint's position in the open state."""
         return self._positions["open"]

@@ -13,11 +13,11 @@ follow path as one trajectory, so that no command latency falls between them; th
 `Timing.margin` s before the follow path starts, else the interception moves later.
 
 The gripper is the package's (ArmDriver's: its grasping information through move_group). Fingers close with
-ArmDriver.gripper_close once the tool is at the grasp (Timing's default `close`, 1 s, is their closing time). A
+ArmDriver.gripper_close once the tool is at the grasp; the tool stays on the object for Timing's default `close`
+(1 s, for the grasp fix) plus the fingers' travel from open to the object's width at their URDF velocity limit. A
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
 moment its face touches the top (SUCTION_TIMING: 0.2 s down, 0.1 s on the top face, 0.2 s up; at the pre-grasp point
-0.1 s early). Whether the object
-is held is the simulator's `attached_to` of it.
+0.1 s early). Whether the object is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
 leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
@@ -44,7 +44,7 @@ from sixdof_msgs.msg import DetectedObject
 from .arm_driver import FAILED, UNREACHABLE, ArmDriver
 from .blending import blended, end_state
 from .exceptions import SixdofCommanderError
-from .grasping import object_geometry, raised
+from .grasping import ObjectGeometry, grasp_tcp_pose, object_geometry, raised
 from .suction import SuctionGripper
 from .transforms import matrix_from_pose
 
@@ -149,6 +149,16 @@ class Timing:
 SUCTION_TIMING = Timing(descend=0.2, close=0.1, lift=0.2, margin=0.1)
 
 
+def _default_timing(driver: ArmDriver, geometry: ObjectGeometry) -> Timing:
+    """SUCTION_TIMING for a suction tool; for fingers, Timing() with the fingers' travel from open to the object's
+    width at their URDF velocity limit added to `close` (they reach the object after it, then the grasp fix needs its
+    updates)."""
+    if driver.suction:
+        return SUCTION_TIMING
+    width = grasp_tcp_pose(geometry, driver.grasp_spec)[1]
+    return Timing(close=Timing.close + driver.gripper_closing_time(width))
+
+
 @dataclass
 class MovingPickResult:
     """The outcome: failure '' on success, else its class (MISSED, NOT_GRASPED, DROPPED, UNREACHABLE, FAILED)."""
@@ -241,8 +251,8 @@ class _Failed(Exception):  # noqa: N818 (internal: ends a pick with its failure 
 
 
 class _MovingPick:
-    def __init__(self, driver: ArmDriver, target: MovingObject, timing: Timing) -> None:
-        self.driver, self.target, self.timing = driver, target, timing
+    def __init__(self, driver: ArmDriver, target: MovingObject, timing: Timing | None) -> None:
+        self.driver, self.target = driver, target
         self.arm = driver.arm
         self.moved = False
         # A conveyor moves objects horizontally: the vertical part of a velocity (a fresh object settling, bouncing)
@@ -252,6 +262,7 @@ class _MovingPick:
         self.height = geometry.height
         try:
             self.grasp0 = driver.grasp_tip(geometry)  # the tip's grasp pose over the object at its stamp
+            self.timing = timing or _default_timing(driver, geometry)
         except SixdofCommanderError as err:
             raise _Failed(UNREACHABLE, f"no top-down grasp: {err}") from err
         self.joint_names = self.arm.get_active_joints()
@@ -450,9 +461,10 @@ def pick_moving(
     """Grasp a moving object on the fly and lift it (module docstring). target: a simulator object's name (its
     pose and velocity from the simulator), a MovingObject, or a DetectedObject with a tracked velocity. The follow path
     starts at the earliest `lead` s from now (later when the object is not yet in reach or the approach needs
-    longer). timing: SUCTION_TIMING for a suction tool, Timing() for fingers unless given. prefix: a motion from the
-    arm's current state (e.g. the retreat from a place) the approach continues without stopping at its end. On
-    success the driver holds the object (ArmDriver.place puts it down)."""
+    longer). timing: SUCTION_TIMING for a suction tool, for fingers Timing() with their closing time added to `close`
+    (module docstring) unless given. prefix: a motion from the arm's current state (e.g. the retreat from a place) the
+    approach continues without stopping at its end. On success the driver holds the object (ArmDriver.place puts it
+    down)."""
     if not isinstance(driver, ArmDriver):
         raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
     if isinstance(target, str):
@@ -466,7 +478,6 @@ def pick_moving(
     result = MovingPickResult(target.name)
     picker = None
     try:
-        timing = timing or (SUCTION_TIMING if driver.suction else Timing())
         picker = _MovingPick(driver, target, timing)
         result.grasp_time = picker.run(float(lead), prefix)
     except _Failed as failed:

@@ -370,5 +370,36 @@ TEST(FixtureGripper, TheAdaptiveGrippersLinkageStaysWithinItsMastersLimitsAndSpe
   EXPECT_LE(highest, info.upper + 0.01);
 }
 
+// Squeezing an object, then closing on nothing when it goes (deleted, as bench-pick's cleanup does): the exact
+// coupling after the solve must not carry the master past its limit (it reached 1.9 rad of [0, 0.8]).
+TEST(FixtureGripper, TheAdaptiveGrippersMasterStaysWithinItsLimitsWhenASqueezedObjectGoes) {
+  const GantryGripper g = gantryGripper("adaptive_gripper.urdf");
+  const ObjectSpec spec = object(Kind::kSphere, 0.06);
+  Rig rig(g, spec);
+  const double rest = spec.pose.translation().z();
+  const double grasp_z = std::max({rest, 2.0 * rest - g.grasp.palm_depth + 0.003, g.grasp.reach + 0.003});
+  rig.teleport(Eigen::Vector3d(0, 0, grasp_z), g.grasp.open.at(g.finger));
+  rig.run(0.2);
+  rig.setFinger(g.grasp.closed.at(g.finger));
+  rig.run(1.0);
+  const int finger = rig.world().jointIndex(g.finger);
+  const JointInfo& info = rig.world().joints()[static_cast<size_t>(finger)];
+  const double squeezed = rig.world().jointPositions()[static_cast<size_t>(finger)];
+  ASSERT_TRUE(rig.world().deleteObject("object").ok());
+  double lowest = 1e9, highest = -1e9;
+  const auto track = [&] {
+    const double q = rig.world().jointPositions()[static_cast<size_t>(finger)];
+    lowest = std::min(lowest, q);
+    highest = std::max(highest, q);
+  };
+  rig.move(Eigen::Vector3d(0, 0, grasp_z - 0.04), 0.3, track);
+  rig.run(1.0, track);
+  std::printf("finger_joint %.4f on the object, then within [%.4f, %.4f], limits [%.4f, %.4f], mimic gap %.5f\n",
+              squeezed, lowest, highest, info.lower, info.upper, rig.mimicGap());
+  EXPECT_GE(lowest, info.lower - 0.01);
+  EXPECT_LE(highest, info.upper + 0.01);
+  EXPECT_LT(rig.mimicGap(), 1e-3);
+}
+
 }  // namespace
 }  // namespace sixdof_sim

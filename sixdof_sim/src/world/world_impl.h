@@ -189,6 +189,15 @@ struct MimicRow {
   double offset = 0.0;
 };
 
+// A mimic master's URDF limits, held by the exact coupling too (Bullet link and velocity indices).
+struct MimicLimit {
+  int link = 0;
+  int dof = 0;
+  double lower = 0.0;
+  double upper = 0.0;
+  double reached = 0.0;  // the limit the step would pass (projectMimicMotion)
+};
+
 struct World::Impl {
   WorldOptions options;
   WorldSpec spec;
@@ -212,9 +221,11 @@ struct World::Impl {
   std::vector<std::unique_ptr<btMultiBodyConstraint>> robot_constraints;
   // The exact mimic coupling (world_mimic.cpp): its rows, and storage kept from step to step.
   std::vector<MimicRow> mimic_rows;
-  std::vector<btScalar> mimic_unit;  // a row's generalized impulse
-  Eigen::MatrixXd mimic_response;    // velocity change of every dof per unit impulse of each row
-  Eigen::MatrixXd mimic_matrix;      // J M^-1 J^T
+  std::vector<MimicLimit> mimic_limits;  // the bounded masters
+  std::vector<btScalar> mimic_unit;      // a row's generalized impulse
+  Eigen::MatrixXd mimic_response;        // velocity change of every dof per unit impulse of each row and limit
+  std::vector<int> mimic_active;         // the columns of mimic_response solved for: rows, then limits reached
+  Eigen::MatrixXd mimic_matrix;          // J M^-1 J^T
   Eigen::VectorXd mimic_rhs, mimic_impulse, mimic_delta, mimic_linkage_delta;
   std::vector<int> mimic_dofs;  // velocity indices of the masters and mimic joints
   Eigen::LDLT<Eigen::MatrixXd> mimic_solver;
@@ -268,6 +279,7 @@ struct World::Impl {
   void addJointConstraints();
   void addMimicConstraints();
   void projectMimicMotion();  // after the solver: every mimic joint exactly at its share of its master
+  void solveMimicRows();      // projectMimicMotion's impulses for the active rows
   void addEnvironment();
   void destroy();
   std::unique_ptr<btCollisionShape> makeShape(const Shape& shape, Eigen::Vector3d* centre);

@@ -30,13 +30,23 @@ void World::Impl::addMimicConstraints() {
     row.offset = info.mimic_offset;
     mimic_rows.push_back(row);
   }
-  const auto rows = static_cast<Eigen::Index>(mimic_rows.size());
+  mimic_limits.clear();
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const bool master = std::any_of(joints.begin(), joints.end(),
+                                    [j](const JointRuntime& other) { return other.master == static_cast<int>(j); });
+    if (!master || !joint_infos[j].bounded) continue;
+    MimicLimit limit;
+    limit.link = bodies[joints[j].body].bullet_link;
+    limit.dof = 6 + multibody->getLink(limit.link).m_dofOffset;
+    limit.lower = joint_infos[j].lower;
+    limit.upper = joint_infos[j].upper;
+    mimic_limits.push_back(limit);
+  }
+  const auto rows = static_cast<Eigen::Index>(mimic_rows.size() + mimic_limits.size());
   const auto dofs = static_cast<Eigen::Index>(6 + multibody->getNumDofs());
   mimic_unit.assign(static_cast<size_t>(dofs), 0.0);
   mimic_response.resize(dofs, rows);
-  mimic_matrix.resize(rows, rows);
-  mimic_rhs.resize(rows);
-  mimic_impulse.resize(rows);
+  mimic_active.reserve(static_cast<size_t>(rows));
   mimic_delta.resize(dofs);
   mimic_linkage_delta.resize(dofs);
   mimic_dofs.clear();
@@ -45,7 +55,6 @@ void World::Impl::addMimicConstraints() {
       if (std::find(mimic_dofs.begin(), mimic_dofs.end(), dof) == mimic_dofs.end()) mimic_dofs.push_back(dof);
     }
   }
-  mimic_solver = Eigen::LDLT<Eigen::MatrixXd>(rows);
   static_cast<DynamicsWorld*>(world.get())->after_solve =
       mimic_rows.empty() ? std::function<void()>() : [this] { projectMimicMotion(); };
 }
@@ -55,40 +64,87 @@ void World::Impl::addMimicConstraints() {
 // joint velocities get the impulses that satisfy every coupling exactly, found together (J M^-1 J^T lambda = b):
 // each mimic joint's velocity becomes its share of its master's, plus the rate that removes any gap from its share
 // within the step. The impulses are weighed by the whole multibody's inertia, so a light link follows its master
-// rather than the master following it. Joint positions integrate linearly from these velocities, so the coupling
-// holds at every step's end.
+// rather than the master following it. That shares the mimic joints' motion with the master, which the solver's
+// limit no longer sees: a master that would end the step past a limit is solved again with its velocity the one
+// that ends it at the limit (fingers pressed on the table drove finger_joint to 1.9 rad of [0, 0.8]). Joint
+// positions integrate linearly from these velocities, so the coupling holds at every step's end.
 void World::Impl::projectMimicMotion() {
   for (int l = 0; l < multibody->getNumLinks(); ++l) {
     const btMultiBodyLinkCollider* collider = multibody->getLink(l).m_collider;
     if (collider != nullptr && collider->getActivationState() == ISLAND_SLEEPING) return;
   }
   const btScalar* velocity = multibody->getVelocityVector();
-  for (size_t r = 0; r < mimic_rows.size(); ++r) {
-    const MimicRow& row = mimic_rows[r];
-    mimic_unit[static_cast<size_t>(row.dof)] = 1.0;
-    mimic_unit[static_cast<size_t>(row.master_dof)] = -row.multiplier;
-    multibody->calcAccelerationDeltasMultiDof(
-        mimic_unit.data(), mimic_response.col(static_cast<Eigen::Index>(r)).data(), mimic_scratch_r, mimic_scratch_v);
-    mimic_unit[static_cast<size_t>(row.dof)] = 0.0;
-    mimic_unit[static_cast<size_t>(row.master_dof)] = 0.0;
-    const double gap =
-        multibody->getJointPos(row.link) - row.multiplier * multibody->getJointPos(row.master_link) - row.offset;
-    const double relative = velocity[row.dof] - row.multiplier * velocity[row.master_dof];
-    mimic_rhs[static_cast<Eigen::Index>(r)] = -gap / dt() - relative;
+  const auto response = [this](int column, int dof, int master_dof, double multiplier) {
+    mimic_unit[static_cast<size_t>(dof)] = 1.0;
+    if (master_dof >= 0) mimic_unit[static_cast<size_t>(master_dof)] = -multiplier;
+    multibody->calcAccelerationDeltasMultiDof(mimic_unit.data(), mimic_response.col(column).data(), mimic_scratch_r,
+                                              mimic_scratch_v);
+    mimic_unit[static_cast<size_t>(dof)] = 0.0;
+    if (master_dof >= 0) mimic_unit[static_cast<size_t>(master_dof)] = 0.0;
+  };
+  const int couplings = static_cast<int>(mimic_rows.size());
+  for (int r = 0; r < couplings; ++r) {
+    const MimicRow& row = mimic_rows[static_cast<size_t>(r)];
+    response(r, row.dof, row.master_dof, row.multiplier);
   }
-  for (size_t r = 0; r < mimic_rows.size(); ++r) {
-    const MimicRow& row = mimic_rows[r];
-    mimic_matrix.row(static_cast<Eigen::Index>(r)) =
-        mimic_response.row(row.dof) - row.multiplier * mimic_response.row(row.master_dof);
+  mimic_active.clear();
+  for (int r = 0; r < couplings; ++r) mimic_active.push_back(r);
+  solveMimicRows();
+  bool limited = false;
+  for (size_t l = 0; l < mimic_limits.size(); ++l) {
+    MimicLimit& limit = mimic_limits[l];
+    const double next = multibody->getJointPos(limit.link) + (velocity[limit.dof] + mimic_delta[limit.dof]) * dt();
+    if (next <= limit.upper && next >= limit.lower) continue;
+    limit.reached = next > limit.upper ? limit.upper : limit.lower;
+    const int column = couplings + static_cast<int>(l);
+    response(column, limit.dof, -1, 0.0);
+    mimic_active.push_back(column);
+    limited = true;
   }
-  mimic_solver.compute(mimic_matrix);
-  mimic_impulse = mimic_solver.solve(mimic_rhs);
-  mimic_delta.noalias() = mimic_response * mimic_impulse;
+  if (limited) solveMimicRows();
   // Only the linkages' joints change: the rows touch nothing else, so they hold as solved, and the arm keeps the
   // velocities its servos and contacts gave it.
   mimic_linkage_delta.setZero();
   for (const int dof : mimic_dofs) mimic_linkage_delta[dof] = mimic_delta[dof];
   multibody->applyDeltaVeeMultiDof(mimic_linkage_delta.data(), 1.0);
+}
+
+// The impulses of the active columns (couplings, then limits) and the velocity change they make (mimic_delta).
+void World::Impl::solveMimicRows() {
+  const btScalar* velocity = multibody->getVelocityVector();
+  const auto n = static_cast<Eigen::Index>(mimic_active.size());
+  const auto couplings = static_cast<int>(mimic_rows.size());
+  mimic_matrix.resize(n, n);
+  mimic_rhs.resize(n);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    const int column = mimic_active[static_cast<size_t>(a)];
+    Eigen::RowVectorXd jacobian_response(n);
+    for (Eigen::Index b = 0; b < n; ++b) {
+      const auto col = mimic_response.col(mimic_active[static_cast<size_t>(b)]);
+      if (column < couplings) {
+        const MimicRow& row = mimic_rows[static_cast<size_t>(column)];
+        jacobian_response[b] = col[row.dof] - row.multiplier * col[row.master_dof];
+      } else {
+        jacobian_response[b] = col[mimic_limits[static_cast<size_t>(column - couplings)].dof];
+      }
+    }
+    mimic_matrix.row(a) = jacobian_response;
+    if (column < couplings) {
+      const MimicRow& row = mimic_rows[static_cast<size_t>(column)];
+      const double gap =
+          multibody->getJointPos(row.link) - row.multiplier * multibody->getJointPos(row.master_link) - row.offset;
+      mimic_rhs[a] = -gap / dt() - (velocity[row.dof] - row.multiplier * velocity[row.master_dof]);
+    } else {
+      const MimicLimit& limit = mimic_limits[static_cast<size_t>(column - couplings)];
+      mimic_rhs[a] = (limit.reached - multibody->getJointPos(limit.link)) / dt() - velocity[limit.dof];
+    }
+  }
+  mimic_solver.compute(mimic_matrix);
+  mimic_impulse = mimic_solver.solve(mimic_rhs);
+  mimic_delta.setZero();
+  for (Eigen::Index a = 0; a < n; ++a) {
+    mimic_delta += mimic_response.col(mimic_active[static_cast<size_t>(a)]) * mimic_impulse[a];
+  }
 }
 
 // A linkage's drive moves at most at its URDF velocity limit, as a gripper's motor does: a jump of its command (open,

@@ -118,17 +118,15 @@ void World::Impl::solveMimicRows() {
   mimic_rhs.resize(n);
   for (Eigen::Index a = 0; a < n; ++a) {
     const int column = mimic_active[static_cast<size_t>(a)];
-    Eigen::RowVectorXd jacobian_response(n);
     for (Eigen::Index b = 0; b < n; ++b) {
       const auto col = mimic_response.col(mimic_active[static_cast<size_t>(b)]);
       if (column < couplings) {
         const MimicRow& row = mimic_rows[static_cast<size_t>(column)];
-        jacobian_response[b] = col[row.dof] - row.multiplier * col[row.master_dof];
+        mimic_matrix(a, b) = col[row.dof] - row.multiplier * col[row.master_dof];
       } else {
-        jacobian_response[b] = col[mimic_limits[static_cast<size_t>(column - couplings)].dof];
+        mimic_matrix(a, b) = col[mimic_limits[static_cast<size_t>(column - couplings)].dof];
       }
     }
-    mimic_matrix.row(a) = jacobian_response;
     if (column < couplings) {
       const MimicRow& row = mimic_rows[static_cast<size_t>(column)];
       const double gap =

@@ -401,5 +401,39 @@ TEST(FixtureGripper, TheAdaptiveGrippersMasterStaysWithinItsLimitsWhenASqueezedO
   EXPECT_LT(rig.mimicGap(), 1e-3);
 }
 
+// The jaw gripper closing on an upright 3 cm x 6 cm cylinder, squeezed from its middle: held with opposed, level
+// forces and attached. With the solver stopped unconverged (20 iterations) the jaws chattered and their friction
+// wedged it into the ground (jaw forces 110 deg apart, 48-60 N down each, the ground pushing 114 N): never attached.
+TEST(FixtureGripper, TheJawGripperHoldsAnUprightCylinderWithLevelForces) {
+  const GantryGripper g = gantryGripper("jaw_gripper.urdf");
+  ObjectSpec spec = object(Kind::kCylinder, 0.03);
+  spec.shape.length = 0.06;
+  spec.pose.translation().z() = 0.03;
+  spec.mass = 0.1;
+  Rig rig(g, spec);
+  rig.teleport(Eigen::Vector3d(0, 0, 0.11), g.grasp.open.at(g.finger));
+  rig.run(0.2);
+  rig.move(Eigen::Vector3d(0, 0, 0.03), 1.0);
+  rig.run(0.2);
+  rig.setFinger(g.grasp.closed.at(g.finger));
+  const double closing = rig.world().simTime();
+  double ground = 0.0;  // N: the ground's largest push on the cylinder before it was attached
+  for (int i = 0; i < 2500 && !rig.holding(); ++i) {
+    rig.run(0.001);
+    double push = 0.0;
+    for (const Contact& c : rig.world().contacts()) {
+      if ((c.body_a == "ground" && c.body_b == "object") || (c.body_a == "object" && c.body_b == "ground")) {
+        push += c.normal_impulse / rig.world().timeStep();
+      }
+    }
+    ground = std::max(ground, push);
+  }
+  const double weight = spec.mass * 9.81;
+  std::printf("%s after %.3f s; the ground pushed up to %.2f N on the %.2f N cylinder\n",
+              rig.holding() ? "attached" : "not attached", rig.world().simTime() - closing, ground, weight);
+  EXPECT_TRUE(rig.holding()) << "never attached";
+  EXPECT_LT(ground, weight + 5.0) << "the jaws pressed the cylinder into the ground";
+}
+
 }  // namespace
 }  // namespace sixdof_sim

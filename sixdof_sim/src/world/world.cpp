@@ -222,6 +222,7 @@ void World::step(std::uint64_t n) {
   for (std::uint64_t i = 0; i < n; ++i) {
     if (d.pre_step) d.pre_step(simTime());
     d.applyCommands();
+    d.world->getSolverInfo().m_numIterations = d.linkageSolverIterations();
     // maxSubSteps = 0: exactly one internal step of time_step (no accumulator, no interpolation). The step
     // leaves the robot's colliders where its links are; their frames (body_world) follow when asked for.
     d.world->stepSimulation(d.dt(), 0, d.dt());

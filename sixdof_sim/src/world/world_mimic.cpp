@@ -55,6 +55,24 @@ void World::Impl::addMimicConstraints() {
       if (std::find(mimic_dofs.begin(), mimic_dofs.end(), dof) == mimic_dofs.end()) mimic_dofs.push_back(dof);
     }
   }
+  // The bodies a linkage moves: the child body of each mimic joint and master, and every body below them.
+  linkage_bodies.assign(bodies.size(), 0);
+  for (const MimicRow& row : mimic_rows) {
+    for (const int link : {row.link, row.master_link}) {
+      for (size_t b = 0; b < bodies.size(); ++b) {
+        if (bodies[b].bullet_link == link) linkage_bodies[b] = 1;
+      }
+    }
+  }
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (size_t j = 0; j < joints.size(); ++j) {
+      if (linkage_bodies[joint_parent_body[j]] && !linkage_bodies[joints[j].body]) {
+        linkage_bodies[joints[j].body] = 1;
+        grew = true;
+      }
+    }
+  }
   static_cast<DynamicsWorld*>(world.get())->after_solve =
       mimic_rows.empty() ? std::function<void()>() : [this] { projectMimicMotion(); };
 }
@@ -164,6 +182,24 @@ void World::Impl::rampLinkage(JointRuntime& runtime, double max_velocity, double
   runtime.ramp_setpoint += std::copysign(step, remaining);
   *position = runtime.ramp_setpoint;
   *velocity = std::copysign(max_velocity, remaining);
+}
+
+int World::Impl::linkageSolverIterations() const {
+  const int manifolds = mimic_rows.empty() ? 0 : dispatcher->getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+    if (manifold->getNumContacts() == 0) continue;
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    const btCollisionObject* robot = a->getUserIndex() == kRobotBody ? a : b;
+    const btCollisionObject* object = robot == a ? b : a;
+    if (robot->getUserIndex() == kRobotBody && object->getUserIndex() == kObjectBody && !object->isStaticObject() &&
+        linkage_bodies[static_cast<size_t>(robot->getUserIndex2())]) {
+      return std::max(grasp_constraint ? kLinkageHoldSolverIterations : kLinkageSqueezeSolverIterations,
+                      options.solver_iterations);
+    }
+  }
+  return options.solver_iterations;
 }
 
 }  // namespace sixdof_sim

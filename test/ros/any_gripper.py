@@ -5,7 +5,9 @@ state from the package through move_group) picks and places a cube, an upright c
 each spawned on the table, through the simulator's grasp fix (configured from the package's grasping.yaml). One
 launched stack per robot:
 - seven_dof_hand: a 7-DoF arm with a prismatic two-finger hand and no `tcp` link;
-- six_r_jaw: the 6R arm of six_r_adaptive.urdf.xacro with revolute jaws that open at their upper limit.
+- six_r_jaw: the 6R arm of six_r_adaptive.urdf.xacro with revolute jaws that open at their upper limit;
+- six_r_adaptive: the same arm with its default 2F-style gripper: a revolute master and five mimic joints (one with a
+  negative multiplier and limits that disagree with it), no inertias on its moving links.
 
     python -m pytest test/ros/any_gripper.py -k six_r_jaw
 """
@@ -36,6 +38,7 @@ from sixdof_msgs.srv import DeleteObject, GetObjectState, SpawnObject
 ROBOTS = {
     "seven_dof_hand": ("urdf/seven_dof_hand.urdf.xacro", ""),
     "six_r_jaw": ("urdf/six_r_adaptive.urdf.xacro", "gripper:=jaw"),
+    "six_r_adaptive": ("urdf/six_r_adaptive.urdf.xacro", ""),
 }
 OBJECT = "test_object"
 # (shape, width, height, start x y yaw, place x y): 3 and 6 cm of each shape, at different spots and yaws of the

@@ -57,8 +57,9 @@ inline constexpr double kSolverResidualThreshold = 1e-7;
 // linkage moves touched a dynamic object (linkageSolverIterations). Squeezing an object the grasp fix does not hold
 // takes more: the jaw gripper on an upright 3 cm cylinder converges in 25 a step; stopped at 20, 30 or 50, its
 // unconverged friction wedged the cylinder into the ground (test_fixture_grippers, test/ros any_gripper). While the
-// grasp fix holds an object the squeeze does not converge at any bound (the fixed constraint and the contacts'
-// corrections disagree): 50 keeps the adaptive gripper's 6 cm cylinder, which dropped at 20 (test_fixture_grippers).
+// grasp fix holds an object the squeeze converged at no bound tried (a residual of 0.28 after 200, 8-15 after 20;
+// the cause is not established): 50 keeps the adaptive gripper's 6 cm cylinder, which dropped at 20
+// (test_fixture_grippers).
 inline constexpr int kLinkageSqueezeSolverIterations = 200;
 inline constexpr int kLinkageHoldSolverIterations = 50;
 // The robot's joint servos and limits start each step's solve from the impulses of the step before (scaled by

@@ -311,11 +311,11 @@ ErrorCode MoveGroupContext::timeParameterize(const std::vector<std::string>& joi
   options.sample_period = sample_period;
   std::vector<std::vector<double>> waypoints;
   for (const auto& q : path) waypoints.emplace_back(q.data(), q.data() + q.size());
-  const auto result = sixdof_core::computeTimeOptimalTrajectory(joints, waypoints, options);
+  auto result = sixdof_core::computeTimeOptimalTrajectory(joints, waypoints, options);
   if (!result.ok()) {
     return makeError(ErrorCode::PLANNING_FAILED, "time parameterization failed: " + result.message, source);
   }
-  *trajectory = result.trajectory;
+  *trajectory = std::move(result.trajectory);
   return makeSuccess(source);
 }
 

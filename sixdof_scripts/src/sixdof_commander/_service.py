@@ -95,6 +95,10 @@ class PersistentService:
         return None
 
 
+# The first read of an answer: most answers (a planned trajectory is ~10 KB) arrive whole in one read.
+_FIRST_READ = 65536
+
+
 class _NoAnswerError(Exception):
     """The deadline of a call on a kept connection passed."""
 
@@ -103,26 +107,32 @@ class _ConnectionClosedError(Exception):
     """The server closed the kept connection."""
 
 
-def _receive(sock: socket.socket, size: int, deadline: float | None) -> bytes:
-    """Exactly `size` bytes from sock, before the deadline (time.monotonic(); None: no deadline); _NoAnswerError
-    after it."""
-    data = bytearray(size)
-    view = memoryview(data)
-    received = 0
-    while received < size:
+def _receive_answer(sock: socket.socket, deadline: float | None) -> tuple[bool, bytes]:
+    """A TCPROS service answer from sock before the deadline (time.monotonic(); None: no deadline): its ok byte and
+    its bytes; _NoAnswerError after the deadline, rospy.ServiceException for bytes beyond the answer (the socket is
+    closed). The first read takes whatever has arrived, up to _FIRST_READ bytes (most often the whole answer); the
+    rest is read to the length the answer's header names."""
+    data = bytearray()
+    size = None
+    while size is None or len(data) < size:
         if deadline is not None:
             remaining = deadline - time.monotonic()
             if remaining <= 0.0:
                 raise _NoAnswerError
             sock.settimeout(remaining)
         try:
-            count = sock.recv_into(view[received:])
+            chunk = sock.recv(_FIRST_READ if size is None else size - len(data))
         except TimeoutError:
             raise _NoAnswerError from None
-        if count == 0:
+        if not chunk:
             raise _ConnectionClosedError
-        received += count
-    return bytes(data)
+        data += chunk
+        if size is None and len(data) >= 5:
+            size = 5 + struct.unpack_from("<I", data, 1)[0]
+    if len(data) > size:
+        sock.close()  # the stream is out of step: the next call opens a new connection
+        raise rospy.ServiceException(f"a service answered {len(data) - size} bytes more than its answer's length")
+    return data[0] != 0, bytes(data[5:])
 
 
 def _call_kept(
@@ -143,8 +153,7 @@ def _call_kept(
         sock.sendall(buffer.getvalue())
     except TimeoutError:
         raise _NoAnswerError from None
-    ok, size = struct.unpack("<BI", _receive(sock, 5, deadline))
-    data = _receive(sock, size, deadline)
+    ok, data = _receive_answer(sock, deadline)
     if not ok:
         raise rospy.ServiceException(
             f"service [{proxy.resolved_name}] responded with an error: {data.decode('utf-8', 'replace')}"

@@ -34,8 +34,10 @@ SETTLE = 0.3
 # s ahead the packer asks pick_moving to meet an object at the earliest: about the shortest approach from the box;
 # pick_moving meets it later when the approach takes longer.
 PACK_LEAD = 0.6
-# s the cup stays on the place while its vacuum goes off (the command is sent a third of the way into it).
-RELEASE_DWELL = 0.15
+# s after the arm is due at the place that the vacuum goes off (the trajectory starts a little after it is sent), and
+# the most s after that time the cup waits for the simulator to let the object go (it retreats as soon as it has).
+RELEASE_DELAY = 0.02
+RELEASE_WAIT = 0.15
 # s the cup may wait on the place for the next object to pick, whose approach continues the retreat without a stop
 # (a retreat on its own, then the approach, take longer than the two blended and this wait): after that it retreats.
 RETREAT_AFTER = 0.5
@@ -227,8 +229,8 @@ class Packer:
 def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -> tuple[str, RobotTrajectory | None]:
     """Put the object a suction cup holds down at `position` (its centre) without stopping above it: a plan to
     `approach_distance` above the place and the straight descent onto it as one blended motion (blending.blended),
-    then RELEASE_DWELL s on the place while the vacuum goes off. The vacuum goes off when the arm is at the place
-    (timed from when the motion was sent); the object is put down once the simulator has let it go. ('' and the
+    then the vacuum off when the arm is at the place (RELEASE_DELAY after it is due there, timed from when the motion
+    was sent); the object is put down once the simulator has let it go (within RELEASE_WAIT). ('' and the
     straight retreat up from the place, not yet run; or what failed and None)."""
     arm = driver.arm
     place = driver.place_tip(position)
@@ -257,14 +259,13 @@ def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -
     executed: list[bool] = []
     runner = threading.Thread(target=lambda: executed.append(arm.execute(trajectory, wait=True)))
     runner.start()
-    rospy.sleep(max(sent + at_place + RELEASE_DWELL / 3.0 - rospy.get_time(), 0.0))
+    rospy.sleep(max(sent + at_place + RELEASE_DELAY - rospy.get_time(), 0.0))
     why = "" if driver.gripper_open() else driver.last_failure
     held = not why
-    while held and rospy.get_time() < sent + at_place + RELEASE_DWELL and not rospy.is_shutdown():
+    while held and rospy.get_time() < sent + at_place + RELEASE_WAIT and not rospy.is_shutdown():
         held = bool(driver.get_object_state(name).attached_to)
         if held:
-            rospy.sleep(0.02)
-    rospy.sleep(max(sent + at_place + RELEASE_DWELL - rospy.get_time(), 0.0))
+            rospy.sleep(0.01)
     if not why and name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
         rospy.logwarn("detaching '%s' in the planning scene failed", name)
     runner.join()

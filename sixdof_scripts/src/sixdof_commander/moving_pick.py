@@ -16,8 +16,8 @@ The gripper is the package's (ArmDriver's: its grasping information through move
 ArmDriver.gripper_close once the tool is at the grasp; the tool stays on the object for Timing's default `close`
 (1 s, for the grasp fix) plus the fingers' travel from open to the object's width at their URDF velocity limit. A
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
-moment its face touches the top (SUCTION_TIMING: 0.2 s down, 0.1 s on the top face, 0.2 s up; at the pre-grasp point
-0.1 s early). Whether the object is held is the simulator's `attached_to` of it.
+moment its face touches the top (SUCTION_TIMING: 0.12 s down, 0.05 s on the top face, 0.12 s up, points 0.05 s apart;
+at the pre-grasp point 0.05 s early). Whether the object is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
 leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
@@ -146,7 +146,7 @@ class Timing:
 
 # A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close,
 # and a quicker descent and lift (nothing closes around the object: it need not be met as gently).
-SUCTION_TIMING = Timing(descend=0.2, close=0.1, lift=0.2, margin=0.1)
+SUCTION_TIMING = Timing(descend=0.12, close=0.05, lift=0.12, step=0.05, margin=0.05)
 
 
 def _default_timing(driver: ArmDriver, geometry: ObjectGeometry) -> Timing:

@@ -66,3 +66,31 @@ def test_approach_step_takes_the_first_approach_that_fits_without_much_to_spare(
     for kept in (False, True):
         assert approach_step(-0.01, kept=kept, last=False) == NEXT
         assert approach_step(-math.inf, kept=kept, last=True) == NEXT
+
+
+def test_an_overlapping_descent_touches_the_object_as_the_ramp_ends():
+    velocity = np.array([0.3, 0.0, 0.0])
+    grasp0 = homogeneous([0.4, 0.0, 0.05], np.diag([1.0, -1.0, -1.0]))
+
+    def grasp_at(tau):
+        pose = grasp0.copy()
+        pose[:3, 3] += velocity * tau
+        return pose
+
+    timing = Timing(ramp=0.2, descend=0.12, close=0.05, lift=0.12, step=0.01, overlap=0.12)
+    assert timing.grasp_time == pytest.approx(timing.ramp) and timing.total == pytest.approx(0.37)
+    times, poses = follow_path(grasp_at, velocity, 0.03, timing)
+    for tau, pose in zip(times, poses, strict=True):
+        above = pose[2, 3] - grasp_at(tau)[2, 3]
+        if tau < (timing.ramp - timing.overlap) - 1e-9:
+            assert above == pytest.approx(0.03)
+        elif tau < timing.ramp - 1e-9:
+            assert 0.0 < above <= 0.03 + 1e-9  # coming down, still above the top
+        elif tau <= timing.grasp_time + timing.close + 1e-9:
+            assert pose[:3, 3] == pytest.approx(grasp_at(tau)[:3, 3], abs=1e-9)  # on it, moving with it
+
+
+@pytest.mark.parametrize("overlap", [-0.1, 0.25, float("nan")])
+def test_timing_refuses_a_bad_overlap(overlap):
+    with pytest.raises(SixdofCommanderError, match="overlap"):
+        Timing(ramp=0.2, descend=0.3, overlap=overlap)

@@ -1,23 +1,24 @@
 """Picking a moving object (one a conveyor carries): `pick_moving(driver, object)`.
 
-The object moves at a constant horizontal velocity (the simulator's twist of it, or the perception tracker's estimate
-in a DetectedObject; the vertical part is not used). pick_moving opens the gripper and chooses the interception:
-the earliest start of the follow path, from `lead` s ahead on, whose every point the arm can reach (the object is
-met as far upstream as the arm reaches, or the moment the arm can be there once it has entered its reach). The
-follow path is one Cartesian path timed to the object: the tool accelerates from rest, `approach_distance` above the
-object's path, to the object's velocity while the object catches up with it (`ramp`), descends onto it moving with
-it (`descend`), stays on it while the gripper closes (`close`), and lifts it while coming to rest (`lift`). Every
-point of it is one inverse-kinematics solution of move_group's compute_ik (seeded with the previous one), timed here
-to the object's motion. The arm runs the approach plan (to the follow path's first point), waits there and runs the
-follow path as one trajectory, so that no command latency falls between them; the approach must end
-`Timing.margin` s before the follow path starts, else the interception moves later.
+The object moves at a constant horizontal velocity (the simulator's twist of it, or the perception tracker's estimate in
+a DetectedObject; the vertical part is not used). pick_moving opens the gripper (a suction cup's vacuum goes off unless
+this client last turned it off) and chooses the interception: the earliest start of the follow path, from `lead` s ahead
+on, whose every point the arm can reach (the object is met as far upstream as the arm reaches, or the moment the arm can
+be there once it has entered its reach). The follow path is one Cartesian path timed to the object: the tool accelerates
+from rest, `approach_distance` above the object's path, to the object's velocity while the object catches up with it
+(`ramp`), descends onto it moving with it (`descend`), stays on it while the gripper closes (`close`), and lifts it
+while coming to rest (`lift`). Every point of it is one inverse-kinematics solution of move_group's compute_ik (seeded
+with the previous one), timed here to the object's motion. The arm runs the approach plan (to the follow path's first
+point), waits there and runs the follow path as one trajectory, so that no command latency falls between them; the
+approach must end `Timing.margin` s before the follow path starts, else the interception moves later.
 
 The gripper is the package's (ArmDriver's: its grasping information through move_group). Fingers close with
 ArmDriver.gripper_close once the tool is at the grasp; the tool stays on the object for Timing's default `close`
 (1 s, for the grasp fix) plus the fingers' travel from open to the object's width at their URDF velocity limit. A
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
-moment its face touches the top (SUCTION_TIMING: 0.12 s down, 0.05 s on the top face, 0.12 s up, points 0.05 s apart;
-at the pre-grasp point 0.05 s early). Whether the object is held is the simulator's `attached_to` of it.
+moment its face touches the top (SUCTION_TIMING: 0.12 s down during the last 0.12 s of the ramp, touching the top as
+its velocity matches the object's, 0.05 s on the top face, 0.12 s up, points 0.05 s apart; at the pre-grasp point
+0.05 s early). Whether the object is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
 leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
@@ -117,7 +118,9 @@ class MovingObject:
 @dataclass(frozen=True)
 class Timing:
     """Durations (s) of the follow path's phases, its point spacing, how early the arm waits at the pre-grasp point,
-    and how far ahead (in which steps) the interception is searched for."""
+    and how far ahead (in which steps) the interception is searched for. overlap: s of the descent within the end of
+    the ramp (0 to the shorter of the two): the tool comes down while it still catches up with the object, and meets
+    it `descend - overlap` s after matching its velocity (at the ramp's end when overlap is descend)."""
 
     ramp: float = 0.2
     descend: float = 0.3
@@ -127,26 +130,32 @@ class Timing:
     margin: float = 0.2
     search: float = 4.0
     search_step: float = 0.1
+    overlap: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("ramp", "descend", "close", "lift", "step", "margin", "search", "search_step"):
+        for name in ("ramp", "descend", "close", "lift", "step", "margin", "search", "search_step", "overlap"):
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value <= 0:
-                raise SixdofCommanderError(f"pick_moving timing '{name}' must be a number > 0, got {value!r}")
+            number = not isinstance(value, bool) and isinstance(value, int | float) and math.isfinite(value)
+            if not number or value < 0 or (value == 0 and name != "overlap"):
+                bound = ">= 0" if name == "overlap" else "> 0"
+                raise SixdofCommanderError(f"pick_moving timing '{name}' must be a number {bound}, got {value!r}")
+        if self.overlap > min(self.ramp, self.descend):
+            raise SixdofCommanderError(f"pick_moving timing 'overlap' {self.overlap:g} s exceeds the ramp or descent")
 
     @property
     def grasp_time(self) -> float:
         """From the follow start to the moment the tool is at the grasp (the gripper closes then)."""
-        return self.ramp + self.descend
+        return self.ramp - self.overlap + self.descend
 
     @property
     def total(self) -> float:
-        return self.ramp + self.descend + self.close + self.lift
+        return self.grasp_time + self.close + self.lift
 
 
 # A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close,
-# and a quicker descent and lift (nothing closes around the object: it need not be met as gently).
-SUCTION_TIMING = Timing(descend=0.12, close=0.05, lift=0.12, step=0.05, margin=0.05)
+# and a quicker descent and lift (nothing closes around the object: it need not be met as gently), the descent within
+# the ramp's end (the cup is above the top until it touches it, as its velocity matches the object's).
+SUCTION_TIMING = Timing(descend=0.12, close=0.05, lift=0.12, step=0.05, margin=0.05, overlap=0.12)
 
 
 def _default_timing(driver: ArmDriver, geometry: ObjectGeometry) -> Timing:
@@ -182,7 +191,7 @@ def follow_path(
     uniformly to `velocity`, which puts it above grasp_at(tau) from tau = ramp on; it descends (half a cosine) to the
     grasp and stays there for `close`, then rises back by `height` while decelerating uniformly to rest (the object,
     held, has left the belt)."""
-    ramp, end_close = timing.ramp, timing.ramp + timing.descend + timing.close
+    ramp, end_close = timing.ramp, timing.grasp_time + timing.close
     start = grasp_at(ramp / 2.0)
     count = int(math.ceil(timing.total / timing.step - 1e-9))
     times = np.linspace(0.0, timing.total, count + 1)
@@ -195,7 +204,7 @@ def follow_path(
         else:
             after = min(tau - end_close, timing.lift)
             travel = end_close - ramp / 2.0 + after - after * after / (2.0 * timing.lift)
-        down = tau - ramp
+        down = tau - (ramp - timing.overlap)
         if down <= 0.0:
             z = height
         elif down <= timing.descend:
@@ -408,7 +417,8 @@ class _MovingPick:
         (it seals when the cup's face touches the top): (the ROS time of the command, why it failed or '')."""
         driver = self.driver
         suction = isinstance(driver.gripper, SuctionGripper)
-        rospy.sleep(max(start + (self.timing.ramp if suction else self.timing.grasp_time) - rospy.get_time(), 0.0))
+        at = start + (self.timing.ramp - self.timing.overlap if suction else self.timing.grasp_time)
+        rospy.sleep(max(at - rospy.get_time(), 0.0))
         grip_time = rospy.get_time()
         if suction:
             on = driver.gripper.grasp().reached_goal
@@ -417,7 +427,8 @@ class _MovingPick:
 
     def run(self, lead: float, prefix: RobotTrajectory | None) -> float:
         """Pick; the ROS time the gripper closed. _Failed says why not."""
-        if not self.driver.gripper_open():
+        off = isinstance(self.driver.gripper, SuctionGripper) and self.driver.gripper.vacuum is False
+        if not off and not self.driver.gripper_open():
             raise _Failed(FAILED, self.driver.last_failure)
         plan, start, times, positions = self.plan_approach(lead, prefix)
         # One trajectory: the approach, a wait at the pre-grasp point, the follow path timed to the object.

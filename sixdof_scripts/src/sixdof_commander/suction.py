@@ -43,6 +43,8 @@ class SuctionGripper:
         waiter.action(self._client, resolve(ns, action_name))
         waiter.check("SuctionGripper")
         self.last_status_text = ""
+        # Whether the vacuum is on as this client last commanded it (None: unknown, no command reached its goal yet).
+        self.vacuum: bool | None = None
 
     def grasp(self) -> GripperCommandResult:
         """Vacuum on; the result's `stalled` says whether the cup holds an object."""
@@ -61,7 +63,9 @@ class SuctionGripper:
         return self.release()
 
     def _command(self, position: float) -> GripperCommandResult:
+        self.vacuum = None
         result, self.last_status_text = send_gripper_command(self._client, position, 0.0, self._result_timeout)
+        self.vacuum = position > 0.0 if result.reached_goal else None
         return result
 
 

@@ -31,3 +31,11 @@ def test_the_corner_is_rounded_within_half_the_shorter_path():
 def test_an_invalid_curve_leaves_the_corner_sharp():
     path = round_corner(UP, OVER, lambda q: q[0] < 0.01 or q[1] > 0.199)
     assert path == pytest.approx(np.vstack([UP, OVER[1:]]))
+
+
+def test_a_tighter_curve_is_taken_when_the_widest_is_not_valid():
+    # Invalid more than 0.03 rad from the corner on joint 2: the widest curve (0.1 rad) is not, a tighter one is.
+    path = round_corner(UP, OVER, lambda q: q[1] > 0.17 - 1e-9)
+    assert path[0] == pytest.approx(UP[0]) and path[-1] == pytest.approx(OVER[-1])
+    assert np.min(np.linalg.norm(path - [0.0, 0.2], axis=1)) > 1e-3  # the corner is cut
+    assert np.min(path[np.abs(path[:, 0]) > 1e-12][:, 1]) > 0.17 - 1e-9

@@ -5,7 +5,8 @@ That parameterization cuts a corner by at most 0.01 rad, so at a sharp one (a st
 plan after a straight retreat) the arm all but stops. Each corner is therefore rounded first: the last part of one
 motion and the first part of the next, each up to half its motion's length and at most CORNER rad long, are replaced
 by a quadratic Bezier curve in joint space through the corner's neighbourhood (tangent to both motions where it
-meets them), every state of which move_group's check_state_validity finds collision-free (else the corner stays).
+meets them), every state of which move_group's check_state_validity finds collision-free (else a tighter curve is
+tried, down to WAYPOINT_SPACING; failing all, the corner stays).
 """
 
 from __future__ import annotations
@@ -52,20 +53,21 @@ def _length(path: np.ndarray) -> float:
 
 def round_corner(a: np.ndarray, b: np.ndarray, valid: Callable[[np.ndarray], bool]) -> np.ndarray:
     """Joint path a (points x joints) then path b (starting where a ends), the corner between them rounded (module
-    docstring) when every state of the curve is valid(state)."""
+    docstring) when every state of the curve is valid(state). The widest curve is tried first, then ones half as
+    wide, down to WAYPOINT_SPACING: beside an obstacle (a held object over the box's wall) a tighter curve can be
+    valid where a wide one is not."""
     reach = min(CORNER, _length(a) / 2.0, _length(b) / 2.0)
-    if reach < WAYPOINT_SPACING:
-        return np.vstack([a, b[1:]])
-    cut_a, p0 = _along(a[::-1], reach)
-    cut_b, p2 = _along(b, reach)
-    corner = a[-1]
-    count = max(2, math.ceil(2.0 * reach / WAYPOINT_SPACING))
-    t = np.linspace(0.0, 1.0, count + 1)[:, None]
-    curve = (1.0 - t) ** 2 * p0 + 2.0 * t * (1.0 - t) * corner + t**2 * p2
-    if not all(valid(q) for q in curve[1:-1]):
-        return np.vstack([a, b[1:]])
-    path = np.vstack([a[: len(a) - cut_a], curve, b[cut_b:]])
-    return path[np.r_[True, np.linalg.norm(np.diff(path, axis=0), axis=1) > 1e-12]]  # no repeated points
+    while reach >= WAYPOINT_SPACING:
+        cut_a, p0 = _along(a[::-1], reach)
+        cut_b, p2 = _along(b, reach)
+        count = max(2, math.ceil(2.0 * reach / WAYPOINT_SPACING))
+        t = np.linspace(0.0, 1.0, count + 1)[:, None]
+        curve = (1.0 - t) ** 2 * p0 + 2.0 * t * (1.0 - t) * a[-1] + t**2 * p2
+        if all(valid(q) for q in curve[1:-1]):
+            path = np.vstack([a[: len(a) - cut_a], curve, b[cut_b:]])
+            return path[np.r_[True, np.linalg.norm(np.diff(path, axis=0), axis=1) > 1e-12]]  # no repeated points
+        reach /= 2.0
+    return np.vstack([a, b[1:]])
 
 
 def blended(driver: ArmDriver, parts: list[RobotTrajectory]) -> RobotTrajectory:

@@ -24,6 +24,48 @@ struct PathPoint {
   bool stop = false;  // path speed must be zero here (ends, sharp corners)
 };
 
+// The time-optimal motion along a straight segment (one interval) between squared path speeds x0 and x1, with
+// path acceleration limit a and squared speed limit xl: x(s) = min(x0 + 2 a s, xl, x1 + 2 a (length - s)), i.e.
+// full acceleration to the peak speed, cruise, full deceleration (any of the three may be empty).
+struct LineMotion {
+  double v0 = 0.0, peak = 0.0, a = 0.0;   // start path speed, highest path speed, path acceleration
+  double accelerate = 0.0, cruise = 0.0;  // arc lengths of the first two phases
+  double t1 = 0.0, t2 = 0.0, t3 = 0.0;    // durations of the three phases
+
+  LineMotion() = default;
+  LineMotion(double x0, double x1, double length, double acceleration, double speed_limit) : a(acceleration) {
+    // The passes keep |x1 - x0| <= 2 a length and both ends under the segment's limit, so the peak is above both.
+    const double x_peak = std::max({std::min(speed_limit, 0.5 * (x0 + x1) + a * length), x0, x1});
+    const double inverse_2a = 0.5 / a;
+    accelerate = std::min(length, (x_peak - x0) * inverse_2a);
+    const double decelerate = std::min(length - accelerate, (x_peak - x1) * inverse_2a);
+    cruise = std::max(0.0, length - accelerate - decelerate);
+    v0 = std::sqrt(x0);
+    peak = std::sqrt(x_peak);
+    t1 = (peak - v0) / a;
+    t2 = cruise > 0.0 ? cruise / peak : 0.0;
+    t3 = (peak - std::sqrt(x1)) / a;
+  }
+  double duration() const { return t1 + t2 + t3; }
+  // Arc length from the segment's start, path speed and path acceleration at time tau into the motion.
+  void at(double tau, double* s, double* speed, double* acceleration) const {
+    if (tau < t1) {
+      *s = v0 * tau + 0.5 * a * tau * tau;
+      *speed = v0 + a * tau;
+      *acceleration = a;
+    } else if (tau < t1 + t2) {
+      *s = accelerate + peak * (tau - t1);
+      *speed = peak;
+      *acceleration = 0.0;
+    } else {
+      const double t = std::min(tau - t1 - t2, t3);
+      *s = accelerate + cruise + peak * t - 0.5 * a * t * t;
+      *speed = std::max(0.0, peak - a * t);
+      *acceleration = -a;
+    }
+  }
+};
+
 // Joint velocities are q' * sd and accelerations q' * sdd + q'' * sd^2 with x = sd^2 and u = sdd.
 struct Limits {
   Eigen::VectorXd velocity;
@@ -81,7 +123,8 @@ class Solver {
     }
   }
 
-  // Fills x_ (squared path speed per grid point) and the per-interval path acceleration u_.
+  // Fills x_ (squared path speed per grid point), and per interval the path acceleration u_ (arcs) or the motion
+  // (lines).
   void solve() {
     const std::size_t n = grid_.size();
     std::vector<double> limit(n);
@@ -93,13 +136,20 @@ class Solver {
     // Forward pass: accelerate as hard as allowed below the backward bound.
     x_.assign(n, 0.0);
     u_.assign(n - 1, 0.0);
+    lines_.assign(n - 1, LineMotion());
     for (std::size_t i = 0; i + 1 < n; ++i) {
       double lo = 0.0, hi = upper[i + 1];
       // The feasible set of (x_i, x_i+1) is convex and holds (0, 0) and (upper_i, some x_i+1 <= upper_i+1),
       // so from any x_i <= upper_i the interval is not empty (up to rounding).
       transition(i, x_[i], &lo, &hi);
       x_[i + 1] = std::max(0.0, hi);
-      u_[i] = (x_[i + 1] - x_[i]) / (2.0 * step(i));
+      const Segment& seg = segmentOf(i);
+      if (seg.circular) {
+        u_[i] = (x_[i + 1] - x_[i]) / (2.0 * step(i));
+      } else {
+        const int k = grid_[i].segment;
+        lines_[i] = LineMotion(x_[i], x_[i + 1], step(i), line_accelerations_[k], line_limits_[k]);
+      }
     }
   }
 
@@ -107,6 +157,10 @@ class Solver {
     const std::size_t n = grid_.size();
     std::vector<double> times(n, 0.0);
     for (std::size_t i = 0; i + 1 < n; ++i) {
+      if (!segmentOf(i).circular) {
+        times[i + 1] = times[i] + lines_[i].duration();
+        continue;
+      }
       const double v = std::sqrt(x_[i]) + std::sqrt(x_[i + 1]);
       times[i + 1] = times[i] + 2.0 * step(i) / v;
     }
@@ -299,9 +353,16 @@ class Solver {
   // The state at time tau into interval i (time t from the start), written into `point`.
   void state(std::size_t i, double tau, double t, TrajectoryPoint* point) const {
     const Segment& seg = segmentOf(i);
-    const double sd0 = std::sqrt(x_[i]);
-    const double ds = std::clamp(sd0 * tau + 0.5 * u_[i] * tau * tau, 0.0, step(i));
-    const double sd = std::max(0.0, sd0 + u_[i] * tau);
+    double ds = 0.0, sd = 0.0, u = 0.0;
+    if (seg.circular) {
+      const double sd0 = std::sqrt(x_[i]);
+      ds = sd0 * tau + 0.5 * u_[i] * tau * tau;
+      sd = std::max(0.0, sd0 + u_[i] * tau);
+      u = u_[i];
+    } else {
+      lines_[i].at(tau, &ds, &sd, &u);
+    }
+    ds = std::clamp(ds, 0.0, step(i));
     const double s = std::clamp(grid_[i].s + ds - seg.start, 0.0, seg.length);
     point->time_from_start = t;
     point->positions.resize(joints_);
@@ -312,7 +373,7 @@ class Solver {
     Eigen::Map<Eigen::VectorXd> d1(point->velocities.data(), joints_);
     Eigen::Map<Eigen::VectorXd> d2(point->accelerations.data(), joints_);
     seg.derivatives(s, d1, d2);
-    d2 = d1 * u_[i] + d2 * sd * sd;
+    d2 = d1 * u + d2 * sd * sd;
     d1 *= sd;
   }
 
@@ -326,7 +387,8 @@ class Solver {
   // Per arc interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
   std::vector<double> ends_;
   std::vector<double> x_;
-  std::vector<double> u_;
+  std::vector<double> u_;                               // per arc interval: its constant path acceleration
+  std::vector<LineMotion> lines_;                       // per line interval: its motion
   std::vector<std::pair<double, double>> lower_lines_;  // speedLimit's and maxStart's scratch space
   std::vector<std::pair<double, double>> upper_lines_;
 };
@@ -359,18 +421,21 @@ TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::s
   std::vector<double> stops;
   blended_path::buildPath(points, options.max_deviation, &segments, &stops);
 
-  // Grid: every segment split into equal steps no longer than the resolution (at least two, so that a
-  // segment between two stops has an interior point to move through). On a blend the step also turns
-  // the tangent by at most kMaxStepAngle: the limits hold at interval ends, and between them the error
-  // grows with the square of that angle (1e-2 rad: ~1e-5 of a limit, well inside the margin).
+  // Grid: a straight segment is one interval (its motion is solved in closed form: the tangent is constant, so the
+  // limits read the same all along it); a blend is split into equal steps no longer than the resolution (at least
+  // two) that also turn the tangent by at most kMaxStepAngle: the limits hold at interval ends, and between them
+  // the error grows with the square of that angle (1e-2 rad: ~1e-5 of a limit, well inside the margin).
   constexpr double kMaxStepAngle = 0.01;
   std::vector<int> steps(segments.size());
   std::size_t grid_size = 1;
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const Segment& seg = segments[k];
-    const double max_step =
-        seg.circular ? std::min(options.path_resolution, kMaxStepAngle * seg.radius) : options.path_resolution;
-    steps[k] = std::max(2, static_cast<int>(std::ceil(seg.length / max_step)));
+    if (!seg.circular) {
+      steps[k] = 1;
+    } else {
+      const double max_step = std::min(options.path_resolution, kMaxStepAngle * seg.radius);
+      steps[k] = std::max(2, static_cast<int>(std::ceil(seg.length / max_step)));
+    }
     grid_size += steps[k];
   }
   std::vector<PathPoint> grid;

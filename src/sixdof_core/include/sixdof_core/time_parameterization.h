@@ -20,7 +20,7 @@ struct TimeParameterizationOptions {
   double max_deviation = 0.01;
   // Time between output points (s).
   double sample_period = 0.01;
-  // Grid step along the path (joint-space arc length, rad) of the phase-plane solution.
+  // Grid step along the blends (joint-space arc length, rad) of the phase-plane solution.
   double path_resolution = 1e-3;
 };
 
@@ -32,11 +32,12 @@ struct TimeParameterizationResult : Result<TimeParameterizationStatus> {
 
 // Time-optimal parameterization along a path with circular blends (the path of Kunz & Stilman,
 // "Time-optimal trajectory generation for path following with bounded acceleration and velocity",
-// RSS 2012). The phase plane (path speed squared over arc length) is solved on a fine grid by a backward
-// pass of maximal deceleration and a forward pass of maximal acceleration; each grid interval has a
-// constant path acceleration chosen so that every joint's velocity and acceleration limit holds at
-// both ends of the interval (exact on straight segments, within the grid's curvature error on blends,
-// which a 0.1% margin on the limits absorbs). The output starts and ends at rest, passes through the
+// RSS 2012). The phase plane (path speed squared over arc length) is solved on a grid by a backward
+// pass of maximal deceleration and a forward pass of maximal acceleration. A straight segment is one
+// interval solved in closed form (full acceleration, cruise at its speed limit, full deceleration: exact);
+// a blend is split into steps of path_resolution, each with a constant path acceleration chosen so that
+// every joint's velocity and acceleration limit holds at both ends of the step (within the grid's
+// curvature error, which a 0.1% margin on the limits absorbs). The output starts and ends at rest, passes through the
 // first and last waypoints exactly, stops exactly at waypoints where the path reverses or max_deviation
 // is 0, and stays within max_deviation of every other waypoint. Positions are C1 along the path,
 // velocities are continuous, accelerations are piecewise continuous (bang-bang, as any time-optimal

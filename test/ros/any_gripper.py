@@ -7,7 +7,9 @@ launched stack per robot:
 - seven_dof_hand: a 7-DoF arm with a prismatic two-finger hand and no `tcp` link;
 - six_r_jaw: the 6R arm of six_r_adaptive.urdf.xacro with revolute jaws that open at their upper limit;
 - six_r_adaptive: the same arm with its default 2F-style gripper: a revolute master and five mimic joints (one with a
-  negative multiplier and limits that disagree with it), no inertias on its moving links.
+  negative multiplier and limits that disagree with it), no inertias on its moving links;
+- sixdof: the sixdof arm of sixdof_description, unchanged (its own `tcp` link, prismatic fingers), generated without
+  the answers its CAD generator writes.
 
     python -m pytest test/ros/any_gripper.py -k six_r_jaw
 """
@@ -21,9 +23,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+import rospkg
 import rospy
 from e2e import STARTUP_TIMEOUT, planning_scene
-from generated import generate_package, launch_demo, stop_demo, workspace_fixture
+from generated import FIXTURES, generate_package, launch_demo, stop_demo, workspace_fixture
 from geometry_msgs.msg import Pose
 from moveit_msgs.msg import PlanningSceneComponents
 from shape_msgs.msg import SolidPrimitive
@@ -34,11 +37,12 @@ from sixdof_bringup.placement import placement
 from sixdof_msgs.msg import SimObject
 from sixdof_msgs.srv import DeleteObject, GetObjectState, SpawnObject
 
-# robot -> (description in sixdof_test_robots, xacro arguments)
+# robot -> (description, xacro arguments)
 ROBOTS = {
-    "seven_dof_hand": ("urdf/seven_dof_hand.urdf.xacro", ""),
-    "six_r_jaw": ("urdf/six_r_adaptive.urdf.xacro", "gripper:=jaw"),
-    "six_r_adaptive": ("urdf/six_r_adaptive.urdf.xacro", ""),
+    "seven_dof_hand": (FIXTURES / "urdf/seven_dof_hand.urdf.xacro", ""),
+    "six_r_jaw": (FIXTURES / "urdf/six_r_adaptive.urdf.xacro", "gripper:=jaw"),
+    "six_r_adaptive": (FIXTURES / "urdf/six_r_adaptive.urdf.xacro", ""),
+    "sixdof": (Path(rospkg.RosPack().get_path("sixdof_description")) / "urdf/sixdof.urdf", ""),
 }
 OBJECT = "test_object"
 # (shape, width, height, start x y yaw, place x y): 3 and 6 cm of each shape, at different spots and yaws of the

@@ -64,10 +64,10 @@ def wait_for_move_group() -> moveit_commander.RobotCommander:
             time.sleep(1.0)
 
 
-def generate_package(robot: str, description: str, workspace: Path, xacro_args: str = "") -> tuple[str, Path]:
+def generate_package(robot: str, description: str | Path, workspace: Path, xacro_args: str = "") -> tuple[str, Path]:
     """The setup assistant's config package of the fixture robot `robot` (description: its file in sixdof_test_robots,
-    expanded with xacro_args) written into workspace without answers: (package name `<robot>_sixdof_config`, its
-    folder)."""
+    or an absolute path, expanded with xacro_args) written into workspace without answers: (package name
+    `<robot>_sixdof_config`, its folder)."""
     name = f"{robot}_sixdof_config"
     command = ["rosrun", "sixdof_setup_assistant", "setup_assistant", "--urdf", str(FIXTURES / description),
                "--package-out", str(workspace), "--name", name]

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "test_helpers.h"
 
@@ -146,6 +147,19 @@ TEST_F(WorldTest, EffortModeLetsGravityWin) {
   world.step(200);
   EXPECT_GT(world.jointPositions()[world.jointIndex("joint3")], 0.05);  // +y rotation tips +x down
   EXPECT_DOUBLE_EQ(world.jointEfforts()[world.jointIndex("joint3")], 0.0);
+}
+
+TEST_F(WorldTest, AnOutOfLimitsTargetIsNamedExactly) {
+  // One rounding step past the upper limit: refused, and the message tells it from the limit.
+  const JointInfo& info = world.joints()[world.jointIndex("joint2")];
+  const double past = std::nextafter(info.upper, 10.0);
+  const Result r = world.setPositionTarget("joint2", past);
+  ASSERT_EQ(r.status, Status::kOutOfLimits);
+  const std::size_t at = r.message.find("target ");
+  ASSERT_NE(at, std::string::npos) << r.message;
+  EXPECT_EQ(std::stod(r.message.substr(at + 7)), past) << r.message;  // the value as it is, not 6 digits of it
+  EXPECT_NE(r.message.find("] (by 2.2e-16)"), std::string::npos) << r.message;
+  EXPECT_EQ(world.setJointPositions({"joint2"}, {past}).status, Status::kOutOfLimits);
 }
 
 TEST_F(WorldTest, VelocityModeMovesAtTheCommandedSpeed) {

@@ -1,6 +1,26 @@
+#include <charconv>
+
 #include "world_impl.h"
 
 namespace sixdof_sim {
+namespace {
+
+// `digits` significant digits, or (0) the shortest text that reads back as the same double.
+std::string number(double value, int digits = 0) {
+  char text[32];
+  const auto end = digits > 0 ? std::to_chars(text, text + sizeof text, value, std::chars_format::general, digits).ptr
+                              : std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+// "<value> outside [<lower>, <upper>] (by <excess>)", exact: a value a rounding error past a limit shows as such.
+std::string outsideLimits(const JointInfo& info, double value) {
+  const double excess = value < info.lower ? info.lower - value : value - info.upper;
+  const std::string limits = "[" + number(info.lower) + ", " + number(info.upper) + "]";
+  return number(value) + " outside " + limits + " (by " + number(excess, 2) + ")";
+}
+
+}  // namespace
 
 bool World::Impl::linkWorldPose(const std::string& link, Eigen::Isometry3d* pose) const {
   const auto it = links.find(link);
@@ -66,9 +86,7 @@ Result World::setJointPositions(const std::vector<std::string>& names, const std
     }
     const JointInfo& info = d.joint_infos[j];
     if (!info.withinLimits(positions[i])) {
-      return {Status::kOutOfLimits, "joint '" + names[i] + "': position " + std::to_string(positions[i]) +
-                                        " outside [" + std::to_string(info.lower) + ", " +
-                                        std::to_string(info.upper) + "]"};
+      return {Status::kOutOfLimits, "joint '" + names[i] + "': position " + outsideLimits(info, positions[i])};
     }
     q[j] = positions[i];
     given[j] = true;
@@ -147,8 +165,7 @@ Result World::setPositionTarget(const std::string& joint, double position, doubl
     return {Status::kInvalidArgument, "joint '" + joint + "': target is not finite"};
   }
   if (!info.withinLimits(position)) {
-    return {Status::kOutOfLimits, "joint '" + joint + "': target " + std::to_string(position) + " outside [" +
-                                      std::to_string(info.lower) + ", " + std::to_string(info.upper) + "]"};
+    return {Status::kOutOfLimits, "joint '" + joint + "': target " + outsideLimits(info, position)};
   }
   double bound = 0.0;
   r = checkEffortBound(info, max_effort, &bound);

@@ -10,7 +10,8 @@ A trial succeeds when the released object rests within --tolerance of the target
 Every failure is classified:
   planning     a motion could not be planned (or executed)
   unreachable  no top-down grasp or place at that spot (ArmDriver's UNREACHABLE: the object does not fit the
-               gripper, or the arm cannot reach the pose above it or descend straight to it)
+               gripper, or the arm cannot reach the pose above it or descend straight to it without collision)
+  gripper      the gripper did not open, or did not close, within its goal (ArmDriver's GRIPPER)
   grasp        the gripper closed but the object was not held when lifted
   slip       the object was held after lifting but was lost before it was released
   place      the object was released but came to rest off the target (or tilted)
@@ -45,7 +46,7 @@ import rospy
 from geometry_msgs.msg import Pose
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import ArmDriver, SixdofCommanderError
-from sixdof_commander.arm_driver import UNREACHABLE
+from sixdof_commander.straight_moves import GRIPPER, UNREACHABLE
 from std_msgs.msg import ColorRGBA
 from std_srvs.srv import Empty
 
@@ -199,7 +200,7 @@ class Bench:
         return False
 
     def classify(self) -> str:
-        return "unreachable" if self.driver.last_failure_kind == UNREACHABLE else "planning"
+        return {UNREACHABLE: "unreachable", GRIPPER: "gripper"}.get(self.driver.last_failure_kind, "planning")
 
     def held(self) -> bool:
         return bool(self.get_state(OBJECT).attached_to)
@@ -316,7 +317,7 @@ def report(
         if of_shape:
             good = sum(t.outcome == "ok" for t in of_shape)
             lines.append(f"| success, {shape} | {good}/{len(of_shape)} |")
-    for kind in ("planning", "unreachable", "grasp", "slip", "place", "cleanup"):
+    for kind in ("planning", "unreachable", "gripper", "grasp", "slip", "place", "cleanup"):
         lines.append(f"| failures: {kind} | {failures.get(kind, 0)} |")
     lines.append(f"| world resets to recover (gripper or arm stuck after a trial) | {recoveries} |")
     errors = [t.error_mm for t in ok]

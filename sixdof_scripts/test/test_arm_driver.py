@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 from moveit_msgs.msg import MoveItErrorCodes
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, PlanningScene, SixdofCommanderError, rad
-from sixdof_commander.arm_driver import matrix_from_pose, pose_from_matrix
+from sixdof_commander.arm_driver import matrix_from_pose
 from sixdof_commander.error_reports import ERROR_NAMES, CallError, error_name
 from sixdof_commander.goals import pose_stamped_from_target
+from sixdof_commander.straight_moves import pose_from_matrix
 from sixdof_commander.transforms import homogeneous, matrix_from_rpy
 
 

@@ -10,16 +10,13 @@ from dataclasses import dataclass
 import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
-from moveit_msgs.msg import MoveItErrorCodes
 from moveit_msgs.srv import GetPositionIK, GetPositionIKRequest, GetStateValidity, GetStateValidityRequest
-from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
 
 from sixdof_msgs.srv import GetObjectState
 
 from ._ros import ServerWaiter, query_robot_model, resolve
 from ._service import SERVICE_TIMEOUT, PersistentService, call_service
-from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .goals import check_number, check_scaling_factor
 from .grasping import (
@@ -35,15 +32,15 @@ from .grasping import (
 from .gripper import Gripper
 from .move_group import MoveGroup
 from .package_defaults import arm_group, find_gripper, home_state, link_in_link
-from .planning_scene import PlanningScene
+from .planning_scene import PlanningScene, default_touch_links
+from .straight_moves import GRIPPER, UNREACHABLE, AllowedContacts, StraightMoves
 from .suction import SuctionGripper, suction_tcp_pose
-from .transforms import matrix_from_pose, quaternion_from_matrix
+from .transforms import matrix_from_pose
 
-# ArmDriver.last_failure_kind of a failed motion: no top-down grasp or place at that spot, or anything else.
-UNREACHABLE = "unreachable"
-FAILED = "failed"
 # gripper_close: a finger joint this close (a fraction of its open-to-closed travel) to the closed state holds nothing.
 CLOSED_ON_NOTHING = 0.025
+# A held object's contacts at most this far (m) above its bottom are with the surface it is put on or lifted from.
+SURFACE_CONTACT = 0.005
 
 
 def rad(degrees: Sequence[float]) -> list[float]:
@@ -53,15 +50,6 @@ def rad(degrees: Sequence[float]) -> list[float]:
     return [math.radians(check_number(v, f"angle {i}")) for i, v in enumerate(degrees)]
 
 
-def pose_from_matrix(matrix: np.ndarray) -> Pose:
-    """geometry_msgs/Pose of a 4x4 transform."""
-    pose = Pose()
-    pose.position.x, pose.position.y, pose.position.z = (float(v) for v in matrix[:3, 3])
-    q = quaternion_from_matrix(matrix[:3, :3])
-    pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
-    return pose
-
-
 @dataclass
 class _Held:
     name: str
@@ -69,12 +57,17 @@ class _Held:
     round: bool  # a sphere: no side to stand on, put down as it is held
 
 
-class ArmDriver:
+class ArmDriver(StraightMoves):
     """Moves the arm and the gripper the way the paper's script does, and picks and places objects.
 
     Motions return True on success and False on planning/execution failure; `last_failure` then says
     what failed and `last_failure_kind` how: UNREACHABLE when there is no top-down grasp or place at that spot
-    (the object does not fit the gripper, or the arm cannot reach the poses above and at it), FAILED otherwise.
+    (the object does not fit the gripper, or the arm cannot reach the poses above and at it, or cannot descend
+    straight to it without collision), GRIPPER when the gripper did not open or close, FAILED otherwise.
+    The straight moves onto and off objects are collision-checked against everything but the contacts they are
+    meant to make, which MoveIt's pick and place allow too: the gripper's links (the end-effector link's touch
+    links) with the object it takes (grasp), and the held object with the surface below it (place). Lift and retreat
+    go back up the checked descent, out of the contacts it ended in, unchecked.
     Misuse raises SixdofCommanderError.
 
     Everything robot-specific comes from the config package through move_group's get_robot_model: the gripper's
@@ -122,6 +115,7 @@ class ArmDriver:
         self.arm.set_max_velocity_scaling_factor(velocity)
         self.arm.set_max_acceleration_scaling_factor(acceleration)
         self.home = home_state(srdf, self.arm.get_name())
+        self.home_joints = dict(srdf.group_states[self.arm.get_name()][self.home])
         self.gripper: Gripper | SuctionGripper | None = None
         self._spec: GraspSpec | None = None
         if self.gripper_model is not None and self.gripper_model.suction_cup:
@@ -140,6 +134,9 @@ class ArmDriver:
             )
             self._spec = grasp_spec(g, link_in_link(urdf, self.arm.get_end_effector_link(), g.parent_link))
         self.scene = PlanningScene(ns=ns, wait_for_servers=wait_for_servers)
+        # The links an object held at the end-effector link may touch (the scene's attached objects' touch links):
+        # also those that may touch an object while the gripper takes or releases it.
+        self._gripper_links = frozenset(default_touch_links(urdf, srdf, self.arm.get_end_effector_link()))
         self._validity = PersistentService(resolve(ns, "check_state_validity"), GetStateValidity)
         self._validity_request = GetStateValidityRequest(group_name=self.arm.get_name())
         self._validity_request.robot_state.is_diff = True
@@ -181,12 +178,6 @@ class ArmDriver:
             raise SixdofCommanderError(f"ArmDriver.{what}: {self._no_gripper}")
         return self.gripper, self._spec
 
-    def _fail(self, what: str, error: CallError | None = None, kind: str = FAILED) -> bool:
-        self.last_failure = f"{what}: {error}" if error is not None else what
-        self.last_failure_kind = kind
-        rospy.logerr(self.last_failure)
-        return False
-
     # The paper's interface ---------------------------------------------------------------------------
     def moveto_xyzrpy(self, xyzrpy: Sequence[float]) -> bool:
         """Plan and move the arm's tip link (the sixdof arm's link6) to [x, y, z, roll, pitch, yaw] (metres,
@@ -220,7 +211,9 @@ class ArmDriver:
         result = gripper.open()
         if not result.reached_goal:
             said = f": {gripper.last_status_text}" if gripper.last_status_text else ""
-            return self._fail(f"gripper did not open (position {result.position:.4f}, stalled {result.stalled}){said}")
+            return self._fail(
+                f"gripper did not open (position {result.position:.4f}, stalled {result.stalled}){said}", kind=GRIPPER
+            )
         return True
 
     def gripper_close(self) -> bool:
@@ -231,6 +224,9 @@ class ArmDriver:
         result = gripper.close()
         if isinstance(gripper, SuctionGripper):
             return result.stalled or self._fail("the suction cup sealed on nothing (vacuum on, nothing held)")
+        if not (result.reached_goal or result.stalled):
+            said = f": {gripper.last_status_text}" if gripper.last_status_text else ""
+            return self._fail(f"gripper did not close (position {result.position:.4f}){said}", kind=GRIPPER)
         travel = abs(gripper.open_position - gripper.close_position)
         if abs(result.position - gripper.close_position) <= CLOSED_ON_NOTHING * travel:
             return self._fail(f"gripper closed on nothing (position {result.position:.4f})")
@@ -258,56 +254,6 @@ class ArmDriver:
         assert g is not None
         fraction = min(max((width - g.closed_width) / (g.max_opening - g.closed_width), 0.0), 1.0)
         return (1.0 - fraction) * abs(gripper.open_position - gripper.close_position) / gripper.velocity
-
-    # Cartesian moves ---------------------------------------------------------------------------------
-    def move_straight(
-        self, tip_target: np.ndarray, what: str, avoid_collisions: bool, infeasible_kind: str = FAILED
-    ) -> bool:
-        """Straight-line move of the tip link to a 4x4 pose; the whole path must be feasible (a path that is not
-        fails as `infeasible_kind`)."""
-        self.arm.set_start_state_to_current_state()
-        trajectory, fraction = self.arm.compute_cartesian_path(
-            [pose_from_matrix(tip_target)], self.cartesian_step, 0.0, avoid_collisions
-        )
-        if fraction < 1.0 - 1e-6:
-            return self._fail(
-                f"{what}: Cartesian path only {max(fraction, 0.0) * 100:.0f}% feasible",
-                self.arm.last_error,
-                infeasible_kind,
-            )
-        if not self.arm.execute(trajectory, wait=True):
-            return self._fail(f"{what}: execution failed", self.arm.last_error)
-        return True
-
-    def state_valid(self, joints: Sequence[str], positions: Sequence[float]) -> bool:
-        """move_group's check_state_validity of the arm group with these joints at these positions (on the current
-        scene, held objects included); SixdofCommanderError when the call fails."""
-        request = self._validity_request
-        request.robot_state.joint_state = JointState(name=list(joints), position=[float(v) for v in positions])
-        try:
-            return bool(call_service(self._validity, request, SERVICE_TIMEOUT).valid)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"check_state_validity failed: {err}") from err
-
-    def tip_ik(self, tip: np.ndarray, seed: Sequence[float], avoid_collisions: bool = True) -> np.ndarray | None:
-        """move_group's compute_ik of the arm's tip link at `tip` (4x4, planning frame), seeded with `seed` (the arm's
-        active joints, in order): the solution in that order, None when there is none; SixdofCommanderError when the
-        call fails."""
-        request, names = self._ik_request, self.arm.get_active_joints()
-        request.ik_request.robot_state.joint_state = JointState(name=names, position=[float(v) for v in seed])
-        request.ik_request.pose_stamped.pose = pose_from_matrix(tip)
-        request.ik_request.avoid_collisions = avoid_collisions
-        try:
-            response = call_service(self._ik, request, SERVICE_TIMEOUT)
-        except (rospy.ServiceException, rospy.ROSException) as err:
-            raise SixdofCommanderError(f"compute_ik failed: {err}") from err
-        if response.error_code.val != MoveItErrorCodes.SUCCESS:
-            return None
-        solution = dict(zip(response.solution.joint_state.name, response.solution.joint_state.position, strict=True))
-        return np.array([solution[name] for name in names])
-
-    def _current_tip(self) -> np.ndarray:
-        return matrix_from_pose(self.arm.get_current_pose().pose)
 
     # Simulator objects -------------------------------------------------------------------------------
     def get_object_state(self, name: str) -> GetObjectState._response_class:
@@ -369,7 +315,10 @@ class ArmDriver:
         except SixdofCommanderError as err:
             return self._fail(f"no top-down grasp of '{object_name}': {err}", kind=UNREACHABLE)
         where = f"'{object_name}' at ({pose[0, 3]:.3f}, {pose[1, 3]:.3f})"
-        if not (self.gripper_open() and self._descend_to(grasp_tip, "approach", where) and self.gripper_close()):
+        allowed = AllowedContacts(self._gripper_links, frozenset([object_name]))
+        if not (
+            self.gripper_open() and self._descend_to(grasp_tip, "approach", where, allowed) and self.gripper_close()
+        ):
             return False
         self._wait_for_grasp_fix(object_name, attached=True)
         if object_name in self.scene.get_known_object_names() and not self._scene_attach(object_name, True):
@@ -389,7 +338,7 @@ class ArmDriver:
         """'after pick pose': lift the grasped object straight up by the approach distance."""
         _, spec = self._require_gripper("lift")
         held = self._require_held("lift")
-        # Leaving the support surface: the object starts in contact with it.
+        # Back up the grasp's checked descent, out of the contacts it ends in (the object on its support surface).
         if not self.move_straight(raised(self._current_tip(), self.approach_distance), "lift", avoid_collisions=False):
             return False
         self._note_in_hand(held, spec)
@@ -402,20 +351,6 @@ class ArmDriver:
         tcp = self._current_tip() @ spec.tcp_in_tip
         self._object_in_tcp = np.linalg.inv(tcp) @ (obj[:, 3] if held.round else obj)
 
-    def _descend_to(self, tip: np.ndarray, what: str, where: str) -> bool:
-        """Move the tip link the approach distance above `tip`, then straight down to it. Into contact: the
-        fingers straddle the object (grasp) or the held object meets the surface (place), which MoveIt's pick and
-        place also allow. No pose above `where` the arm can reach (no IK solution, or in collision), or a descent
-        that cannot go straight down, fails as UNREACHABLE."""
-        above = pose_from_matrix(raised(tip, self.approach_distance))
-        if not self.moveto_pose(above):
-            if self.arm.last_error.val in (MoveItErrorCodes.NO_IK_SOLUTION, MoveItErrorCodes.GOAL_IN_COLLISION):
-                return self._fail(
-                    f"{what}: no top-down pose above {where} the arm can reach", self.arm.last_error, UNREACHABLE
-                )
-            return False
-        return self.move_straight(tip, f"{what}: straight down to {where}", False, UNREACHABLE)
-
     def pick(self, object_name: str) -> bool:
         """Grasp the simulator object from the top and lift it."""
         return self.grasp(object_name) and self.lift()
@@ -426,7 +361,9 @@ class ArmDriver:
         held = self._require_held("place")
         place_tip = self.place_tip(position)
         where = f"({place_tip[0, 3]:.3f}, {place_tip[1, 3]:.3f})"
-        if not (self._descend_to(place_tip, "place descent", where) and self.gripper_open()):
+        bottom = self._check_position(position, held)[2] - held.height / 2.0
+        allowed = AllowedContacts(frozenset([held.name]), below=bottom + SURFACE_CONTACT)
+        if not (self._descend_to(place_tip, "place descent", where, allowed) and self.gripper_open()):
             return False
         self._wait_for_grasp_fix(held.name, attached=False)
         if held.name in self.scene.get_attached_object_names() and not self._scene_attach(held.name, False):
@@ -446,6 +383,8 @@ class ArmDriver:
 
     def retreat(self) -> bool:
         """'after place pose': move the open gripper straight up by the approach distance."""
+        # Back up the place's checked descent, out of the contacts it ends in (the fingers with the object let go of
+        # and, in a box or bin, with its walls or neighbours).
         return self.move_straight(
             raised(self._current_tip(), self.approach_distance), "retreat", avoid_collisions=False
         )

@@ -42,10 +42,11 @@ from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import DetectedObject
 
-from .arm_driver import FAILED, UNREACHABLE, ArmDriver
+from .arm_driver import ArmDriver
 from .blending import blended, end_state
 from .exceptions import SixdofCommanderError
 from .grasping import ObjectGeometry, grasp_tcp_pose, object_geometry, raised
+from .straight_moves import FAILED, UNREACHABLE
 from .suction import SuctionGripper
 from .transforms import matrix_from_pose
 

@@ -18,13 +18,14 @@ from sixdof_msgs.msg import ConveyorStates, ObjectStates
 from sixdof_msgs.srv import DeleteObject
 
 from ._ros import resolve
-from .arm_driver import ArmDriver, pose_from_matrix
+from .arm_driver import ArmDriver
 from .blending import blended, end_state
 from .exceptions import SixdofCommanderError
 from .grasping import object_geometry, raised
 from .moving_pick import MISSED, UNREACHABLE, MovingPickResult, Timing, pick_moving
 from .pack_pattern import Slot
 from .sim_world import Bin, Conveyor
+from .straight_moves import pose_from_matrix
 from .transforms import matrix_from_pose, matrix_from_quaternion
 
 PLACE_FAILED = "place failed"

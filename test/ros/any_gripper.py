@@ -2,8 +2,8 @@
 config package without answers into a temporary workspace, the package's demo.launch runs headless, and ArmDriver
 (the commander's pick and place, which takes the TCP, the gripper's states and widths, the arm group and the home
 state from the package through move_group) picks and places a cube, an upright cylinder and a sphere of 3 and 6 cm,
-each spawned on the table, through the simulator's grasp fix (configured from the package's grasping.yaml). One
-launched stack per robot:
+each spawned on the table, through the simulator's grasp fix (configured from the package's grasping.yaml), and
+refuses a place whose descent would drive the object into the table. One launched stack per robot:
 - seven_dof_hand: a 7-DoF arm with a prismatic two-finger hand and no `tcp` link;
 - six_r_jaw: the 6R arm of six_r_adaptive.urdf.xacro with revolute jaws that open at their upper limit;
 - six_r_adaptive: the same arm with its default 2F-style gripper: a revolute master and five mimic joints (one with a
@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,6 +32,7 @@ from geometry_msgs.msg import Pose
 from moveit_msgs.msg import PlanningSceneComponents
 from shape_msgs.msg import SolidPrimitive
 from sixdof_commander import ArmDriver
+from sixdof_commander.straight_moves import UNREACHABLE
 from std_msgs.msg import ColorRGBA
 
 from sixdof_bringup.placement import placement
@@ -113,6 +115,26 @@ def in_scene(present: bool) -> None:
     raise AssertionError(f"'{OBJECT}' {'never appeared in' if present else 'never left'} the planning scene")
 
 
+@contextmanager
+def spawned(driver: ArmDriver, what: str, obj: SimObject) -> Iterator[rospy.ServiceProxy]:
+    """The object spawned on the table and in the planning scene (the simulator's get_object_state to look at it);
+    afterwards it is deleted, the gripper opened and the arm at home."""
+    spawn = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)
+    delete = rospy.ServiceProxy("sixdof_sim/delete_object", DeleteObject)
+    response = spawn(obj)
+    assert response.success, response.status_message
+    try:
+        rospy.sleep(0.3)  # settle (simulated time)
+        in_scene(True)
+        yield rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)
+    finally:
+        delete(OBJECT)
+        in_scene(False)
+        driver.forget_held()
+        assert driver.gripper_open(), f"{what}: {driver.last_failure}"
+        assert driver.moveto_named(driver.home), f"{what}: {driver.last_failure}"
+
+
 @pytest.mark.parametrize(("shape", "width", "height", "start", "place"), CASES)
 def test_picks_and_places(
     stack: Stack,
@@ -124,14 +146,7 @@ def test_picks_and_places(
 ) -> None:
     driver = stack.driver
     what = f"{stack.robot}: {shape} {width * 100:.0f} cm from ({start[0]}, {start[1]}) to {place}"
-    spawn = rospy.ServiceProxy("sixdof_sim/spawn_object", SpawnObject)
-    delete = rospy.ServiceProxy("sixdof_sim/delete_object", DeleteObject)
-    state = rospy.ServiceProxy("sixdof_sim/get_object_state", GetObjectState)
-    response = spawn(sim_object(shape, width, height, start))
-    assert response.success, response.status_message
-    try:
-        rospy.sleep(0.3)  # settle (simulated time)
-        in_scene(True)
+    with spawned(driver, what, sim_object(shape, width, height, start)) as state:
         assert driver.grasp(OBJECT), f"{what}: {driver.last_failure}"
         assert driver.lift(), f"{what}: {driver.last_failure}"
         # The grasp fix of the package's grasping.yaml holds it, on the gripper's palm link.
@@ -146,9 +161,21 @@ def test_picks_and_places(
         print(f"{what}: placed {result.error * 1000:.1f} mm off, tilted {math.degrees(result.tilt):.1f} deg")
         assert result.error < TOLERANCE, f"{what}: rests {result.error * 1000:.1f} mm off the target"
         assert result.tilt < TILT, f"{what}: tilted {math.degrees(result.tilt):.1f} deg"
-    finally:
-        delete(OBJECT)
-        in_scene(False)
-        driver.forget_held()
-        assert driver.gripper_open(), f"{what}: {driver.last_failure}"
-        assert driver.moveto_named(driver.home), f"{what}: {driver.last_failure}"
+
+
+def test_a_place_descent_into_the_table_is_refused(stack: Stack) -> None:
+    """A place whose straight descent would drive the held object (and the fingers) into the table is refused as
+    unreachable before the arm moves down, naming the collision; the object stays held, the place goes on."""
+    driver = stack.driver
+    width, start, place = 0.04, (0.40, -0.15, 0.3), (0.40, 0.15)
+    with spawned(driver, stack.robot, sim_object("cube", width, width, start)) as state:
+        assert driver.grasp(OBJECT) and driver.lift(), f"{stack.robot}: {driver.last_failure}"
+        assert not driver.release_at([place[0], place[1], width / 2.0 - 0.03])
+        assert driver.last_failure_kind == UNREACHABLE, driver.last_failure
+        assert "would collide" in driver.last_failure, driver.last_failure
+        # Stopped above the place: the object's bottom still clear of the table, the object held.
+        tip = driver.arm.get_current_pose().pose.position.z
+        assert tip > driver.place_tip([place[0], place[1]])[2, 3] + driver.approach_distance / 2.0, tip
+        assert state(OBJECT).attached_to == driver.gripper_model.parent_link
+        assert driver.release_at([place[0], place[1], width / 2.0]), f"{stack.robot}: {driver.last_failure}"
+        assert driver.retreat(), f"{stack.robot}: {driver.last_failure}"

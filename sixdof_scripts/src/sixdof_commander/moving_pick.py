@@ -11,7 +11,8 @@ while coming to rest (`lift`). Every point of it is one inverse-kinematics solut
 with the previous one), timed here to the object's motion. The arm runs the approach plan (to the follow path's first
 point), waits there and runs the follow path as one trajectory, so that no command latency falls between them; the
 approach must end `Timing.margin` s before the follow path starts, else the interception moves later. The follow path
-and its timing are follow_path.py's.
+and its timing are follow_path.py's. plan_pick_moving plans the interception and the approach for a given send time
+(while the arm still finishes another motion, the approach's prefix), run_pick_moving runs them: pick_moving is both.
 
 The gripper is the package's (ArmDriver's: its grasping information through move_group). Fingers close with
 ArmDriver.gripper_close once the tool is at the grasp; the tool stays on the object for Timing's default `close`
@@ -19,7 +20,7 @@ ArmDriver.gripper_close once the tool is at the grasp; the tool stays on the obj
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
 moment its face touches the top (SUCTION_TIMING: 0.12 s down during the last 0.12 s of the ramp, touching the top as
 its velocity matches the object's, 0.05 s on the top face, 0.12 s up, points 0.05 s apart; at the pre-grasp point
-0.05 s early). Whether the object is held is the simulator's `attached_to` of it.
+0.02 s early). Whether the object is held is the simulator's `attached_to` of it.
 
 Failures come back by class in the result (`failure`): MISSED (the object passed before the arm could meet it, or
 leaves the arm's reach before a follow path could end), NOT_GRASPED (the gripper closed without holding it: no grasp, or
@@ -61,6 +62,8 @@ SPARE = 0.05
 APPROACH_TRIES = 4
 # approach_step's answers: take this try's approach; keep it and try an earlier start; none from this try.
 TAKE, EARLIER, NEXT = "take", "earlier", "next"
+# (approach plan, follow start ROS time, follow times, follow joint positions)
+_Motion = tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]
 __all__ = [
     "DROPPED",
     "FAILED",
@@ -70,9 +73,12 @@ __all__ = [
     "UNREACHABLE",
     "MovingObject",
     "MovingPickResult",
+    "PlannedPick",
     "Timing",
     "follow_path",
     "pick_moving",
+    "plan_pick_moving",
+    "run_pick_moving",
 ]
 
 
@@ -213,20 +219,19 @@ class _MovingPick:
             raise _Failed(MISSED, f"the object leaves the arm's reach before a follow path ends ({why or 'no path'})")
         raise _Failed(UNREACHABLE, f"no follow path the arm can run within {timing.search:g} s ({why or 'no IK'})")
 
-    def plan_approach(
-        self, lead: float, prefix: RobotTrajectory | None
-    ) -> tuple[RobotTrajectory, float, np.ndarray, list[np.ndarray]]:
+    def plan_approach(self, lead: float, prefix: RobotTrajectory | None, ready: float) -> _Motion:
         """(approach plan, follow start time, follow times, follow joint positions): the earliest interception the
-        arm can be at the pre-grasp point for, `Timing.margin` s early; later when the approach takes longer, earlier
-        when it would wait more than SPARE s beyond that (approach_step's rule). With a prefix (a motion from the
-        current state), the approach is planned from its end and blended with it."""
+        arm can be at the pre-grasp point for, `Timing.margin` s early, when the approach is sent at ROS time `ready`
+        (or when computed, if later); later when the approach takes longer, earlier when it would wait more than
+        SPARE s beyond that (approach_step's rule). With a prefix (a motion from the current state, or from where the
+        arm will be at `ready`), the approach is planned from its end and blended with it."""
         if prefix is None:
             seed = np.asarray(self.arm.get_current_joint_values(), dtype=float)
         else:
             names = list(prefix.joint_trajectory.joint_names)
             last = prefix.joint_trajectory.points[-1].positions
             seed = np.array([last[names.index(name)] for name in self.joint_names], dtype=float)
-        start = rospy.get_time() + lead
+        start = max(rospy.get_time(), ready) + lead
         tries: list[str] = []
         kept = None  # (plan, start, times, positions) of an approach that fits, while an earlier start is tried
         for attempt in range(APPROACH_TRIES):
@@ -238,9 +243,10 @@ class _MovingPick:
                 failure, spare = failed, -math.inf
             else:
                 plan = self.plan_to(positions[0], prefix)
-                now = rospy.get_time()
+                computed = rospy.get_time() - began
+                now = max(rospy.get_time(), ready)  # when the approach would be sent
                 duration = plan.joint_trajectory.points[-1].time_from_start.to_sec()
-                tries.append(f"approach {duration:.2f} s, computed in {now - began:.2f} s, {start - now:.2f} s ahead")
+                tries.append(f"approach {duration:.2f} s, computed in {computed:.2f} s, {start - now:.2f} s ahead")
                 spare = start - (now + duration + self.timing.margin)
             step = approach_step(spare, kept is not None, attempt == APPROACH_TRIES - 1)
             if step == TAKE:
@@ -249,22 +255,24 @@ class _MovingPick:
                 # A later interception can need a shorter approach (nearer the box): the arm would wait out the spare
                 # time at the pre-grasp point. An earlier start, SPARE s after this approach would end, is tried.
                 kept = (plan, start, times, positions)
-                start = now + duration + self.timing.margin + SPARE + (now - began)
+                start = max(rospy.get_time() + computed, ready) + duration + self.timing.margin + SPARE
                 continue
-            if kept is not None and self.fits_still(kept[0], kept[1]):
+            if kept is not None and self.fits_still(kept[0], kept[1], ready):
                 return kept
             kept = None
             if failure is not None:
                 raise failure
             # The next try takes about as long as this one did, and a later interception may need a longer approach:
             # the earliest start the arm can make first, then more.
-            start = now + (1.0 if attempt == 0 else 1.2) * duration + self.timing.margin + (now - began)
+            start = max(rospy.get_time() + computed, ready) + (1.0 if attempt == 0 else 1.2) * duration
+            start += self.timing.margin
         raise _Failed(MISSED, f"the arm cannot get ahead of the object ({'; '.join(tries)})")
 
-    def fits_still(self, approach: RobotTrajectory, start: float) -> bool:
-        """Whether the approach, sent now, ends `Timing.margin` s before the follow path starts at ROS time `start`."""
+    def fits_still(self, approach: RobotTrajectory, start: float, ready: float) -> bool:
+        """Whether the approach, sent now or at `ready` if later, ends `Timing.margin` s before the follow path starts
+        at ROS time `start`."""
         duration = approach.joint_trajectory.points[-1].time_from_start.to_sec()
-        return rospy.get_time() + duration + self.timing.margin <= start
+        return max(rospy.get_time(), ready) + duration + self.timing.margin <= start
 
     def plan_to(self, pregrasp: np.ndarray, prefix: RobotTrajectory | None) -> RobotTrajectory:
         """A plan to the pre-grasp joint positions from the current state, or the prefix and a plan from its end
@@ -304,17 +312,18 @@ class _MovingPick:
             return grip_time, "" if on else f"the vacuum did not go on: {driver.gripper.last_status_text}"
         return grip_time, "" if driver.gripper_close() else driver.last_failure
 
-    def run(self, lead: float, prefix: RobotTrajectory | None) -> float:
-        """Pick; the ROS time the gripper closed. _Failed says why not."""
+    def run(self, motion: _Motion) -> float:
+        """Pick along the planned motion (plan_approach's); the ROS time the gripper closed. _Failed says why not."""
         off = isinstance(self.driver.gripper, SuctionGripper) and self.driver.gripper.vacuum is False
         if not off and not self.driver.gripper_open():
             raise _Failed(FAILED, self.driver.last_failure)
-        plan, start, times, positions = self.plan_approach(lead, prefix)
+        plan, start, times, positions = motion
         # One trajectory: the approach, a wait at the pre-grasp point, the follow path timed to the object.
         offset = start - rospy.get_time()
         if offset < plan.joint_trajectory.points[-1].time_from_start.to_sec():
             raise _Failed(MISSED, f"the approach would reach the pre-grasp point {-offset:.2f} s after the object")
         trajectory = joined(plan, times + offset, positions)
+        rospy.loginfo()
         executed: list[bool] = []
         runner = threading.Thread(target=lambda: executed.append(self.arm.execute(trajectory, wait=True)))
         runner.start()
@@ -341,6 +350,66 @@ class _MovingPick:
         return grasp_time
 
 
+@dataclass
+class PlannedPick:
+    """A moving pick planned ahead (plan_pick_moving), for run_pick_moving; `result` holds its failure if planning
+    failed."""
+
+    result: MovingPickResult
+    picker: _MovingPick | None = None
+    motion: _Motion | None = None
+
+    def fits(self) -> bool:
+        """Whether its approach, sent now, still reaches the pre-grasp point `Timing.margin` s before the object."""
+        return self.motion is not None and self.picker.fits_still(self.motion[0], self.motion[1], 0.0)
+
+
+def plan_pick_moving(
+    driver: ArmDriver,
+    target: str | MovingObject | DetectedObject,
+    timing: Timing | None = None,
+    lead: float = 1.3,
+    prefix: RobotTrajectory | None = None,
+    ready: float = 0.0,
+) -> PlannedPick:
+    """The interception and the approach of pick_moving (its arguments), planned to be sent at ROS time `ready` (or
+    as soon as planned, if later): while the arm still runs another motion (the place before; the prefix then starts
+    where that motion ends). Nothing moves; run_pick_moving runs it."""
+    if not isinstance(driver, ArmDriver):
+        raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
+    if isinstance(target, str):
+        target = MovingObject.from_simulator(driver, target)
+    elif isinstance(target, DetectedObject):
+        target = MovingObject.from_detection(target)
+    elif not isinstance(target, MovingObject):
+        raise SixdofCommanderError(f"pick_moving target must be a name, MovingObject or DetectedObject, got {target!r}")
+    if isinstance(lead, bool) or not isinstance(lead, int | float) or not math.isfinite(lead) or lead <= 0.0:
+        raise SixdofCommanderError(f"pick_moving lead must be a number > 0, got {lead!r}")
+    planned = PlannedPick(MovingPickResult(target.name))
+    try:
+        planned.picker = _MovingPick(driver, target, timing)
+        planned.motion = planned.picker.plan_approach(float(lead), prefix, ready)
+    except _Failed as failed:
+        planned.result.failure, planned.result.message = failed.failure, f"pick_moving '{target.name}': {failed}"
+        rospy.logerr(planned.result.message)
+    return planned
+
+
+def run_pick_moving(planned: PlannedPick) -> MovingPickResult:
+    """Run a pick plan_pick_moving planned (its failure, if it has one): the approach is sent now, MISSED when it can
+    no longer reach the pre-grasp point before the object."""
+    result = planned.result
+    if result.failure:
+        return result
+    try:
+        result.grasp_time = planned.picker.run(planned.motion)
+    except _Failed as failed:
+        result.failure, result.message = failed.failure, f"pick_moving '{result.object}': {failed}"
+        rospy.logerr(result.message)
+    result.moved = planned.picker.moved
+    return result
+
+
 def pick_moving(
     driver: ArmDriver,
     target: str | MovingObject | DetectedObject,
@@ -354,24 +423,5 @@ def pick_moving(
     longer). timing: SUCTION_TIMING for a suction tool, for fingers Timing() with their closing time added to `close`
     (module docstring) unless given. prefix: a motion from the arm's current state (e.g. the retreat from a place) the
     approach continues without stopping at its end. On success the driver holds the object (ArmDriver.place puts it
-    down)."""
-    if not isinstance(driver, ArmDriver):
-        raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
-    if isinstance(target, str):
-        target = MovingObject.from_simulator(driver, target)
-    elif isinstance(target, DetectedObject):
-        target = MovingObject.from_detection(target)
-    elif not isinstance(target, MovingObject):
-        raise SixdofCommanderError(f"pick_moving target must be a name, MovingObject or DetectedObject, got {target!r}")
-    if isinstance(lead, bool) or not isinstance(lead, int | float) or not math.isfinite(lead) or lead <= 0.0:
-        raise SixdofCommanderError(f"pick_moving lead must be a number > 0, got {lead!r}")
-    result = MovingPickResult(target.name)
-    picker = None
-    try:
-        picker = _MovingPick(driver, target, timing)
-        result.grasp_time = picker.run(float(lead), prefix)
-    except _Failed as failed:
-        result.failure, result.message = failed.failure, f"pick_moving '{target.name}': {failed}"
-        rospy.logerr(result.message)
-    result.moved = picker is not None and picker.moved
-    return result
+    down). plan_pick_moving and run_pick_moving are its two halves."""
+    return run_pick_moving(plan_pick_moving(driver, target, timing, lead, prefix))

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,7 +23,15 @@ from .arm_driver import ArmDriver
 from .blending import blended, end_state
 from .exceptions import SixdofCommanderError
 from .grasping import object_geometry, raised
-from .moving_pick import MISSED, UNREACHABLE, MovingPickResult, Timing, pick_moving
+from .moving_pick import (
+    MISSED,
+    UNREACHABLE,
+    MovingPickResult,
+    PlannedPick,
+    Timing,
+    plan_pick_moving,
+    run_pick_moving,
+)
 from .pack_pattern import Slot
 from .sim_world import Bin, Conveyor
 from .straight_moves import pose_from_matrix
@@ -39,6 +48,9 @@ PACK_LEAD = 0.6
 # the most s after that time the cup waits for the simulator to let the object go (it retreats as soon as it has).
 RELEASE_DELAY = 0.02
 RELEASE_WAIT = 0.15
+# s after the vacuum goes off that the next pick, planned while the cup moves to the slot, is due to be sent (the
+# release is confirmed and the place's bookkeeping done by then).
+NEXT_PICK_AFTER = 0.02
 # s the cup may wait on the place for the next object to pick, whose approach continues the retreat without a stop
 # (a retreat on its own, then the approach, take longer than the two blended and this wait): after that it retreats.
 RETREAT_AFTER = 0.5
@@ -82,6 +94,8 @@ class Packer:
         # A suction place's retreat up from the slot, not yet run: the next pick's approach continues it.
         self.retreat: RobotTrajectory | None = None
         self.placed_at = math.nan  # ROS time the last suction place ended
+        # The next pick, planned while the last suction place ran (its approach continues `retreat`).
+        self.next_pick: PlannedPick | None = None
         self.delete = rospy.ServiceProxy(resolve(driver.ns, "sixdof_sim/delete_object"), DeleteObject)
         self.belt_speed = math.nan  # m/s, the simulator's current speed of the conveyor (nan until it says)
         self.speeds: list[tuple[float, float]] = []  # (ROS time, belt speed m/s), every 0.5 s
@@ -140,8 +154,10 @@ class Packer:
         return found
 
     def take_next(self) -> str | None:
-        """Claim the object furthest downstream on the belt that has ridden with it for SETTLE s (upstream of
-        pick_before)."""
+        """The object of the pick planned during the last place, if any; else claim the object furthest downstream
+        on the belt that has ridden with it for SETTLE s (upstream of pick_before)."""
+        if self.next_pick is not None:
+            return self.next_pick.result.object
         with self._lock:
             waiting = self._on_belt(self.states, riding=True) if self.states is not None else {}
             now = rospy.get_time()
@@ -162,7 +178,10 @@ class Packer:
         state = self.driver.get_object_state(name).object
         height = object_geometry(matrix_from_pose(state.pose), state.shape).height
         began = rospy.get_time()
-        result = pick_moving(self.driver, name, self.timing, PACK_LEAD, self.retreat)
+        planned, self.next_pick = self.next_pick, None
+        if planned is None or planned.result.object != name or not planned.fits():
+            planned = plan_pick_moving(self.driver, name, self.timing, PACK_LEAD, self.retreat)
+        result = run_pick_moving(planned)
         picked = rospy.get_time()
         if result.moved:
             self.retreat = None
@@ -200,8 +219,12 @@ class Packer:
         (it lets go within a few of its updates): the object is put down when the grasp fix has let it go."""
         driver = self.driver
         if driver.suction:
-            self.last_failure, self.retreat = release_in_one_motion(driver, name, position)
+            self.last_failure, self.retreat = release_in_one_motion(driver, name, position, self.plan_next)
             self.placed_at = rospy.get_time()
+            if self.last_failure and self.next_pick is not None:
+                with self._lock:  # its approach would continue a retreat that does not follow: picked afresh
+                    self.claimed.discard(self.next_pick.result.object)
+                self.next_pick = None
             return not self.last_failure
         self.last_failure = ""
         if not driver.release_at(position):
@@ -219,6 +242,23 @@ class Packer:
         self.last_failure = driver.last_failure
         return False
 
+    def plan_next(self, retreat: RobotTrajectory, ready: float) -> None:
+        """Plan the next pick (take_next's object, if one is waiting), its approach continuing `retreat` from ROS
+        time `ready` on (next_pick; a plan that failed is dropped and its object is picked afresh)."""
+        name = self.take_next()
+        if name is None:
+            return
+        try:
+            planned = plan_pick_moving(self.driver, name, self.timing, PACK_LEAD, retreat, ready)
+        except SixdofCommanderError as err:
+            rospy.logwarn(f"planning the pick of '{name}' ahead: {err}")
+            planned = None
+        if planned is None or planned.result.failure:
+            with self._lock:
+                self.claimed.discard(name)
+            return
+        self.next_pick = planned
+
     def check(self, name: str, slot: Slot, tolerance: float) -> SlotCheck:
         """Where the object rests against its slot (the simulator's pose of it)."""
         pose = matrix_from_pose(self.driver.get_object_state(name).object.pose)
@@ -227,12 +267,19 @@ class Packer:
         return SlotCheck(error, lean, error <= tolerance and lean <= UPRIGHT_TOLERANCE)
 
 
-def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -> tuple[str, RobotTrajectory | None]:
+def release_in_one_motion(
+    driver: ArmDriver,
+    name: str,
+    position: list[float],
+    meanwhile: Callable[[RobotTrajectory, float], None] | None = None,
+) -> tuple[str, RobotTrajectory | None]:
     """Put the object a suction cup holds down at `position` (its centre) without stopping above it: a plan to
     `approach_distance` above the place and the straight descent onto it as one blended motion (blending.blended),
     then the vacuum off when the arm is at the place (RELEASE_DELAY after it is due there, timed from when the motion
     was sent); the object is put down once the simulator has let it go (within RELEASE_WAIT). ('' and the
-    straight retreat up from the place, not yet run; or what failed and None)."""
+    straight retreat up from the place, not yet run; or what failed and None). meanwhile(retreat, ready), if given,
+    runs in a thread of its own while the arm moves to the place (e.g. planning the next motion, to be sent at ROS time
+    `ready`, NEXT_PICK_AFTER s after the vacuum goes off); it has ended when this returns."""
     arm = driver.arm
     place = driver.place_tip(position)
     above = raised(place, driver.approach_distance)
@@ -260,6 +307,11 @@ def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -
     executed: list[bool] = []
     runner = threading.Thread(target=lambda: executed.append(arm.execute(trajectory, wait=True)))
     runner.start()
+    ahead = None
+    if meanwhile is not None:
+        ready = sent + at_place + RELEASE_DELAY + NEXT_PICK_AFTER
+        ahead = threading.Thread(target=meanwhile, args=(paths[1], ready))
+        ahead.start()
     rospy.sleep(max(sent + at_place + RELEASE_DELAY - rospy.get_time(), 0.0))
     why = "" if driver.gripper_open() else driver.last_failure
     held = not why
@@ -270,6 +322,8 @@ def release_in_one_motion(driver: ArmDriver, name: str, position: list[float]) -
     if not why and name in driver.scene.get_attached_object_names() and not driver.scene.detach_object(name):
         rospy.logwarn("detaching '%s' in the planning scene failed", name)
     runner.join()
+    if ahead is not None:
+        ahead.join()
     if why:
         return why, None
     if held:

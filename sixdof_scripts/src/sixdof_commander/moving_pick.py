@@ -312,18 +312,23 @@ class _MovingPick:
             return grip_time, "" if on else f"the vacuum did not go on: {driver.gripper.last_status_text}"
         return grip_time, "" if driver.gripper_close() else driver.last_failure
 
-    def run(self, motion: _Motion) -> float:
-        """Pick along the planned motion (plan_approach's); the ROS time the gripper closed. _Failed says why not."""
+    def open_gripper(self) -> None:
+        """Open the gripper (a suction cup's vacuum off unless this client last turned it off)."""
         off = isinstance(self.driver.gripper, SuctionGripper) and self.driver.gripper.vacuum is False
         if not off and not self.driver.gripper_open():
             raise _Failed(FAILED, self.driver.last_failure)
+
+    def run(self, motion: _Motion, opened: bool) -> float:
+        """Pick along the planned motion (plan_approach's), opening the gripper first unless `opened`; the ROS time
+        the gripper closed. _Failed says why not."""
+        if not opened:
+            self.open_gripper()
         plan, start, times, positions = motion
         # One trajectory: the approach, a wait at the pre-grasp point, the follow path timed to the object.
         offset = start - rospy.get_time()
         if offset < plan.joint_trajectory.points[-1].time_from_start.to_sec():
             raise _Failed(MISSED, f"the approach would reach the pre-grasp point {-offset:.2f} s after the object")
         trajectory = joined(plan, times + offset, positions)
-        rospy.loginfo()
         executed: list[bool] = []
         runner = threading.Thread(target=lambda: executed.append(self.arm.execute(trajectory, wait=True)))
         runner.start()
@@ -358,6 +363,7 @@ class PlannedPick:
     result: MovingPickResult
     picker: _MovingPick | None = None
     motion: _Motion | None = None
+    opened: bool = False  # whether the gripper was opened before planning
 
     def fits(self) -> bool:
         """Whether its approach, sent now, still reaches the pre-grasp point `Timing.margin` s before the object."""
@@ -374,7 +380,8 @@ def plan_pick_moving(
 ) -> PlannedPick:
     """The interception and the approach of pick_moving (its arguments), planned to be sent at ROS time `ready` (or
     as soon as planned, if later): while the arm still runs another motion (the place before; the prefix then starts
-    where that motion ends). Nothing moves; run_pick_moving runs it."""
+    where that motion ends). The gripper opens first when `ready` is not ahead (else run_pick_moving opens it, and a
+    suction cup's vacuum this client turned off stays off); nothing else moves: run_pick_moving runs it."""
     if not isinstance(driver, ArmDriver):
         raise SixdofCommanderError(f"pick_moving needs an ArmDriver, got {type(driver).__name__}")
     if isinstance(target, str):
@@ -388,6 +395,9 @@ def plan_pick_moving(
     planned = PlannedPick(MovingPickResult(target.name))
     try:
         planned.picker = _MovingPick(driver, target, timing)
+        if ready <= rospy.get_time():
+            planned.picker.open_gripper()
+            planned.opened = True
         planned.motion = planned.picker.plan_approach(float(lead), prefix, ready)
     except _Failed as failed:
         planned.result.failure, planned.result.message = failed.failure, f"pick_moving '{target.name}': {failed}"
@@ -402,7 +412,7 @@ def run_pick_moving(planned: PlannedPick) -> MovingPickResult:
     if result.failure:
         return result
     try:
-        result.grasp_time = planned.picker.run(planned.motion)
+        result.grasp_time = planned.picker.run(planned.motion, planned.opened)
     except _Failed as failed:
         result.failure, result.message = failed.failure, f"pick_moving '{result.object}': {failed}"
         rospy.logerr(result.message)

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -75,6 +76,15 @@ GantryGripper gantryGripper(const std::string& file) {
          << number(rpy.z()) << "\"/></joint>\n";
   out.urdf.insert(out.urdf.rfind("</robot>"), gantry.str());
   return out;
+}
+
+// The gripper on its gantry, without the grasp fix, raised clear of the ground.
+std::unique_ptr<World> raisedGantry(const GantryGripper& g) {
+  WorldOptions options;
+  options.grasp_fix_enabled = false;
+  auto world = std::make_unique<World>(g.urdf, WorldSpec(), options);
+  EXPECT_TRUE(world->setJointPositions({"gantry_z_joint"}, {0.5}).ok());
+  return world;
 }
 
 // grasping.yaml as the setup assistant writes it (the part the simulator reads).
@@ -327,10 +337,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(FixtureGripper, TheAdaptiveGrippersMimicJointWithDisagreeingLimitsFollowsItsMaster) {
   const GantryGripper g = gantryGripper("adaptive_gripper.urdf");
-  WorldOptions options;
-  options.grasp_fix_enabled = false;
-  World world(g.urdf, WorldSpec(), options);
-  ASSERT_TRUE(world.setJointPositions({"gantry_z_joint"}, {0.5}).ok());  // clear of the ground
+  const std::unique_ptr<World> raised = raisedGantry(g);
+  World& world = *raised;
   ASSERT_TRUE(world.setPositionTarget("finger_joint", 0.6).ok());
   world.step(1500);
   const std::vector<double> q = world.jointPositions();
@@ -342,10 +350,8 @@ TEST(FixtureGripper, TheAdaptiveGrippersMimicJointWithDisagreeingLimitsFollowsIt
 // A jump of its command (open, close) ramps at the master's URDF velocity limit, as a gripper's motor moves.
 TEST(FixtureGripper, TheAdaptiveGrippersLinkageStaysWithinItsMastersLimitsAndSpeed) {
   const GantryGripper g = gantryGripper("adaptive_gripper.urdf");
-  WorldOptions options;
-  options.grasp_fix_enabled = false;
-  World world(g.urdf, WorldSpec(), options);
-  ASSERT_TRUE(world.setJointPositions({"gantry_z_joint"}, {0.5}).ok());  // clear of the ground
+  const std::unique_ptr<World> raised = raisedGantry(g);
+  World& world = *raised;
   const int finger = world.jointIndex("finger_joint");
   const JointInfo& info = world.joints()[static_cast<size_t>(finger)];
   double lowest = 1e9, highest = -1e9;

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import rospy
+from control_msgs.msg import GripperCommandResult
 from geometry_msgs.msg import Pose
 from moveit_msgs.srv import GetPositionIK, GetPositionIKRequest, GetStateValidity, GetStateValidityRequest
 from shape_msgs.msg import SolidPrimitive
@@ -207,14 +208,33 @@ class ArmDriver(StraightMoves):
     def gripper_open(self) -> bool:
         """Open the gripper (a suction tool: vacuum off); True when the fingers reached the 'open' position (the
         vacuum is off)."""
-        gripper = self._require_gripper("gripper_open")[0]
+        return self._opened(self._require_gripper("gripper_open")[0].open())
+
+    def _opened(self, result: GripperCommandResult) -> bool:
+        """True when an open command's result reached the open state; a GRIPPER failure otherwise."""
+        if result.reached_goal:
+            return True
+        said = f": {self.gripper.last_status_text}" if self.gripper.last_status_text else ""
+        return self._fail(
+            f"gripper did not open (position {result.position:.4f}, stalled {result.stalled}){said}", kind=GRIPPER
+        )
+
+    def _open_to_release(self, name: str) -> bool:
+        """gripper_open() on the object just put down. The grasp fix lets go of it only once the fingers have moved
+        its release tolerance away; until then the object, fixed to the palm, drags on the fingers, and where that
+        lasts longer than the gripper controller's stall window the open ends stalled short of the open state while
+        the fingers, still commanded, go on opening. Such an open is commanded again once the grasp fix has let go
+        (within grasp_fix_timeout)."""
+        gripper = self._require_gripper("release_at")[0]
         result = gripper.open()
-        if not result.reached_goal:
-            said = f": {gripper.last_status_text}" if gripper.last_status_text else ""
-            return self._fail(
-                f"gripper did not open (position {result.position:.4f}, stalled {result.stalled}){said}", kind=GRIPPER
+        if not (result.reached_goal or self.suction) and result.stalled and self.get_object_state(name).attached_to:
+            rospy.logwarn(
+                f"the gripper stalled opening at {result.position:.4f} while the grasp fix held '{name}': "
+                "opening again once it lets go"
             )
-        return True
+            if self._wait_for_grasp_fix(name, attached=False):
+                result = gripper.open()
+        return self._opened(result)
 
     def gripper_close(self) -> bool:
         """Close the gripper; True when it stopped on something (did not close on empty air: its finger joint
@@ -363,7 +383,7 @@ class ArmDriver(StraightMoves):
         where = f"({place_tip[0, 3]:.3f}, {place_tip[1, 3]:.3f})"
         bottom = self._check_position(position, held)[2] - held.height / 2.0
         allowed = AllowedContacts(frozenset([held.name]), below=bottom + SURFACE_CONTACT)
-        if not (self._descend_to(place_tip, "place descent", where, allowed) and self.gripper_open()):
+        if not (self._descend_to(place_tip, "place descent", where, allowed) and self._open_to_release(held.name)):
             return False
         self._wait_for_grasp_fix(held.name, attached=False)
         if held.name in self.scene.get_attached_object_names() and not self._scene_attach(held.name, False):

@@ -215,8 +215,8 @@ class Packer:
     def put_down(self, name: str, position: list[float]) -> bool:
         """Place the held object at position and retreat: a suction cup without stopping above the slot
         (release_in_one_motion), its retreat left to the next pick's approach (`retreat`; idle() runs it alone).
-        Opening fingers may stop at a neighbour or the box's wall, or on the object while the grasp fix still holds it
-        (it lets go within a few of its updates): the object is put down when the grasp fix has let it go."""
+        Opening fingers may stop at a neighbour or the box's wall: the object is put down when the grasp fix has let it
+        go."""
         driver = self.driver
         if driver.suction:
             self.last_failure, self.retreat = release_in_one_motion(driver, name, position, self.plan_next)

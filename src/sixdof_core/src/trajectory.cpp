@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace sixdof_core {
 namespace {
@@ -76,6 +77,21 @@ TrajectorySampler::TrajectorySampler(Trajectory trajectory) : trajectory_(std::m
   }
 }
 
+TrajectorySampler::TrajectorySampler(Trajectory trajectory, std::vector<double> lower, std::vector<double> upper)
+    : TrajectorySampler(std::move(trajectory)) {
+  if (lower.size() != dof_ || upper.size() != dof_) {
+    throw std::invalid_argument("TrajectorySampler: position bounds need one lower and one upper value per joint");
+  }
+  for (std::size_t j = 0; j < dof_; ++j) {
+    if (!(lower[j] <= upper[j])) {
+      throw std::invalid_argument("TrajectorySampler: position bounds of joint '" + trajectory_.joint_names[j] +
+                                  "' are not ordered (lower <= upper)");
+    }
+  }
+  lower_ = std::move(lower);
+  upper_ = std::move(upper);
+}
+
 TrajectorySample TrajectorySampler::sample(double time) const {
   if (!std::isfinite(time)) {
     throw std::invalid_argument("TrajectorySampler: sample time must be finite");
@@ -102,6 +118,18 @@ TrajectorySample TrajectorySampler::sample(double time) const {
   out.position.resize(dof_);
   for (std::size_t j = 0; j < dof_; ++j) {
     splines_[s][j].sample(time - points[s].time_from_start, out.position[j], out.velocity[j], out.acceleration[j]);
+  }
+  if (lower_.empty()) return out;
+  const auto within = [&](std::size_t point, std::size_t j) {
+    return points[point].positions[j] >= lower_[j] && points[point].positions[j] <= upper_[j];
+  };
+  for (std::size_t j = 0; j < dof_; ++j) {
+    const double bounded = std::clamp(out.position[j], lower_[j], upper_[j]);
+    if (bounded != out.position[j] && within(s, j) && within(s + 1, j)) {
+      out.position[j] = bounded;
+      out.velocity[j] = 0.0;
+      out.acceleration[j] = 0.0;
+    }
   }
   return out;
 }

@@ -1,6 +1,7 @@
 // Trajectory validation, spline segments and sampling (the interpolation a joint_trajectory_controller applies).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -124,6 +125,52 @@ TEST(Trajectory, SamplerRejectsMalformedTrajectoriesByName) {
   EXPECT_NE(problem({{"j"}, {point(NAN, {0.0})}}).find("time_from_start must be finite"), std::string::npos);
   // Unlike validateTrajectory: negative times (a controller's clock) and derivatives on some points only.
   EXPECT_EQ(problem({{"j"}, {point(-2.0, {0.0}, {0.0}), point(-1.0, {1.0})}}), "");
+}
+
+TEST(Trajectory, BoundedSamplingKeepsSegmentsBetweenInBoundPointsWithinTheBounds) {
+  // j's quintic starts at its upper bound accelerating outwards; k's first point is outside its bounds.
+  const Trajectory t{{"j", "k"},
+                     {point(0.0, {1.0, 2.5}, {0.0, 0.0}, {2.0, 0.0}), point(1.0, {1.0, 1.5}, {0.0, 0.0}, {0.0, 0.0})}};
+  const TrajectorySampler unbounded(t);
+  const TrajectorySampler bounded(t, {-1.0, -2.0}, {1.0, 2.0});
+  EXPECT_GT(unbounded.sample(0.2).position[0], 1.0);
+  const TrajectorySample s = bounded.sample(0.2);
+  EXPECT_EQ(s.position[0], 1.0);
+  EXPECT_EQ(s.velocity[0], 0.0);
+  EXPECT_EQ(s.acceleration[0], 0.0);
+  // A segment leaving a point outside the bounds is sampled as given; the points themselves are never moved.
+  EXPECT_EQ(s.position[1], unbounded.sample(0.2).position[1]);
+  EXPECT_EQ(bounded.sample(0.0).position, t.points[0].positions);
+  EXPECT_THROW(TrajectorySampler(t, {-1.0}, {1.0}), std::invalid_argument);
+  EXPECT_THROW(TrajectorySampler(t, {-1.0, 3.0}, {1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(TrajectorySampler(t, {-1.0, std::nan("")}, {1.0, 2.0}), std::invalid_argument);
+}
+
+// A time-optimal path that reaches a's upper limit and runs along it while b moves, at move_group's 0.1 s between
+// points: the quintic over the interval where the blend arc meets the straight segment along the limit (a's
+// acceleration jumps from braking to 0 inside it) passes the limit, though every point is within it. Bounded by the
+// limits, the samples stay within them and still pass through every point.
+TEST(Trajectory, BoundedSamplingOfAPathAlongALimitStaysWithinIt) {
+  const double upper = 1.0;
+  TimeParameterizationOptions o;
+  o.max_velocity = {2.0, 1.7};
+  o.max_acceleration = {4.0, 4.0};
+  o.acceleration_scaling = 0.5;
+  o.sample_period = 0.1;
+  const auto r = computeTimeOptimalTrajectory({"a", "b"}, {{upper - 0.025, 0}, {upper, 0.08}, {upper, 0.35}}, o);
+  ASSERT_TRUE(r.ok()) << r.message;
+  for (const TrajectoryPoint& p : r.trajectory.points) ASSERT_LE(p.positions[0], upper);
+  const TrajectorySampler unbounded(r.trajectory);
+  const TrajectorySampler bounded(r.trajectory, {-upper, -upper}, {upper, upper});
+  double overshoot = 0.0;
+  for (double time = 0.0; time <= r.trajectory.duration(); time += 2.5e-4) {
+    overshoot = std::max(overshoot, unbounded.sample(time).position[0] - upper);
+    ASSERT_LE(bounded.sample(time).position[0], upper) << "t=" << time;
+  }
+  EXPECT_GT(overshoot, 1e-5) << "the path no longer reproduces the quintic's overshoot";
+  for (const TrajectoryPoint& p : r.trajectory.points) {
+    EXPECT_EQ(bounded.sample(p.time_from_start).position, p.positions);
+  }
 }
 
 TEST(JointSpline, EndpointConditionsHoldForEveryType) {

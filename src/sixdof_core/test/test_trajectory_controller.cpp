@@ -272,6 +272,9 @@ TEST_F(TrajectoryControllerTest, InvalidGoalsAreRejectedWithTheReason) {
   expectInvalid(g, "inf");
   g = goalTo(1.5, 0.0, 1.0);
   expectInvalid(g, "outside its limits");
+  // A rounding error past a limit shows in full.
+  g = goalTo(std::nextafter(1.0, 2.0), 0.0, 1.0);
+  expectInvalid(g, "position 1.0000000000000002 of joint 'j1' is outside its limits [-1, 1]");
   g = goalTo(0.0, 0.0, 1.0);
   g.points.push_back({{0.1, 0.1}, {}, {}, 1.0});
   expectInvalid(g, "strictly increase");
@@ -381,6 +384,41 @@ TEST_F(TrajectoryControllerTest, SampleIsWhatUpdateCommandsAtThatTime) {
     EXPECT_NEAR(u.desired.velocity[i], mid->velocity[i], 1e-12);
     EXPECT_NEAR(u.desired.acceleration[i], mid->acceleration[i], 1e-12);
   }
+}
+
+// j1 brakes onto its upper limit (as at the end of a blend arc) 0.03 s after the first point and stays there (a
+// straight segment along the limit): its acceleration jumps from -2 to 0 between the points, 0.1 s apart as
+// move_group's, and the quintic through them passes the limit by ~2e-4 rad though both points are within it. The
+// controller's commands stay within the limits and still pass through every point.
+TEST_F(TrajectoryControllerTest, CommandsBetweenPointsWithinTheLimitsStayWithinThem) {
+  const double upper = twoJointConfig().upper_limits[0];
+  TrajectoryGoal g;
+  g.joint_names = {"j1", "j2"};
+  g.points = {{{upper - 0.0009, 0.0}, {0.06, 0.2}, {-2.0, 0.0}, 0.0},
+              {{upper, 0.02}, {0.0, 0.2}, {0.0, 0.0}, 0.1},
+              {{upper, 0.04}, {0.0, 0.0}, {0.0, 0.0}, 0.2}};
+  const Trajectory t{g.joint_names, g.points};
+  const TrajectorySampler unbounded(t);
+  double overshoot = 0.0;
+  for (double time = 0.0; time <= t.duration(); time += kDt / 4) {
+    overshoot = std::max(overshoot, unbounded.sample(time).position[0] - upper);
+  }
+  ASSERT_GT(overshoot, 1e-4) << "the points no longer reproduce the quintic's overshoot";
+
+  plant.q = g.points.front().positions;
+  c.hold(plant.q);
+  ASSERT_TRUE(c.setGoal(g, now).ok());
+  const double start = now;
+  for (double time = 0.0; time <= t.duration(); time += kDt / 4) {
+    const std::optional<TrajectorySample> s = c.sample(start + time);
+    ASSERT_TRUE(s);
+    ASSERT_LE(s->position[0], upper) << "t=" << time;
+  }
+  for (const TrajectoryPoint& p : t.points) {
+    EXPECT_EQ(c.sample(start + p.time_from_start)->position, p.positions);
+  }
+  const TrajectoryUpdate u = run(c, plant, now, t.duration() + 1.0);
+  EXPECT_EQ(u.state, GoalState::kSucceeded) << u.result.message;
 }
 
 TEST(TrajectoryControllerNoState, GoalBeforeAnyUpdateIsRejected) {

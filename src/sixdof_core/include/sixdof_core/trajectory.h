@@ -47,12 +47,24 @@ struct TrajectorySample {
 //
 // Times are the points' time_from_start on whatever clock the caller samples with (a controller gives absolute
 // times of its clock), so they may be negative. Validated once, the segments computed once: sampling is cheap.
+//
+// With position bounds (a controller's joint limits), a joint's sample between two points that both lie within its
+// bounds lies within them too. A quintic (or cubic) through such points can pass a bound between them where the
+// motion the points were sampled from changes its acceleration abruptly: a time-optimal profile switching from
+// accelerating to braking, a blend arc meeting a straight segment along a joint's limit (there, at 0.1 s between
+// points, by up to ~2e-4 rad); and a polynomial ending on a bound can round past it by an ulp. Such a sample is
+// the bound, at rest (zero velocity and acceleration), as joint_limits_interface's position saturation would make
+// it on ros_control hardware. Points are never moved: a point outside its bounds is sampled as given, and so are
+// the segments next to it (whoever accepts points checks them against the limits).
 class TrajectorySampler {
  public:
   // Throws std::invalid_argument naming the problem unless: at least one point; positions sized like joint_names;
   // velocities and accelerations empty or sized like joint_names on each point (points may differ); finite values
   // and times; strictly increasing times.
   explicit TrajectorySampler(Trajectory trajectory);
+  // Bounded positions (see above): lower and upper per joint (-inf/+inf: unbounded). Throws std::invalid_argument
+  // as above, and unless both are sized like joint_names with lower <= upper (no NaN).
+  TrajectorySampler(Trajectory trajectory, std::vector<double> lower, std::vector<double> upper);
 
   // Throws std::invalid_argument for a non-finite time.
   TrajectorySample sample(double time) const;
@@ -68,6 +80,8 @@ class TrajectorySampler {
   std::size_t dof_ = 0;
   std::vector<InterpolationType> types_;           // [segment]
   std::vector<std::vector<JointSpline>> splines_;  // [segment][joint]
+  std::vector<double> lower_;                      // [joint]; empty: unbounded
+  std::vector<double> upper_;
 };
 
 }  // namespace sixdof_core

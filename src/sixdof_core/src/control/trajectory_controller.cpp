@@ -1,6 +1,7 @@
 #include "sixdof_core/control/trajectory_controller.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -23,6 +24,12 @@ void override(double requested, double& value) {
   } else if (requested < 0.0) {
     value = 0.0;
   }
+}
+
+// The shortest text that reads back as the same double: a position a rounding error past a limit shows as such.
+std::string exact(double value) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
 }
 
 }  // namespace
@@ -146,8 +153,8 @@ TrajectoryResult TrajectoryController::validate(const TrajectoryGoal& goal, doub
           std::find(config_.joints.begin(), config_.joints.end(), names[i]) - config_.joints.begin());
       const double q = pt.positions[i];
       if (q < config_.lower_limits[c] || q > config_.upper_limits[c]) {
-        s << "position " << q << " of joint '" << names[i] << "' is outside its limits [" << config_.lower_limits[c]
-          << ", " << config_.upper_limits[c] << "]";
+        s << "position " << exact(q) << " of joint '" << names[i] << "' is outside its limits ["
+          << exact(config_.lower_limits[c]) << ", " << exact(config_.upper_limits[c]) << "]";
         return fail(TrajectoryErrorCode::kInvalidGoal, s.str());
       }
     }
@@ -243,7 +250,7 @@ TrajectoryResult TrajectoryController::setGoal(const TrajectoryGoal& goal, doubl
     trajectory.points.insert(trajectory.points.begin(),
                              {last_desired_.position, last_desired_.velocity, last_desired_.acceleration, now});
   }
-  trajectory_.emplace(std::move(trajectory));
+  trajectory_.emplace(std::move(trajectory), config_.lower_limits, config_.upper_limits);
   state_ = GoalState::kActive;
   return {};
 }

@@ -77,6 +77,8 @@ struct TrajectoryUpdate {
 //   rejected with kInvalidJoints / kInvalidGoal / kOldHeaderTimestamp or replaces the current one (which
 //   the caller reports as preempted). The new trajectory starts from the current desired state when its
 //   first point lies in the future.
+// - the trajectory is sampled with the joints' position limits as bounds (TrajectorySampler, trajectory.h): between
+//   two points within a joint's limits the command stays within them, where a quintic would pass a limit.
 // - during execution the path tolerances are checked (kPathToleranceViolated aborts and holds the actual
 //   position); after the last point the goal tolerances (positions, velocity with the stopped velocity
 //   tolerance) must hold within goal_time, else kGoalToleranceViolated (the final point stays commanded).

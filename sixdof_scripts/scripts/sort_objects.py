@@ -26,8 +26,7 @@ from sixdof_commander import ArmDriver, SixdofCommanderError
 from sixdof_commander.colors import color_class
 from sixdof_commander.grasping import grasp_tcp_pose, object_geometry, place_tcp_pose, raised, tip_pose
 from sixdof_commander.sim_world import WORLD_PARAMETER, Bin, SimWorldError, wait_for_world
-from sixdof_commander.straight_moves import pose_from_matrix
-from sixdof_commander.transforms import matrix_from_pose
+from sixdof_commander.transforms import matrix_from_pose, pose_from_matrix
 
 from sixdof_msgs.msg import DetectedObject, DetectedObjectArray, ObjectStates
 

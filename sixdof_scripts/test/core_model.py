@@ -6,7 +6,7 @@ model_from_response. So these tests see move_group's model: its joint, link and 
 from __future__ import annotations
 
 from sixdof_commander.robot_model import RobotDescription, SemanticDescription, model_from_response
-from sixdof_commander.straight_moves import pose_from_matrix
+from sixdof_commander.transforms import pose_from_matrix
 
 import sixdof_core
 from sixdof_msgs.msg import RobotModelEndEffector, RobotModelGroup, RobotModelGroupState, RobotModelJoint

@@ -9,8 +9,7 @@ from sixdof_commander import ArmDriver, Gripper, MoveGroup, PlanningScene, Sixdo
 from sixdof_commander.arm_driver import matrix_from_pose
 from sixdof_commander.error_reports import ERROR_NAMES, CallError, error_name
 from sixdof_commander.goals import pose_stamped_from_target
-from sixdof_commander.straight_moves import pose_from_matrix
-from sixdof_commander.transforms import homogeneous, matrix_from_rpy
+from sixdof_commander.transforms import homogeneous, matrix_from_rpy, pose_from_matrix
 
 
 def test_rad_returns_a_plain_list_of_radians():

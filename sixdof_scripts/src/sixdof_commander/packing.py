@@ -34,8 +34,7 @@ from .moving_pick import (
 )
 from .pack_pattern import Slot
 from .sim_world import Bin, Conveyor
-from .straight_moves import pose_from_matrix
-from .transforms import matrix_from_pose, matrix_from_quaternion
+from .transforms import matrix_from_pose, matrix_from_quaternion, pose_from_matrix
 
 PLACE_FAILED = "place failed"
 # s an object must have ridden at the belt's speed before it is picked: one that has just landed on the belt may still

@@ -10,7 +10,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import rospy
-from geometry_msgs.msg import Pose
 from moveit_msgs.msg import ContactInformation, MoveItErrorCodes, RobotState, RobotTrajectory
 from moveit_msgs.srv import GetStateValidityResponse
 from sensor_msgs.msg import JointState
@@ -20,7 +19,7 @@ from .error_reports import CallError
 from .exceptions import SixdofCommanderError
 from .grasping import raised
 from .move_group import MoveGroup
-from .transforms import matrix_from_pose, quaternion_from_matrix
+from .transforms import matrix_from_pose, pose_from_matrix
 
 # ArmDriver.last_failure_kind of a failure: no top-down grasp or place at that spot; a gripper that did not open, or
 # did not close (nor stall on an object); anything else.
@@ -30,15 +29,6 @@ FAILED = "failed"
 # Other IK solutions of the pose above an object tried when the straight descent from the first one collides: seeded
 # with the home state, then with this many random states.
 RANDOM_SEEDS = 8
-
-
-def pose_from_matrix(matrix: np.ndarray) -> Pose:
-    """geometry_msgs/Pose of a 4x4 transform."""
-    pose = Pose()
-    pose.position.x, pose.position.y, pose.position.z = (float(v) for v in matrix[:3, 3])
-    q = quaternion_from_matrix(matrix[:3, :3])
-    pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
-    return pose
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+from geometry_msgs.msg import Pose
 from scipy.spatial.transform import Rotation
 
 Quaternion = tuple[float, float, float, float]
@@ -69,3 +70,12 @@ def matrix_from_pose(pose: object) -> np.ndarray:
     """4x4 transform of a geometry_msgs/Pose."""
     p, o = pose.position, pose.orientation
     return homogeneous((p.x, p.y, p.z), matrix_from_quaternion((o.x, o.y, o.z, o.w)))
+
+
+def pose_from_matrix(matrix: np.ndarray) -> Pose:
+    """geometry_msgs/Pose of a 4x4 transform."""
+    pose = Pose()
+    pose.position.x, pose.position.y, pose.position.z = (float(v) for v in matrix[:3, 3])
+    q = quaternion_from_matrix(matrix[:3, :3])
+    pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
+    return pose

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """scene_mirror: keeps move_group's planning scene equal to the simulator's objects.
+An object a client removed from the scene stays out until it leaves the simulator (SceneMirror).
 
 Subscribes sixdof_sim/object_states, reads shapes once per object through sixdof_sim/get_object_state,
 and applies the SceneMirror's changes through apply_planning_scene (reading get_planning_scene each cycle).

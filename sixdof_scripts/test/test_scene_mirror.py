@@ -119,6 +119,32 @@ def test_objects_deleted_from_the_simulator_are_removed_from_the_scene():
     assert mirror.managed == set()
 
 
+def test_an_object_a_client_removed_stays_out_until_it_leaves_the_simulator():
+    mirror = make_mirror(grace=0.0)
+    resting = [SimObjectState("cube", pose(0.4, 0.0, 0.02), "")]
+    (added,) = mirror.update(resting, scene(), now=0.0).world_objects
+    assert added.operation == CollisionObject.ADD
+    assert mirror.update(resting, scene(world={"cube": pose(0.4, 0.0, 0.02)}), now=0.1).empty()
+    # scene.clear() / remove_world_object: the mirror does not put it back, moved or held by the grasp fix.
+    assert mirror.update(resting, scene(), now=0.2).empty()
+    assert mirror.update([SimObjectState("cube", pose(0.5, 0.0, 0.02), "")], scene(), now=0.3).empty()
+    assert mirror.update([SimObjectState("cube", pose(0.5, 0.0, 0.1), "link6")], scene(), now=5.0).empty()
+    assert mirror.removed == {"cube"} and mirror.managed == set()
+    # Gone from the simulator, then an object of that name again: mirrored like any new one.
+    assert mirror.update([], scene(), now=6.0).empty()
+    (again,) = mirror.update(resting, scene(), now=6.1).world_objects
+    assert again.operation == CollisionObject.ADD
+
+
+def test_an_add_not_yet_seen_in_the_scene_is_sent_again():
+    # A refused ADD leaves the object out of the scene without anyone having removed it.
+    mirror = make_mirror()
+    resting = [SimObjectState("cube", pose(0.4, 0.0, 0.02), "")]
+    mirror.update(resting, scene(), now=0.0)
+    (again,) = mirror.update(resting, scene(), now=0.1).world_objects
+    assert again.operation == CollisionObject.ADD and mirror.removed == set()
+
+
 def test_objects_the_mirror_never_added_are_not_removed():
     assert make_mirror().update([], scene(world={"user_box": pose()}), now=0.0).empty()
 

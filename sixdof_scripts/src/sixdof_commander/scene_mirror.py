@@ -81,6 +81,9 @@ class SceneMirror:
     Attaching and detaching wait `grace` seconds after the simulator changed, so that a script managing
     its own grasps (ArmDriver) does it first; the mirror only repairs what nobody else did.
     Objects the mirror added that disappear from the simulator are removed from the scene.
+    An object someone else removed from the scene (remove_world_object, clear) while the simulator still has it
+    stays out, as a MoveIt client expects of its removal: the mirror leaves it alone until it disappears from
+    the simulator (a new object of that name is mirrored again).
     Static objects (names in `static`: tables, walls) are mirrored support_clearance lower: the robot stands
     on the table, and the planning-scene message has no allowed-collision entries to let base_link touch it.
     """
@@ -106,6 +109,10 @@ class SceneMirror:
         self.support_clearance = _check_threshold(support_clearance, "support_clearance")
         self.static: set[str] = set()
         self.managed: set[str] = set()
+        # Objects seen in the scene (world or attached) while the simulator has them; one of them missing from the
+        # scene later was removed by a client, and goes into `removed` (not mirrored while the simulator has it).
+        self.seen: set[str] = set()
+        self.removed: set[str] = set()
         self._mismatch_since: dict[str, float] = {}
 
     def _scene_pose(self, name: str, pose: Pose) -> Pose:
@@ -139,7 +146,7 @@ class SceneMirror:
         present = set()
         for state in objects:
             present.add(state.name)
-            if state.name not in self.shapes:
+            if state.name not in self.shapes or self._removed_by_client(state.name, scene):
                 continue
             held = bool(state.attached_to)
             attached_link = scene.attached.get(state.name)
@@ -175,7 +182,24 @@ class SceneMirror:
             else:
                 self.managed.discard(name)
                 self._mismatch_since.pop(name, None)
+        self.seen &= present
+        self.removed &= present
         return updates
+
+    def _removed_by_client(self, name: str, scene: SceneSnapshot) -> bool:
+        """Whether `name` (an object of the simulator) is one a client removed from the scene; tracks `seen`."""
+        if name in self.removed:
+            return True
+        if name in scene.world or name in scene.attached:
+            self.seen.add(name)
+            return False
+        if name not in self.seen:
+            return False
+        self.seen.discard(name)
+        self.removed.add(name)
+        self.managed.discard(name)
+        self._mismatch_since.pop(name, None)
+        return True
 
     def _attach_change(self, state: SimObjectState) -> AttachedCollisionObject:
         attached = AttachedCollisionObject()

@@ -1,10 +1,48 @@
+#include <ompl/util/Console.h>
 #include <ros/ros.h>
 
 #include "sixdof_planning/move_group_node.h"
 
+namespace {
+
+// OMPL's messages into rosconsole (logger ros.sixdof_planning.ompl). Its info lines come with every plan
+// ("RRTConnect: Created 5 states ...") and go to debug; OMPL formats none of them unless that logger is at debug
+// level when move_group starts.
+class OmplToRosconsole : public ompl::msg::OutputHandler {
+ public:
+  void log(const std::string& text, ompl::msg::LogLevel level, const char* /*filename*/, int /*line*/) override {
+    switch (level) {
+      case ompl::msg::LOG_ERROR:
+        ROS_ERROR_STREAM_NAMED("ompl", text);
+        break;
+      case ompl::msg::LOG_WARN:
+        ROS_WARN_STREAM_NAMED("ompl", text);
+        break;
+      default:
+        ROS_DEBUG_STREAM_NAMED("ompl", text);
+        break;
+    }
+  }
+};
+
+void routeOmplMessages() {
+  static OmplToRosconsole handler;
+  ompl::msg::useOutputHandler(&handler);
+  // A debug line's arguments are evaluated only when its logger is at debug level.
+  bool debug = false;
+  ROS_DEBUG_STREAM_NAMED("ompl", "OMPL's messages at debug level" << [&debug] {
+    debug = true;
+    return "";
+  }());
+  ompl::msg::setLogLevel(debug ? ompl::msg::LOG_DEBUG : ompl::msg::LOG_WARN);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   ros::init(argc, argv, "move_group");
   ros::NodeHandle nh;
+  routeOmplMessages();
   ros::NodeHandle private_nh("~");
   std::unique_ptr<sixdof_planning::MoveGroupNode> node;
   try {

@@ -1,6 +1,6 @@
 // Time parameterization benchmark: computeTimeOptimalTrajectory on paths like the planner's (3 to 6 waypoints,
 // uniformly random within the joint ranges of the model's first group, fixed seed), at velocity scaling 0.1 and
-// 1.0 with the default path resolution (1e-3 rad) and sample period (10 ms). Velocity limits come from the URDF;
+// 1.0 with the default path resolution (1e-2 rad) and sample period (10 ms). Velocity limits come from the URDF;
 // acceleration limits are twice the velocity limits (the URDF has none). Reports the median and p95 time per call
 // over every path, repeated, and a hash of every output value's bits (equal hashes: identical outputs).
 //   retime_bench [paths (default 50)] [repeats (default 20)] [urdf] [srdf]

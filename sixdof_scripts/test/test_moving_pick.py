@@ -1,12 +1,26 @@
 """The follow path of pick_moving: at rest at both ends, over the object (matching its velocity) from the end of the
-ramp until the gripper has closed, down on it while it closes; the timing's checks; the approach's rule."""
+ramp until the gripper has closed, down on it while it closes; the timing's checks; the approach's rule; the
+interception's IK seeds."""
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 from sixdof_commander import SixdofCommanderError
-from sixdof_commander.moving_pick import EARLIER, NEXT, SPARE, TAKE, Timing, approach_step, follow_path
+from sixdof_commander.moving_pick import (
+    EARLIER,
+    NEXT,
+    SPARE,
+    SUCTION_TIMING,
+    TAKE,
+    UNREACHABLE,
+    Timing,
+    _Failed,
+    _MovingPick,
+    approach_step,
+    follow_path,
+)
 from sixdof_commander.transforms import homogeneous
 
 
@@ -94,3 +108,29 @@ def test_an_overlapping_descent_touches_the_object_as_the_ramp_ends():
 def test_timing_refuses_a_bad_overlap(overlap):
     with pytest.raises(SixdofCommanderError, match="overlap"):
         Timing(ramp=0.2, descend=0.3, overlap=overlap)
+
+
+class _SeededPick(_MovingPick):
+    """An interception over two joints whose IK finds a solution only from a seed with the second joint at 1 (the
+    home state's): the first joint follows the tip's y."""
+
+    def __init__(self, home: dict[str, float]) -> None:  # no driver, arm or object: intercept's inputs only
+        self.timing = SUCTION_TIMING
+        self.driver = SimpleNamespace(home_joints=home)
+        self.joint_names = ["a", "b"]
+
+    def poses(self, start: float) -> tuple[np.ndarray, list[np.ndarray]]:
+        return np.array([0.0, 0.1]), [homogeneous([0.4, y, 0.1], np.eye(3)) for y in (start * 0.01, start * 0.01 + 0.1)]
+
+    def ik(self, pose: np.ndarray, seed: np.ndarray) -> np.ndarray | None:
+        return np.array([pose[1, 3], 1.0]) if seed[1] == 1.0 else None
+
+
+def test_the_interception_falls_back_to_the_home_state_as_its_ik_seed():
+    start, times, positions = _SeededPick({"b": 1.0}).intercept(5.0, np.array([0.3, 0.0]))
+    assert start == 5.0
+    assert [q[1] for q in positions] == [1.0, 1.0]
+    # Without a home state that seeds a solution, nothing is found: unreachable.
+    with pytest.raises(_Failed) as failed:
+        _SeededPick({}).intercept(5.0, np.array([0.3, 0.0]))
+    assert failed.value.failure == UNREACHABLE

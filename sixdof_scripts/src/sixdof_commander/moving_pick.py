@@ -18,7 +18,7 @@ The gripper is the package's (ArmDriver's: its grasping information through move
 ArmDriver.gripper_close once the tool is at the grasp; the tool stays on the object for Timing's default `close`
 (1 s, for the grasp fix) plus the fingers' travel from open to the object's width at their URDF velocity limit. A
 suction cup goes to the centre of the object's top; its vacuum goes on as the descent begins, and the cup seals the
-moment its face touches the top (SUCTION_TIMING: 0.12 s down during the last 0.12 s of the ramp, touching the top as
+moment its face touches the top (SUCTION_TIMING: 0.12 s down during the 0.12 s ramp, touching the top as
 its velocity matches the object's, 0.05 s on the top face, 0.12 s up, points 0.05 s apart; at the pre-grasp point
 0.02 s early). Whether the object is held is the simulator's `attached_to` of it.
 
@@ -197,16 +197,29 @@ class _MovingPick:
             positions.append(q)
         return times, positions
 
+    def home_seed(self, seed: np.ndarray) -> np.ndarray:
+        """The arm's home state (the SRDF's, ArmDriver.home_joints) in the active joints' order; `seed`'s value for a
+        joint it does not name."""
+        home = self.driver.home_joints
+        return np.array([home.get(name, value) for name, value in zip(self.joint_names, seed, strict=True)])
+
     def intercept(self, earliest: float, seed: np.ndarray) -> tuple[float, np.ndarray, list[np.ndarray]]:
         """The earliest follow start from ROS time `earliest` on (in steps of `Timing.search_step`) whose whole path
         the arm can follow: (start, times, joint positions). MISSED once the path's end has left the arm's reach
         downstream while its start is reachable (the object passed), UNREACHABLE when no start within
-        `Timing.search` s works."""
+        `Timing.search` s works. The path's start is solved seeded with `seed`, or with the home state when that
+        finds no solution (from a seed far from the belt, the arm above a box's far corner, the solver can fail on
+        poses the arm reaches), and its end seeded with its start's solution."""
         timing, why = self.timing, ""
         start = earliest
+        seeds = [seed, self.home_seed(seed)]
         while start <= earliest + timing.search:
             _, poses = self.poses(start)
-            head, tail = self.ik(poses[0], seed), self.ik(poses[-1], seed)
+            for seed in seeds:  # noqa: B007 (the seed that found the start seeds the follow path)
+                head = self.ik(poses[0], seed)
+                if head is not None:
+                    break
+            tail = self.ik(poses[-1], seed if head is None else head)
             if head is not None and tail is None:
                 break  # reachable at the start, not at the end: the window has passed
             if head is not None and tail is not None:

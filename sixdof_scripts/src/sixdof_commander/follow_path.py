@@ -102,8 +102,10 @@ class Timing:
 
 # A suction cup seals as it touches the top (its vacuum already on): a short stay on the top face instead of a close,
 # and a quicker descent and lift (nothing closes around the object: it need not be met as gently), the descent within
-# the ramp's end (the cup is above the top until it touches it, as its velocity matches the object's).
-SUCTION_TIMING = Timing(descend=0.12, close=0.05, lift=0.12, step=0.05, margin=0.02, search_step=0.05, overlap=0.12)
+# the ramp (the cup is above the top until it touches it, as its velocity matches the object's).
+SUCTION_TIMING = Timing(
+    ramp=0.12, descend=0.12, close=0.05, lift=0.12, step=0.05, margin=0.02, search_step=0.05, overlap=0.12
+)
 
 
 def follow_path(

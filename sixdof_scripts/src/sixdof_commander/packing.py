@@ -50,6 +50,9 @@ RELEASE_WAIT = 0.15
 # s after the vacuum goes off that the next pick, planned while the cup moves to the slot, is due to be sent (the
 # release is confirmed and the place's bookkeeping done by then).
 NEXT_PICK_AFTER = 0.02
+# s before the next pick is due to be sent that plan_next stops waiting for an object to plan it for (planning one
+# takes up to about 0.13 s): an object that has settled on the belt by then is planned while the place runs.
+PLAN_AHEAD = 0.15
 # s the cup may wait on the place for the next object to pick, whose approach continues the retreat without a stop
 # (a retreat on its own, then the approach, take longer than the two blended and this wait): after that it retreats.
 RETREAT_AFTER = 0.5
@@ -242,9 +245,14 @@ class Packer:
         return False
 
     def plan_next(self, retreat: RobotTrajectory, ready: float) -> None:
-        """Plan the next pick (take_next's object, if one is waiting), its approach continuing `retreat` from ROS
-        time `ready` on (next_pick; a plan that failed is dropped and its object is picked afresh)."""
+        """Plan the next pick (take_next's object: one waiting, or the first to settle on the belt until
+        PLAN_AHEAD s before `ready`), its approach continuing `retreat` from ROS time `ready` on (next_pick). A plan
+        that MISSED gives its object back to take_next; one that failed otherwise stays next_pick, and pack() plans
+        it afresh from where the place ends."""
         name = self.take_next()
+        while name is None and rospy.get_time() < ready - PLAN_AHEAD and not rospy.is_shutdown():
+            rospy.sleep(0.02)
+            name = self.take_next()
         if name is None:
             return
         try:
@@ -252,11 +260,11 @@ class Packer:
         except SixdofCommanderError as err:
             rospy.logwarn(f"planning the pick of '{name}' ahead: {err}")
             planned = None
-        if planned is None or planned.result.failure:
+        if planned is None or planned.result.failure == MISSED:
             with self._lock:
                 self.claimed.discard(name)
             return
-        self.next_pick = planned
+        self.next_pick = planned  # one that failed otherwise is planned afresh from where the place ends
 
     def check(self, name: str, slot: Slot, tolerance: float) -> SlotCheck:
         """Where the object rests against its slot (the simulator's pose of it)."""

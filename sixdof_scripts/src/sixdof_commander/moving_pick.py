@@ -212,18 +212,20 @@ class _MovingPick:
         poses the arm reaches), and its end seeded with its start's solution."""
         timing, why = self.timing, ""
         start = earliest
-        seeds = [seed, self.home_seed(seed)]
+        seeds = (seed, self.home_seed(seed))
         while start <= earliest + timing.search:
             _, poses = self.poses(start)
-            for seed in seeds:  # noqa: B007 (the seed that found the start seeds the follow path)
-                head = self.ik(poses[0], seed)
+            used, head = seeds[-1], None  # the seed that solved the start seeds the follow path
+            for candidate in seeds:
+                head = self.ik(poses[0], candidate)
                 if head is not None:
+                    used = candidate
                     break
-            tail = self.ik(poses[-1], seed if head is None else head)
+            tail = self.ik(poses[-1], used if head is None else head)
             if head is not None and tail is None:
                 break  # reachable at the start, not at the end: the window has passed
             if head is not None and tail is not None:
-                path = self.follow(start, seed)
+                path = self.follow(start, used)
                 if not isinstance(path, str):
                     return start, path[0], path[1]
                 why = f"the follow path from {start - rospy.get_time():.2f} s on: {path}"

@@ -36,13 +36,13 @@ struct TimeParameterizationResult : Result<TimeParameterizationStatus> {
 // RSS 2012). The phase plane (path speed squared over arc length) is solved on a grid by a backward
 // pass of maximal deceleration and a forward pass of maximal acceleration. A straight segment is one
 // interval solved in closed form (full acceleration, cruise at its speed limit, full deceleration: exact);
-// a blend is split into equal steps no longer than path_resolution nor turning by more than 0.01 rad, each with a constant path acceleration chosen so that
-// every joint's velocity and acceleration limit holds at both ends of the step (within the grid's
-// curvature error, which a 0.1% margin on the limits absorbs). The output starts and ends at rest, passes through the
-// first and last waypoints exactly, stops exactly at waypoints where the path reverses or max_deviation
-// is 0, and stays within max_deviation of every other waypoint. Positions are C1 along the path,
-// velocities are continuous, accelerations are piecewise continuous (bang-bang, as any time-optimal
-// profile).
+// a blend is split into equal steps no longer than path_resolution nor turning by more than 0.01 rad, each
+// with a constant path acceleration chosen so that every joint's velocity and acceleration limit holds at both
+// ends of the step (within the grid's curvature error, which a 0.1% margin on the limits absorbs). The output
+// starts and ends at rest, passes through the first and last waypoints exactly, stops exactly at waypoints
+// where the path reverses or max_deviation is 0, and stays within max_deviation of every other waypoint.
+// Positions are C1 along the path, velocities are continuous, accelerations are piecewise continuous
+// (bang-bang, as any time-optimal profile).
 TimeParameterizationResult computeTimeOptimalTrajectory(const std::vector<std::string>& joint_names,
                                                         const std::vector<std::vector<double>>& waypoints,
                                                         const TimeParameterizationOptions& options);

@@ -97,3 +97,64 @@ def test_truncated_bytes_raise_as_genpy_raises(cut):
     data = wire(answer(4))[:-cut]
     with pytest.raises(genpy.DeserializationError):
         decode_plan_response(data)
+
+
+def decodes_as_genpy(data: bytes) -> None:
+    """decode_plan_response(data) gives what genpy gives, or raises genpy.DeserializationError as genpy does."""
+    try:
+        GetMotionPlanResponse().deserialize(data)
+    except genpy.DeserializationError:
+        with pytest.raises(genpy.DeserializationError):
+            decode_plan_response(data)
+        return
+    decoded = decode_plan_response(data)
+    expected = GetMotionPlanResponse().deserialize(data)
+    assert decoded == expected
+
+
+def test_negative_and_large_durations_and_odd_values_decode_as_genpy_decodes_them():
+    msg = answer(4)
+    points = msg.motion_plan_response.trajectory.joint_trajectory.points
+    points[0].time_from_start = genpy.Duration(-3, -7)  # genpy keeps the values as read
+    points[1].time_from_start = genpy.Duration(2**31 - 1, 999_999_999)
+    points[2].positions = [float("inf"), -0.0, 1e-308, -1e308, 0.0, 5e-324]
+    points[3].accelerations = []
+    data = wire(msg)
+    assert_same(decode_plan_response(data), data)
+
+
+def test_bytes_cut_anywhere_in_the_points_decode_or_raise_as_genpy_does():
+    data = wire(answer(3))
+    for cut in range(1, 3 * (4 * 4 + 3 * 6 * 8 + 8) + 30):
+        decodes_as_genpy(data[:-cut])
+
+
+def test_odd_bytes_fall_back_to_genpy():
+    data = wire(answer(3))
+    decodes_as_genpy(data + b"extra")  # genpy reads no further than the message
+    trajectory_points = data.index(b"joint6", data.index(b"joint6") + 1) + len(b"joint6")
+    too_many = bytearray(data)
+    too_many[trajectory_points : trajectory_points + 4] = (1000).to_bytes(4, "little")
+    decodes_as_genpy(bytes(too_many))
+
+
+def test_the_points_are_read_by_the_wire_format_helper_and_its_errors_fall_back_to_genpy(monkeypatch):
+    from sixdof_commander import _plan_response
+
+    calls = []
+    helper = _plan_response._decode_trajectory_points
+
+    def spy(*args):
+        calls.append(args[2:])
+        return helper(*args)
+
+    monkeypatch.setattr(_plan_response, "_decode_trajectory_points", spy)
+    data = wire(answer(5))
+    assert_same(decode_plan_response(data), data)
+    assert calls == [(JointTrajectoryPoint, genpy.Duration)]
+
+    def failing(*args):
+        raise ValueError("bytes end early")
+
+    monkeypatch.setattr(_plan_response, "_decode_trajectory_points", failing)
+    assert_same(decode_plan_response(data), data)

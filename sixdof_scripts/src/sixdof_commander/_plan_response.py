@@ -2,16 +2,16 @@
 
 genpy's generated deserializer builds every trajectory point through the message constructors, a struct per array
 and a slice of the buffer per field, which costs more than the rest of the answer together. This decoder reads the
-points in one pass (struct.iter_unpack over the points' common layout) and builds the same message objects without
-genpy's constructors (which check every keyword), field for field the values and types genpy gives (tuples for
-float64[], lists for string[] and message arrays, genpy.Time and genpy.Duration). It reads the answers move_group
-gives: a start state without multi-DOF joints or attached objects, and a trajectory without multi-DOF points, each
-point's arrays as long as the first point's. Any other answer (or bytes that do not parse) is decoded by genpy itself.
+answer's fields in order and builds the same message objects without genpy's constructors (which check every
+keyword), field for field the values and types genpy gives (tuples for float64[], lists for string[] and message
+arrays, genpy.Time and genpy.Duration). The trajectory's points, most of the answer, are read in C++ by sixdof_core's
+private wire-format helper `_decode_trajectory_points`. It reads the answers move_group gives: a start state without
+multi-DOF joints or attached objects, and a trajectory without multi-DOF points. Any other answer (or bytes that do
+not parse) is decoded by genpy itself.
 """
 
 from __future__ import annotations
 
-import operator
 import struct
 
 import genpy
@@ -20,6 +20,8 @@ from moveit_msgs.srv import GetMotionPlanResponse
 from sensor_msgs.msg import JointState, MultiDOFJointState
 from std_msgs.msg import Header
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
+
+from sixdof_core._sixdof_core import _decode_trajectory_points
 
 _U32 = struct.Struct("<I")
 _HEADER = struct.Struct("<3I")
@@ -91,40 +93,8 @@ def _stamp(kind: type, secs: int, nsecs: int) -> genpy.TVal:
 
 
 def _points(reader: _Reader) -> list[JointTrajectoryPoint]:
-    count = reader.u32()
-    if count == 0:
-        return []
-    data, at = reader.data, reader.at
-    # Each point: positions, velocities, accelerations, effort (a length, then float64s), time_from_start (2 x int32).
-    lengths = []
-    offset = at
-    for _ in range(4):
-        (length,) = _U32.unpack_from(data, offset)
-        lengths.append(length)
-        offset += 4 + 8 * length
-    p, v, a, e = lengths
-    layout = struct.Struct(f"<I{p}dI{v}dI{a}dI{e}d2i")
-    end = at + count * layout.size
-    if end > len(data):
-        raise _UnusualAnswerError
-    vi, ai, ei = p + 1, p + v + 2, p + v + a + 3
-    # Per point, in one call each: its four array lengths, and its fields.
-    read_lengths = operator.itemgetter(0, vi, ai, ei)
-    read_fields = operator.itemgetter(slice(1, vi), slice(vi + 1, ai), slice(ai + 1, ei), slice(ei + 1, -2), -2, -1)
-    expected = (p, v, a, e)
-    points = []
-    new_point, new_duration = JointTrajectoryPoint.__new__, genpy.Duration.__new__
-    for fields in layout.iter_unpack(memoryview(data)[at:end]):
-        if read_lengths(fields) != expected:
-            raise _UnusualAnswerError
-        point = new_point(JointTrajectoryPoint)
-        point.positions, point.velocities, point.accelerations, point.effort, secs, nsecs = read_fields(fields)
-        duration = new_duration(genpy.Duration)
-        duration.secs = secs
-        duration.nsecs = nsecs
-        point.time_from_start = duration
-        points.append(point)
-    reader.at = end
+    """The trajectory's points, read in C++ (sixdof_core's wire-format helper); ValueError for bytes that end early."""
+    points, reader.at = _decode_trajectory_points(reader.data, reader.at, JointTrajectoryPoint, genpy.Duration)
     return points
 
 
@@ -181,5 +151,5 @@ def decode_plan_response(data: bytes) -> GetMotionPlanResponse:
     when the bytes are not one)."""
     try:
         return _decode(_Reader(data))
-    except (_UnusualAnswerError, struct.error, IndexError, UnicodeDecodeError):
+    except (_UnusualAnswerError, struct.error, IndexError, ValueError):  # UnicodeDecodeError is a ValueError
         return GetMotionPlanResponse().deserialize(data)

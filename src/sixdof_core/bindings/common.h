@@ -118,5 +118,6 @@ void bindCollision(py::module_& m);
 void bindPlanning(py::module_& m);
 void bindTrajectory(py::module_& m);
 void bindSetupAssistant(py::module_& m);
+void bindWireFormat(py::module_& m);
 
 }  // namespace sixdof_core::python

@@ -43,4 +43,5 @@ PYBIND11_MODULE(_sixdof_core, m) {
   bindPlanning(m);
   bindTrajectory(m);
   bindSetupAssistant(m);
+  bindWireFormat(m);
 }

@@ -436,18 +436,20 @@ class GoalBuilder:
         return state
 
     def motion_plan_request(self) -> MotionPlanRequest:
-        request = MotionPlanRequest()
-        request.workspace_parameters = self.workspace
-        request.start_state = self.current_start_state()
-        request.goal_constraints.extend(self.all_goal_constraints())
-        request.path_constraints = self.path_constraints
-        request.planner_id = self.planner_id
-        request.group_name = self.group.name
-        request.num_planning_attempts = self.num_planning_attempts
-        request.allowed_planning_time = self.planning_time
-        request.max_velocity_scaling_factor = self.max_velocity_scaling_factor
-        request.max_acceleration_scaling_factor = self.max_acceleration_scaling_factor
-        return request
+        """The request of the current targets and settings, built anew on each call. The fields are passed to the
+        constructor, which then builds defaults only for the fields not given."""
+        return MotionPlanRequest(
+            workspace_parameters=self.workspace,
+            start_state=self.current_start_state(),
+            goal_constraints=self.all_goal_constraints(),
+            path_constraints=self.path_constraints,
+            planner_id=self.planner_id,
+            group_name=self.group.name,
+            num_planning_attempts=self.num_planning_attempts,
+            allowed_planning_time=self.planning_time,
+            max_velocity_scaling_factor=self.max_velocity_scaling_factor,
+            max_acceleration_scaling_factor=self.max_acceleration_scaling_factor,
+        )
 
     def move_group_goal(self) -> MoveGroupGoal:
         """The move_group action goal of go(): plan and execute, in the planner's current scene."""

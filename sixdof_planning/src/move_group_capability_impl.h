@@ -11,7 +11,29 @@ namespace sixdof_planning {
 
 template <class Capability>
 ServiceCapability<Capability>::ServiceCapability(MoveGroupContext* context, const std::string& service)
-    : context_(context), service_(service), server_(advertise(context->nodeHandle(), service, &Capability::handle)) {}
+    : context_(context), service_(service) {
+  ros::NodeHandle nh(context->nodeHandle());
+  nh.setCallbackQueue(&queue_);
+  server_ = advertise(nh, service, &Capability::handle);
+}
+
+template <class Capability>
+ServiceCapability<Capability>::~ServiceCapability() {
+  stop();
+  server_.shutdown();
+}
+
+template <class Capability>
+void ServiceCapability<Capability>::start() {
+  if (thread_) return;
+  thread_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
+  thread_->start();
+}
+
+template <class Capability>
+void ServiceCapability<Capability>::stop() {
+  thread_.reset();  // the spinner's destructor stops its thread and waits for it
+}
 
 template <class Capability>
 template <class Request, class Response>

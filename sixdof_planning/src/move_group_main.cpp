@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
     ROS_FATAL_STREAM("move_group: bad configuration: " << e.what());
     return 1;
   }
-  // Planning, execution and scene requests are served concurrently (executions block their action's thread).
+  // Each service has a thread of its own; goals and topics share these (executions block their action's thread).
+  node->start();
   ros::AsyncSpinner spinner(4);
   spinner.start();
   ROS_INFO("move_group: ready");

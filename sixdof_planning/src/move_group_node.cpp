@@ -37,6 +37,25 @@ MoveGroupNode::MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh) {
   scene_topics_ = std::make_unique<PlanningSceneTopics>(context_.get());
 }
 
-MoveGroupNode::~MoveGroupNode() = default;
+template <class F>
+void MoveGroupNode::forEachService(F f) {
+  f(*fk_);
+  f(*ik_);
+  f(*plan_);
+  f(*cartesian_);
+  f(*validity_);
+  f(*retime_);
+  f(*get_scene_);
+  f(*apply_scene_);
+  f(*robot_model_);
+}
+
+void MoveGroupNode::start() {
+  forEachService([](auto& service) { service.start(); });
+}
+
+MoveGroupNode::~MoveGroupNode() {
+  forEachService([](auto& service) { service.stop(); });
+}
 
 }  // namespace sixdof_planning

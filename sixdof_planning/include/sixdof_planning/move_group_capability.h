@@ -6,14 +6,19 @@
 // its words; a failure is published on move_group/error_reports with the caller's name. Its source
 // includes "move_group_capability_impl.h" and instantiates the base there (`template class
 // ServiceCapability<X>;`), where the messages are complete: this header names them only through fwd.h.
-// Requests and goals are served by the node's spinner, which starts once the whole node is built, so a
-// capability's own members are ready for them.
+// Each service is answered by a thread of its own, in the order its requests arrive (the response is written by
+// the thread that computed it, which then reads a request already waiting on a kept connection itself: no other
+// thread is woken and the connection is not polled for writing in the meantime); different services run
+// concurrently. Goals and topics are served by the node's spinner. Neither starts before the whole node is built
+// (MoveGroupNode::start), so a capability's own members are ready for them.
 
 #include <memory>
 #include <string>
 
+#include <ros/callback_queue.h>
 #include <ros/forwards.h>
 #include <ros/service_server.h>
+#include <ros/spinner.h>
 
 #include "sixdof_planning/errors.h"
 #include "sixdof_planning/fwd.h"
@@ -27,6 +32,11 @@ class ServiceCapability {
   ServiceCapability(MoveGroupContext* context, const std::string& service);
   ServiceCapability(const ServiceCapability&) = delete;
   ServiceCapability& operator=(const ServiceCapability&) = delete;
+  ~ServiceCapability();
+
+  // Starts answering (requests that came before wait for it); stop() waits for a request being answered.
+  void start();
+  void stop();
 
  protected:
   MoveGroupContext* const context_;
@@ -37,7 +47,9 @@ class ServiceCapability {
   ros::ServiceServer advertise(ros::NodeHandle& nh, const std::string& service,
                                ErrorCode (Capability::*handle)(const Request&, Response&));
 
+  ros::CallbackQueue queue_;
   ros::ServiceServer server_;
+  std::unique_ptr<ros::AsyncSpinner> thread_;
 };
 
 template <class Capability, class Action>

@@ -30,7 +30,11 @@ class MoveGroupNode {
  public:
   // Throws ConfigError on bad parameters.
   MoveGroupNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  // Stops the services' threads before any capability goes.
   ~MoveGroupNode();
+
+  // Starts each service's thread; goals and topics wait for the caller's spinner.
+  void start();
 
  private:
   std::unique_ptr<MoveGroupContext> context_;
@@ -48,6 +52,10 @@ class MoveGroupNode {
   std::unique_ptr<ExecuteTrajectoryActionCapability> execute_trajectory_;
   std::unique_ptr<QueryRobotModelService> robot_model_;
   std::unique_ptr<PlanningSceneTopics> scene_topics_;
+
+  // Calls f on every service capability.
+  template <class F>
+  void forEachService(F f);
 };
 
 }  // namespace sixdof_planning

@@ -1,6 +1,7 @@
 // Time parameterization benchmark: computeTimeOptimalTrajectory on paths like the planner's (3 to 6 waypoints,
 // uniformly random within the joint ranges of the model's first group, fixed seed), at velocity scaling 0.1 and
-// 1.0 with the default path resolution (1e-2 rad) and sample period (10 ms). Velocity limits come from the URDF;
+// 1.0 with the default path resolution (1e-2 rad) and sample period (10 ms), and at 1.0 with move_group's sample
+// period (its trajectory_sample_period, 0.1 s: fewer output points). Velocity limits come from the URDF;
 // acceleration limits are twice the velocity limits (the URDF has none). Reports the median and p95 time per call
 // over every path, repeated, and a hash of every output value's bits (equal hashes: identical outputs).
 //   retime_bench [paths (default 50)] [repeats (default 20)] [urdf] [srdf]
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_paths.h"
@@ -77,10 +79,14 @@ int main(int argc, char** argv) {
   }
   std::printf("retime_bench: group %s of %s, %d paths of 3-6 waypoints, %d calls each\n\n", group.name.c_str(),
               urdf_name.c_str(), paths, repeats);
-  std::printf("| velocity scaling | median (ms) | p95 (ms) | output points (median) | output hash |\n");
-  std::printf("|---|---|---|---|---|\n");
-  for (double scaling : {0.1, 1.0}) {
+  std::printf("| velocity scaling | sample period (s) | median (ms) | p95 (ms) | output points (median) | output hash "
+              "|\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  const double default_period = options.sample_period;
+  const std::vector<std::pair<double, double>> cases{{0.1, default_period}, {1.0, default_period}, {1.0, 0.1}};
+  for (const auto& [scaling, period] : cases) {
     options.velocity_scaling = scaling;
+    options.sample_period = period;
     std::vector<double> times, sizes;
     std::uint64_t hash = 1469598103934665603ULL;
     for (const auto& path : waypoints) {
@@ -102,7 +108,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-    std::printf("| %.1f | %.3f | %.3f | %.0f | %016llx |\n", scaling, 1e3 * percentile(times, 0.5),
+    std::printf("| %.1f | %g | %.3f | %.3f | %.0f | %016llx |\n", scaling, period, 1e3 * percentile(times, 0.5),
                 1e3 * percentile(times, 0.95), percentile(sizes, 0.5), static_cast<unsigned long long>(hash));
   }
   return 0;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "time_parameterization_inputs.h"
+#include "time_parameterization_lines.h"
 #include "time_parameterization_path.h"
 
 namespace sixdof_core {
@@ -13,6 +14,9 @@ namespace {
 
 using blended_path::kSamePoint;
 using blended_path::Segment;
+using feasible_lines::ActivePair;
+using feasible_lines::largestFeasible;
+using feasible_lines::Lines;
 
 // Limits used internally are this fraction of the requested ones, so that the curvature error of the
 // grid on blends (evaluated at interval ends only) cannot push a sampled state over a limit.
@@ -72,16 +76,10 @@ struct Limits {
   Eigen::VectorXd acceleration;
 };
 
-// Intersects [*lo, *hi] with {x : -limit <= c0 + c1 * x <= limit}. Returns false when empty.
-bool intersect(double c0, double c1, double limit, double* lo, double* hi) {
-  const double tol = 1e-12 * (1.0 + limit);
-  if (std::abs(c1) < 1e-14) return std::abs(c0) <= limit + tol;
-  const double inverse = 1.0 / c1;
-  double a = (-limit - c0) * inverse, b = (limit - c0) * inverse;
-  if (a > b) std::swap(a, b);
-  *lo = std::max(*lo, a);
-  *hi = std::min(*hi, b);
-  return *lo <= *hi + tol;
+// The largest x <= hi with -limit <= c0 + c1 * x <= limit (hi itself when c1 is about 0: no bound on x).
+double boundAbove(double c0, double c1, double limit, double hi) {
+  if (std::abs(c1) < 1e-14) return hi;
+  return std::min(hi, ((c1 > 0.0 ? limit : -limit) - c0) * (1.0 / c1));
 }
 
 class Solver {
@@ -91,7 +89,9 @@ class Solver {
         grid_(std::move(grid)),
         limits_(std::move(limits)),
         joints_(limits_.velocity.size()),
-        slots_(grid_.size() - 1) {
+        slots_(grid_.size() - 1),
+        lower_lines_(2 * static_cast<std::size_t>(joints_) + 1),
+        upper_lines_(2 * static_cast<std::size_t>(joints_) + 1) {
     // On a straight segment every interval has the segment's direction as tangent and no curvature: the speed
     // limit is the segment's, and the constraints need only the direction. Arcs store the tangent and curvature at
     // both ends of each of their intervals, on the interval's own segment (a point on a segment boundary has one
@@ -138,11 +138,9 @@ class Solver {
     u_.assign(n - 1, 0.0);
     lines_.assign(n - 1, LineMotion());
     for (std::size_t i = 0; i + 1 < n; ++i) {
-      double lo = 0.0, hi = upper[i + 1];
       // The feasible set of (x_i, x_i+1) is convex and holds (0, 0) and (upper_i, some x_i+1 <= upper_i+1),
-      // so from any x_i <= upper_i the interval is not empty (up to rounding).
-      transition(i, x_[i], &lo, &hi);
-      x_[i + 1] = std::max(0.0, hi);
+      // so from any x_i <= upper_i the largest x_i+1 is >= 0 (up to rounding).
+      x_[i + 1] = std::max(0.0, largestNext(i, x_[i], upper[i + 1]));
       const Segment& seg = segmentOf(i);
       if (seg.circular) {
         u_[i] = (x_[i + 1] - x_[i]) / (2.0 * step(i));
@@ -237,10 +235,10 @@ class Solver {
       }
       const double inverse = 1.0 / aj;
       const double reach = Aj * std::abs(inverse), slope = -bj * inverse;
-      lower_lines_.push_back({-reach, slope});
-      upper_lines_.push_back({reach, slope});
+      lower_lines_.add(-reach, slope);
+      upper_lines_.add(reach, slope);
     }
-    return largestFeasible(lower_lines_, upper_lines_, x, 1e-12);
+    return largestFeasible(lower_lines_, upper_lines_, x, 1e-12, &speed_hint_);
   }
 
   double pointLimit(std::size_t p) {
@@ -252,33 +250,30 @@ class Solver {
     return x;
   }
 
-  // Intersects [*lo, *hi] with the x_{i+1} that interval i allows after x_i = x: the constant path
-  // acceleration u = (x_{i+1} - x) / (2 ds) must respect every joint's acceleration limit at both ends.
-  bool transition(std::size_t i, double x, double* lo, double* hi) const {
+  // Largest x_{i+1} <= next_upper that interval i allows after x_i = x: the constant path acceleration
+  // u = (x_{i+1} - x) / (2 ds) must respect every joint's acceleration limit at both ends.
+  double largestNext(std::size_t i, double x, double next_upper) const {
     const double h = 2.0 * step(i);
     const Segment& seg = segmentOf(i);
     if (!seg.circular) {
-      // Both ends read a (x' - x) / h with the direction a: every joint's limit A bounds |x' - x| by h A / |a|,
-      // the segment's acceleration limit times h.
-      const double reach = h * line_accelerations_[grid_[i].segment];
-      *lo = std::max(*lo, x - reach);
-      *hi = std::min(*hi, x + reach);
-      return *lo <= *hi;
+      // Both ends read a (x' - x) / h with the direction a: every joint's limit A bounds x' - x by h A / |a|, the
+      // segment's acceleration limit times h.
+      return std::min(next_upper, x + h * line_accelerations_[grid_[i].segment]);
     }
     const Eigen::Map<const Eigen::VectorXd> a0 = end(i, 0, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b0 = end(i, 0, kCurvature);
     const Eigen::Map<const Eigen::VectorXd> a1 = end(i, 1, kTangent);
     const Eigen::Map<const Eigen::VectorXd> b1 = end(i, 1, kCurvature);
     const double inverse_h = 1.0 / h;
-    bool ok = true;
+    double hi = next_upper;
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
       // Start: a0 (x' - x) / h + b0 x;  end: a1 (x' - x) / h + b1 x'.
       const double p0 = a0[j] * inverse_h, p1 = a1[j] * inverse_h;
-      ok &= intersect(-p0 * x + b0[j] * x, p0, A, lo, hi);
-      ok &= intersect(-p1 * x, p1 + b1[j], A, lo, hi);
+      hi = boundAbove(-p0 * x + b0[j] * x, p0, A, hi);
+      hi = boundAbove(-p1 * x, p1 + b1[j], A, hi);
     }
-    return ok;
+    return hi;
   }
 
   // Largest x_i <= limit from which interval i can reach some x_{i+1} in [0, next_upper]. Every joint
@@ -297,10 +292,12 @@ class Solver {
     const Eigen::Map<const Eigen::VectorXd> b1 = end(i, 1, kCurvature);
     const double inverse_h = 1.0 / h;
     // Lines x_{i+1} = c + m x_i.
-    std::vector<std::pair<double, double>>& lower = lower_lines_;
-    std::vector<std::pair<double, double>>& upper = upper_lines_;
-    lower.assign(1, {0.0, 0.0});
-    upper.assign(1, {next_upper, 0.0});
+    Lines& lower = lower_lines_;
+    Lines& upper = upper_lines_;
+    lower.clear();
+    upper.clear();
+    lower.add(0.0, 0.0);
+    upper.add(next_upper, 0.0);
     double best = limit;
     auto add = [&](double p, double r, double A) {
       if (std::abs(p) < 1e-14) {
@@ -308,11 +305,9 @@ class Solver {
         return;
       }
       const double inverse = 1.0 / p;
-      const double reach = A * inverse, slope = -r * inverse;
-      std::pair<double, double> lo{-reach, slope}, hi{reach, slope};
-      if (p < 0.0) std::swap(lo, hi);
-      lower.push_back(lo);
-      upper.push_back(hi);
+      const double reach = std::abs(A * inverse), slope = -r * inverse;
+      lower.add(-reach, slope);
+      upper.add(reach, slope);
     };
     for (Eigen::Index j = 0; j < a0.size(); ++j) {
       const double A = limits_.acceleration[j];
@@ -320,34 +315,7 @@ class Solver {
       add(p0, b0[j] - p0, A);
       add(p1 + b1[j], -p1, A);
     }
-    return std::max(0.0, largestFeasible(lower, upper, best, 1e-14));
-  }
-
-  // Largest x in [0, cap] where no line of `lower` (pairs {c, m}: c + m x) is above a line of `upper`, given that
-  // none is at x = 0: the smallest x where a lower line rising against an upper line (slopes differing by more than
-  // min_slope) meets it, or cap. max(lower) - min(upper) is convex in x, so Newton's steps from cap, each to where
-  // the lines highest and lowest at the current x meet, fall onto that x through a few of the pairs, not all.
-  static double largestFeasible(const std::vector<std::pair<double, double>>& lower,
-                                const std::vector<std::pair<double, double>>& upper, double cap, double min_slope) {
-    double x = cap;
-    if (lower.empty() || upper.empty()) return x;
-    for (;;) {
-      std::size_t top = 0, bottom = 0;
-      for (std::size_t k = 1; k < lower.size(); ++k) {
-        if (lower[k].first + lower[k].second * x > lower[top].first + lower[top].second * x) top = k;
-      }
-      for (std::size_t k = 1; k < upper.size(); ++k) {
-        if (upper[k].first + upper[k].second * x < upper[bottom].first + upper[bottom].second * x) bottom = k;
-      }
-      const auto& [lc, lm] = lower[top];
-      const auto& [hc, hm] = upper[bottom];
-      if (lc + lm * x <= hc + hm * x) return x;
-      const double slope = lm - hm;
-      if (slope <= min_slope) return x;
-      const double meet = (hc - lc) / slope;
-      if (!(meet < x)) return x;
-      x = meet;
-    }
+    return std::max(0.0, largestFeasible(lower, upper, best, 1e-14, &start_hint_));
   }
 
   // The state at time tau into interval i (time t from the start), written into `point`.
@@ -389,8 +357,9 @@ class Solver {
   std::vector<double> x_;
   std::vector<double> u_;                               // per arc interval: its constant path acceleration
   std::vector<LineMotion> lines_;                       // per line interval: its motion
-  std::vector<std::pair<double, double>> lower_lines_;  // speedLimit's and maxStart's scratch space
-  std::vector<std::pair<double, double>> upper_lines_;
+  Lines lower_lines_;  // speedLimit's and maxStart's scratch space
+  Lines upper_lines_;
+  ActivePair speed_hint_, start_hint_;  // speedLimit's and maxStart's last active pairs
 };
 
 }  // namespace

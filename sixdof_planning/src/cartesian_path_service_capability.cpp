@@ -130,7 +130,7 @@ ErrorCode computePath(MoveGroupContext* context, const moveit_msgs::GetCartesian
   }
   response->solution.joint_trajectory = toJointTrajectory(trajectory);
   response->solution.joint_trajectory.header.frame_id = context->planningFrame();
-  if (trajectory.points.size() > 1) context->publishDisplayTrajectory(start, response->solution.joint_trajectory);
+  if (trajectory.points.size() > 1) context->publishDisplayTrajectory(start, std::move(trajectory));
   // As in MoveIt, a partial path is a successful call; the fraction and message say how far it got.
   std::ostringstream message;
   message << "fraction " << result.fraction;

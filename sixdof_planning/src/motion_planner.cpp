@@ -365,11 +365,12 @@ ErrorCode MotionPlanner::planRequest(const moveit_msgs::MotionPlanRequest& reque
   response->trajectory.joint_trajectory = toJointTrajectory(trajectory);
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();
   timer->mark("trajectory message");
-  context_->publishDisplayTrajectory(start, response->trajectory.joint_trajectory);
+  const double duration = trajectory.duration();
+  context_->publishDisplayTrajectory(start, std::move(trajectory));
   timer->mark("display trajectory");
   return makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
                                       formatNumber(result.planning_time) + " s, trajectory " +
-                                      formatNumber(trajectory.duration()) + " s");
+                                      formatNumber(duration) + " s");
 }
 
 }  // namespace sixdof_planning

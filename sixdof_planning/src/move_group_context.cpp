@@ -47,7 +47,10 @@ MoveGroupContext::MoveGroupContext(ros::NodeHandle nh, MoveGroupConfig config)
     throw ConfigError(std::string("collision geometry of robot_description: ") + e.what());
   }
   state_monitor_ = std::make_unique<CurrentStateMonitor>(nh_, model_, "joint_states");
-  display_path_pub_ = nh_.advertise<moveit_msgs::DisplayTrajectory>("move_group/display_planned_path", 1, true);
+  // Not latched by roscpp: sendLastDisplayTrajectory gives a new subscriber the last trajectory.
+  display_path_pub_ = nh_.advertise<moveit_msgs::DisplayTrajectory>(
+      "move_group/display_planned_path", 1,
+      [this](const ros::SingleSubscriberPublisher& subscriber) { sendLastDisplayTrajectory(subscriber); });
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("move_group/planning_scene_markers", 1, true);
   monitored_scene_pub_ = nh_.advertise<moveit_msgs::PlanningScene>("move_group/monitored_planning_scene", 1, true);
   error_reports_pub_ = nh_.advertise<sixdof_msgs::ErrorReport>("move_group/error_reports", 100);
@@ -319,14 +322,44 @@ ErrorCode MoveGroupContext::timeParameterize(const std::vector<std::string>& joi
   return makeSuccess(source);
 }
 
+namespace {
+
+moveit_msgs::DisplayTrajectoryConstPtr displayMessage(const std::string& model, const std::string& frame,
+                                                      const sixdof_core::RobotState& start,
+                                                      const sixdof_core::Trajectory& trajectory) {
+  auto msg = boost::make_shared<moveit_msgs::DisplayTrajectory>();
+  msg->model_id = model;
+  msg->trajectory.resize(1);
+  msg->trajectory[0].joint_trajectory = toJointTrajectory(trajectory);
+  msg->trajectory[0].joint_trajectory.header.frame_id = frame;
+  msg->trajectory_start.joint_state = toJointState(start);
+  return msg;
+}
+
+}  // namespace
+
 void MoveGroupContext::publishDisplayTrajectory(const sixdof_core::RobotState& start,
-                                                const trajectory_msgs::JointTrajectory& path) {
-  moveit_msgs::DisplayTrajectory msg;
-  msg.model_id = model_->name();
-  msg.trajectory.resize(1);
-  msg.trajectory[0].joint_trajectory = path;
-  msg.trajectory_start.joint_state = toJointState(start);
-  display_path_pub_.publish(msg);
+                                                sixdof_core::Trajectory trajectory) {
+  std::lock_guard<std::mutex> lock(display_mutex_);
+  if (display_path_pub_.getNumSubscribers() == 0) {
+    display_msg_.reset();
+    display_start_ = std::make_unique<sixdof_core::RobotState>(start);
+    display_trajectory_ = std::move(trajectory);
+    return;
+  }
+  display_start_.reset();
+  display_msg_ = displayMessage(model_->name(), planningFrame(), start, trajectory);
+  display_path_pub_.publish(display_msg_);
+}
+
+void MoveGroupContext::sendLastDisplayTrajectory(const ros::SingleSubscriberPublisher& subscriber) {
+  std::lock_guard<std::mutex> lock(display_mutex_);
+  if (!display_msg_ && display_start_) {
+    display_msg_ = displayMessage(model_->name(), planningFrame(), *display_start_, display_trajectory_);
+    display_start_.reset();
+    display_trajectory_ = sixdof_core::Trajectory();
+  }
+  if (display_msg_) subscriber.publish(*display_msg_);
 }
 
 void MoveGroupContext::publishScene() {

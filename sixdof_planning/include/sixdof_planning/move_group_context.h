@@ -13,6 +13,7 @@
 #include <sixdof_core/robot_model.h>
 #include <sixdof_core/time_parameterization.h>
 #include <sixdof_core/trajectory.h>
+#include <moveit_msgs/DisplayTrajectory.h>
 #include <moveit_msgs/PlanningScene.h>
 #include <moveit_msgs/RobotState.h>
 
@@ -84,12 +85,17 @@ class MoveGroupContext {
                              sixdof_core::Trajectory* trajectory,
                              double sample_period = sixdof_core::TimeParameterizationOptions().sample_period) const;
 
-  void publishDisplayTrajectory(const sixdof_core::RobotState& start, const trajectory_msgs::JointTrajectory& path);
+  // The trajectory (with the planning frame) on move_group/display_planned_path. A subscriber that connects later
+  // gets the last one, as from a latched topic; the message is built only when someone listens, so a plan nobody
+  // watches costs no copy of its trajectory.
+  void publishDisplayTrajectory(const sixdof_core::RobotState& start, sixdof_core::Trajectory trajectory);
   // The scene's markers and the whole scene on move_group/monitored_planning_scene, after each change.
   void publishScene();
 
  private:
   void warnIfStale(const std::string& source) const;
+  // Sends the last display trajectory (built now if it was not) to a subscriber that has just connected.
+  void sendLastDisplayTrajectory(const ros::SingleSubscriberPublisher& subscriber);
   void waitForCurrentState() const;
 
   ros::NodeHandle nh_;
@@ -101,6 +107,11 @@ class MoveGroupContext {
   mutable std::mutex scene_mutex_;
   std::shared_ptr<const SceneStore> scene_;
 
+  std::mutex display_mutex_;
+  // The last display trajectory: its message once built, else what it is built from.
+  moveit_msgs::DisplayTrajectoryConstPtr display_msg_;
+  std::unique_ptr<sixdof_core::RobotState> display_start_;
+  sixdof_core::Trajectory display_trajectory_;
   ros::Publisher display_path_pub_;
   ros::Publisher markers_pub_;
   ros::Publisher monitored_scene_pub_;

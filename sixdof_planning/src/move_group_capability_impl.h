@@ -3,6 +3,8 @@
 // needs the messages, which the node's source does not include.
 
 #include <actionlib/server/simple_action_server.h>
+#include <ros/service_traits.h>
+#include <ros/serialization.h>
 
 #include "sixdof_planning/move_group_capability.h"
 #include "sixdof_planning/move_group_context.h"
@@ -12,42 +14,53 @@ namespace sixdof_planning {
 template <class Capability>
 ServiceCapability<Capability>::ServiceCapability(MoveGroupContext* context, const std::string& service)
     : context_(context), service_(service) {
-  ros::NodeHandle nh(context->nodeHandle());
-  nh.setCallbackQueue(&queue_);
-  server_ = advertise(nh, service, &Capability::handle);
+  server_ = advertise(context->nodeHandle().resolveName(service), &Capability::handle);
 }
 
 template <class Capability>
 ServiceCapability<Capability>::~ServiceCapability() {
   stop();
-  server_.shutdown();
 }
 
 template <class Capability>
 void ServiceCapability<Capability>::start() {
-  if (thread_) return;
-  thread_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
-  thread_->start();
+  server_->start();
 }
 
 template <class Capability>
 void ServiceCapability<Capability>::stop() {
-  thread_.reset();  // the spinner's destructor stops its thread and waits for it
+  server_->stop();
 }
 
 template <class Capability>
 template <class Request, class Response>
-ros::ServiceServer ServiceCapability<Capability>::advertise(ros::NodeHandle& nh, const std::string& service,
-                                                            ErrorCode (Capability::*handle)(const Request&,
-                                                                                            Response&)) {
-  using Event = ros::ServiceEvent<Request, Response>;
+std::unique_ptr<TcprosServiceServer> ServiceCapability<Capability>::advertise(
+    const std::string& resolved, ErrorCode (Capability::*handle)(const Request&, Response&)) {
+  // Generated requests carry their service's type and md5sum (service_traits).
+  TcprosServiceType type{ros::service_traits::datatype<Request>(), ros::service_traits::md5sum<Request>(),
+                         ros::message_traits::datatype<Request>(), ros::message_traits::datatype<Response>()};
   // The capability is reached through its base only when a request comes, once it is fully built.
-  const std::string resolved = nh.resolveName(service);
-  return nh.advertiseService<Event>(service, boost::function<bool(Event&)>([this, handle, resolved](Event& event) {
-    const ErrorCode code = (static_cast<Capability*>(this)->*handle)(event.getRequest(), event.getResponse());
-    if (!isSuccess(code)) context_->reportError(event.getCallerName(), resolved, code);
-    return true;
-  }));
+  return std::make_unique<TcprosServiceServer>(
+      resolved, std::move(type),
+      [this, handle, resolved](const uint8_t* data, uint32_t size, const std::string& caller,
+                               std::vector<uint8_t>* out) {
+        namespace ser = ros::serialization;
+        Request request;
+        try {
+          ser::IStream in(const_cast<uint8_t*>(data), size);
+          ser::deserialize(in, request);
+        } catch (const ser::StreamOverrunException& e) {
+          throw std::runtime_error("a request of " + std::to_string(size) + " bytes is not a " +
+                                   ros::message_traits::datatype<Request>() + " (" + e.what() + ")");
+        }
+        Response response;
+        const ErrorCode code = (static_cast<Capability*>(this)->*handle)(request, response);
+        if (!isSuccess(code)) context_->reportError(caller, resolved, code);
+        const uint32_t length = ser::serializationLength(response);
+        out->resize(TcprosServiceServer::kResponseOffset + length);
+        ser::OStream stream(out->data() + TcprosServiceServer::kResponseOffset, length);
+        ser::serialize(stream, response);
+      });
 }
 
 template <class Capability, class Action>

@@ -6,22 +6,18 @@
 // its words; a failure is published on move_group/error_reports with the caller's name. Its source
 // includes "move_group_capability_impl.h" and instantiates the base there (`template class
 // ServiceCapability<X>;`), where the messages are complete: this header names them only through fwd.h.
-// Each service is answered by a thread of its own, in the order its requests arrive (the response is written by
-// the thread that computed it, which then reads a request already waiting on a kept connection itself: no other
-// thread is woken and the connection is not polled for writing in the meantime); different services run
-// concurrently. Goals and topics are served by the node's spinner. Neither starts before the whole node is built
-// (MoveGroupNode::start), so a capability's own members are ready for them.
+// Each service is served over TCPROS by sixdof's own server (tcpros_service_server.h): a thread per client
+// connection reads a request, computes the answer and writes it, with no hand-off to another thread; requests to
+// one service are answered one at a time, different services concurrently. Goals and topics are served by the
+// node's spinner. Neither starts before the whole node is built (MoveGroupNode::start), so a capability's own
+// members are ready for them.
 
 #include <memory>
 #include <string>
 
-#include <ros/callback_queue.h>
-#include <ros/forwards.h>
-#include <ros/service_server.h>
-#include <ros/spinner.h>
-
 #include "sixdof_planning/errors.h"
 #include "sixdof_planning/fwd.h"
+#include "sixdof_planning/tcpros_service_server.h"
 
 namespace sixdof_planning {
 
@@ -34,7 +30,8 @@ class ServiceCapability {
   ServiceCapability& operator=(const ServiceCapability&) = delete;
   ~ServiceCapability();
 
-  // Starts answering (requests that came before wait for it); stop() waits for a request being answered.
+  // Starts answering (clients that connected before wait for it); stop() closes the connections and waits for a
+  // request being answered.
   void start();
   void stop();
 
@@ -44,12 +41,10 @@ class ServiceCapability {
 
  private:
   template <class Request, class Response>
-  ros::ServiceServer advertise(ros::NodeHandle& nh, const std::string& service,
-                               ErrorCode (Capability::*handle)(const Request&, Response&));
+  std::unique_ptr<TcprosServiceServer> advertise(const std::string& resolved,
+                                                 ErrorCode (Capability::*handle)(const Request&, Response&));
 
-  ros::CallbackQueue queue_;
-  ros::ServiceServer server_;
-  std::unique_ptr<ros::AsyncSpinner> thread_;
+  std::unique_ptr<TcprosServiceServer> server_;
 };
 
 template <class Capability, class Action>

@@ -1,0 +1,271 @@
+#include "sixdof_planning/tcpros_service_server.h"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <map>
+
+#include <ros/master.h>
+#include <ros/network.h>
+#include <ros/ros.h>
+#include <ros/xmlrpc_manager.h>
+
+namespace sixdof_planning {
+namespace {
+
+// roscpp's bound on a message's predicted length: anything longer means the stream is out of step.
+constexpr uint32_t kMaxRequest = 1000000000;
+// A connection header is a few short fields.
+constexpr uint32_t kMaxHeader = 1 << 20;
+// Connections served at once; a connection beyond them is closed at once.
+constexpr std::size_t kMaxConnections = 128;
+
+bool readAll(int fd, void* buffer, std::size_t size) {
+  auto* at = static_cast<char*>(buffer);
+  while (size > 0) {
+    const ssize_t got = ::recv(fd, at, size, 0);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    at += got;
+    size -= static_cast<std::size_t>(got);
+  }
+  return true;
+}
+
+bool writeAll(int fd, const void* buffer, std::size_t size) {
+  const auto* at = static_cast<const char*>(buffer);
+  while (size > 0) {
+    const ssize_t sent = ::send(fd, at, size, MSG_NOSIGNAL);
+    if (sent < 0 && errno == EINTR) continue;
+    if (sent <= 0) return false;
+    at += sent;
+    size -= static_cast<std::size_t>(sent);
+  }
+  return true;
+}
+
+void putU32(std::string* out, uint32_t value) {
+  const uint32_t little = value;  // TCPROS is little-endian, as this machine
+  out->append(reinterpret_cast<const char*>(&little), 4);
+}
+
+// A connection header: its fields (each a length and "key=value") after the header's length.
+bool sendHeader(int fd, const std::map<std::string, std::string>& fields) {
+  std::string body;
+  for (const auto& [key, value] : fields) {
+    putU32(&body, static_cast<uint32_t>(key.size() + 1 + value.size()));
+    body += key + "=" + value;
+  }
+  std::string frame;
+  putU32(&frame, static_cast<uint32_t>(body.size()));
+  frame += body;
+  return writeAll(fd, frame.data(), frame.size());
+}
+
+// The fields of a received header; false when they do not parse.
+bool parseHeader(const std::vector<char>& data, std::map<std::string, std::string>* fields) {
+  std::size_t at = 0;
+  while (at < data.size()) {
+    if (data.size() - at < 4) return false;
+    uint32_t size = 0;
+    std::memcpy(&size, data.data() + at, 4);
+    at += 4;
+    if (size > data.size() - at) return false;
+    const std::string field(data.data() + at, size);
+    at += size;
+    const std::size_t equals = field.find('=');
+    if (equals == std::string::npos) return false;
+    (*fields)[field.substr(0, equals)] = field.substr(equals + 1);
+  }
+  return true;
+}
+
+std::string errnoText() { return std::strerror(errno); }
+
+}  // namespace
+
+TcprosServiceServer::TcprosServiceServer(const std::string& resolved_name, TcprosServiceType type, Handler handler)
+    : name_(resolved_name), type_(std::move(type)), handler_(std::move(handler)) {
+  listen_fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (listen_fd_ < 0) throw std::runtime_error("service " + name_ + ": socket: " + errnoText());
+  const std::string& host = ros::network::getHost();
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  // As roscpp: a node whose host is the loopback accepts only local connections.
+  const bool local_only = host == "localhost" || host.rfind("127.", 0) == 0;
+  address.sin_addr.s_addr = htonl(local_only ? INADDR_LOOPBACK : INADDR_ANY);
+  address.sin_port = 0;
+  socklen_t length = sizeof(address);
+  if (::bind(listen_fd_, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0 ||
+      ::listen(listen_fd_, 64) != 0 ||
+      ::getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
+    const std::string why = errnoText();
+    ::close(listen_fd_);
+    throw std::runtime_error("service " + name_ + ": cannot listen: " + why);
+  }
+  uri_ = "rosrpc://" + host + ":" + std::to_string(ntohs(address.sin_port));
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  request[1] = name_;
+  request[2] = uri_;
+  request[3] = ros::XMLRPCManager::instance()->getServerURI();
+  if (!ros::master::execute("registerService", request, response, payload, true)) {
+    ::close(listen_fd_);
+    throw std::runtime_error("service " + name_ + ": the master refused its registration");
+  }
+  registered_ = true;
+}
+
+TcprosServiceServer::~TcprosServiceServer() {
+  stop();
+  if (registered_) {
+    XmlRpc::XmlRpcValue request, response, payload;
+    request[0] = ros::this_node::getName();
+    request[1] = name_;
+    request[2] = uri_;
+    // Without a master (shut down first) the registration is gone with it.
+    ros::master::execute("unregisterService", request, response, payload, false);
+  }
+  if (listen_fd_ >= 0) ::close(listen_fd_);
+}
+
+void TcprosServiceServer::start() {
+  if (accept_thread_.joinable() || stopping_) return;
+  accept_thread_ = std::thread([this] { acceptLoop(); });
+}
+
+void TcprosServiceServer::stop() {
+  if (stopping_.exchange(true)) return;
+  // accept() returns once the socket is shut down; the descriptor is closed by the destructor.
+  ::shutdown(listen_fd_, SHUT_RDWR);
+  if (accept_thread_.joinable()) accept_thread_.join();
+  {
+    std::lock_guard<std::mutex> lock(connections_mutex_);
+    // Each thread's recv returns (descriptors are closed only once their thread is joined).
+    for (Connection& connection : connections_) ::shutdown(connection.fd, SHUT_RDWR);
+  }
+  reap(true);
+}
+
+void TcprosServiceServer::reap(bool all) {
+  std::list<Connection> finished;
+  {
+    std::lock_guard<std::mutex> lock(connections_mutex_);
+    for (auto it = connections_.begin(); it != connections_.end();) {
+      auto next = std::next(it);
+      if (all || it->done) finished.splice(finished.end(), connections_, it);
+      it = next;
+    }
+  }
+  for (Connection& connection : finished) {
+    connection.thread.join();
+    ::close(connection.fd);
+  }
+}
+
+void TcprosServiceServer::acceptLoop() {
+  while (!stopping_) {
+    const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0) {
+      if (errno == EINTR || errno == ECONNABORTED) continue;
+      if (!stopping_) ROS_ERROR_STREAM("service " << name_ << ": accept: " << errnoText());
+      return;
+    }
+    reap(false);
+    std::lock_guard<std::mutex> lock(connections_mutex_);
+    if (stopping_ || connections_.size() >= kMaxConnections) {
+      if (!stopping_) ROS_WARN_STREAM("service " << name_ << ": " << kMaxConnections << " connections open, refused one");
+      ::close(fd);
+      continue;
+    }
+    connections_.emplace_back();
+    Connection* connection = &connections_.back();
+    connection->fd = fd;
+    connection->thread = std::thread([this, connection] {
+      serve(connection);
+      // The client sees the end of the stream now; the descriptor is closed once the thread is joined (reap), so
+      // that stop() never shuts down a descriptor number already reused.
+      ::shutdown(connection->fd, SHUT_RDWR);
+      connection->done = true;
+    });
+  }
+}
+
+bool TcprosServiceServer::handshake(int fd, std::string* caller, bool* persistent) const {
+  uint32_t size = 0;
+  if (!readAll(fd, &size, 4)) return false;
+  if (size > kMaxHeader) {
+    ROS_WARN_STREAM("service " << name_ << ": a connection header of " << size << " bytes, closed");
+    return false;
+  }
+  std::vector<char> data(size);
+  std::map<std::string, std::string> fields;
+  if (!readAll(fd, data.data(), size)) return false;
+  std::string error;
+  if (!parseHeader(data, &fields)) {
+    error = "the connection header does not parse";
+  } else if (!fields.count("md5sum") || !fields.count("service") || !fields.count("callerid")) {
+    error = "bogus tcpros header. did not have required elements: md5sum, service, callerid";
+  } else if (fields["service"] != name_) {
+    error = "received a tcpros connection for a nonexistent service [" + fields["service"] + "]";
+  } else if (fields["md5sum"] != "*" && fields["md5sum"] != type_.md5sum) {
+    error = "client wants service " + name_ + " to have md5sum " + fields["md5sum"] + ", but it has " +
+            type_.md5sum + ". Dropping connection.";
+  }
+  if (!error.empty()) {
+    ROS_WARN_STREAM("service " << name_ << ": " << error);
+    sendHeader(fd, {{"error", error}});
+    return false;
+  }
+  *caller = fields["callerid"];
+  *persistent = fields["persistent"] == "1" || fields["persistent"] == "true";
+  return sendHeader(fd, {{"callerid", ros::this_node::getName()},
+                         {"md5sum", type_.md5sum},
+                         {"request_type", type_.request_type},
+                         {"response_type", type_.response_type},
+                         {"type", type_.type}});
+}
+
+void TcprosServiceServer::serve(Connection* connection) {
+  const int fd = connection->fd;
+  const int one = 1;
+  ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+  std::string caller;
+  bool persistent = false;
+  if (!handshake(fd, &caller, &persistent)) return;
+  std::vector<uint8_t> request;
+  std::vector<uint8_t> answer;
+  for (;;) {
+    uint32_t size = 0;
+    if (!readAll(fd, &size, 4)) return;  // the client closed the connection (or stop())
+    if (size > kMaxRequest) {
+      ROS_ERROR_STREAM("service " << name_ << ": a request of " << size << " bytes from " << caller
+                                  << " (over 1 GB): the stream is out of step, connection closed");
+      return;
+    }
+    request.resize(size);
+    if (!readAll(fd, request.data(), size)) return;
+    uint8_t ok = 1;
+    try {
+      std::lock_guard<std::mutex> lock(handling_);
+      handler_(request.data(), size, caller, &answer);
+    } catch (const std::exception& e) {
+      ok = 0;
+      const std::string text = std::string("exception: ") + e.what();
+      answer.resize(kResponseOffset + text.size());
+      std::memcpy(answer.data() + kResponseOffset, text.data(), text.size());
+      ROS_WARN_STREAM("service " << name_ << ": request from " << caller << " not read: " << e.what());
+    }
+    const auto length = static_cast<uint32_t>(answer.size() - kResponseOffset);
+    answer[0] = ok;
+    std::memcpy(answer.data() + 1, &length, 4);
+    if (!writeAll(fd, answer.data(), answer.size()) || !persistent) return;
+  }
+}
+
+}  // namespace sixdof_planning

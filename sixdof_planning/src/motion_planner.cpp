@@ -15,6 +15,7 @@
 #include "sixdof_planning/conversions.h"
 #include "sixdof_planning/move_group_context.h"
 #include "sixdof_planning/stage_timer.h"
+#include "sixdof_planning/tcpros_service_server.h"
 #include "sixdof_planning/validation.h"
 
 namespace sixdof_planning {
@@ -270,8 +271,10 @@ ErrorCode MotionPlanner::plan(const moveit_msgs::MotionPlanRequest& request, con
   const ErrorCode code = planRequest(request, source, response, std::move(base_scene), &timer);
   if (isSuccess(code)) {
     timer.mark("cleanup");
-    // Where a solved request's time goes (move_group_bench reads it with this logger at debug level).
-    ROS_DEBUG_STREAM_NAMED("timing", "plan stages (ms): " << timer.text());
+    // Where a solved request's time goes until its answer (move_group_bench reads it with this logger at debug
+    // level).
+    TcprosServiceServer::afterAnswer(
+        [timer] { ROS_DEBUG_STREAM_NAMED("timing", "plan stages (ms): " << timer.text()); });
   }
   return answer(code, response);
 }
@@ -366,8 +369,15 @@ ErrorCode MotionPlanner::planRequest(const moveit_msgs::MotionPlanRequest& reque
   response->trajectory.joint_trajectory.header.frame_id = context_->planningFrame();
   timer->mark("trajectory message");
   const double duration = trajectory.duration();
-  context_->publishDisplayTrajectory(start, std::move(trajectory));
-  timer->mark("display trajectory");
+  // The display trajectory, and freeing the planning context, wait for the answer to be written.
+  std::shared_ptr<sixdof_core::PlanningContext> used(std::move(planning));
+  TcprosServiceServer::afterAnswer(
+      [context = context_, start = std::move(start), trajectory = std::move(trajectory),
+       used = std::move(used)]() mutable {
+        context->publishDisplayTrajectory(start, std::move(trajectory));
+        used.reset();
+      });
+  timer->mark("deferring display");
   return makeSuccess(code.source, "planned " + std::to_string(result.path.size()) + " waypoints in " +
                                       formatNumber(result.planning_time) + " s, trajectory " +
                                       formatNumber(duration) + " s");

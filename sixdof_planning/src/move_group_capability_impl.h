@@ -45,7 +45,9 @@ std::unique_ptr<TcprosServiceServer> ServiceCapability<Capability>::advertise(
       [this, handle, resolved](const uint8_t* data, uint32_t size, const std::string& caller,
                                std::vector<uint8_t>* out) {
         namespace ser = ros::serialization;
-        Request request;
+        // The messages are freed once the answer is written.
+        auto messages = std::make_shared<std::pair<Request, Response>>();
+        Request& request = messages->first;
         try {
           ser::IStream in(const_cast<uint8_t*>(data), size);
           ser::deserialize(in, request);
@@ -53,13 +55,14 @@ std::unique_ptr<TcprosServiceServer> ServiceCapability<Capability>::advertise(
           throw std::runtime_error("a request of " + std::to_string(size) + " bytes is not a " +
                                    ros::message_traits::datatype<Request>() + " (" + e.what() + ")");
         }
-        Response response;
+        Response& response = messages->second;
         const ErrorCode code = (static_cast<Capability*>(this)->*handle)(request, response);
         if (!isSuccess(code)) context_->reportError(caller, resolved, code);
         const uint32_t length = ser::serializationLength(response);
         out->resize(TcprosServiceServer::kResponseOffset + length);
         ser::OStream stream(out->data() + TcprosServiceServer::kResponseOffset, length);
         ser::serialize(stream, response);
+        TcprosServiceServer::afterAnswer([messages = std::move(messages)]() mutable { messages.reset(); });
       });
 }
 

@@ -87,7 +87,30 @@ bool parseHeader(const std::vector<char>& data, std::map<std::string, std::strin
 
 std::string errnoText() { return std::strerror(errno); }
 
+// The work afterAnswer defers on a thread handling a request (null elsewhere).
+thread_local std::vector<std::function<void()>>* t_after_answer = nullptr;
+
 }  // namespace
+
+void TcprosServiceServer::afterAnswer(std::function<void()> work) {
+  if (t_after_answer) {
+    t_after_answer->push_back(std::move(work));
+    return;
+  }
+  std::vector<std::function<void()>> now{std::move(work)};
+  runDeferred(&now);
+}
+
+void TcprosServiceServer::runDeferred(std::vector<std::function<void()>>* work) {
+  for (auto& item : *work) {
+    try {
+      item();
+    } catch (const std::exception& e) {
+      ROS_ERROR_STREAM("work after a service's answer failed: " << e.what());
+    }
+  }
+  work->clear();
+}
 
 TcprosServiceServer::TcprosServiceServer(const std::string& resolved_name, TcprosServiceType type, Handler handler)
     : name_(resolved_name), type_(std::move(type)), handler_(std::move(handler)) {
@@ -240,6 +263,7 @@ void TcprosServiceServer::serve(Connection* connection) {
   if (!handshake(fd, &caller, &persistent)) return;
   std::vector<uint8_t> request;
   std::vector<uint8_t> answer;
+  std::vector<std::function<void()>> after_answer;
   for (;;) {
     uint32_t size = 0;
     if (!readAll(fd, &size, 4)) return;  // the client closed the connection (or stop())
@@ -251,8 +275,9 @@ void TcprosServiceServer::serve(Connection* connection) {
     request.resize(size);
     if (!readAll(fd, request.data(), size)) return;
     uint8_t ok = 1;
+    std::unique_lock<std::mutex> lock(handling_);
+    t_after_answer = &after_answer;
     try {
-      std::lock_guard<std::mutex> lock(handling_);
       handler_(request.data(), size, caller, &answer);
     } catch (const std::exception& e) {
       ok = 0;
@@ -261,10 +286,14 @@ void TcprosServiceServer::serve(Connection* connection) {
       std::memcpy(answer.data() + kResponseOffset, text.data(), text.size());
       ROS_WARN_STREAM("service " << name_ << ": request from " << caller << " not read: " << e.what());
     }
+    t_after_answer = nullptr;
     const auto length = static_cast<uint32_t>(answer.size() - kResponseOffset);
     answer[0] = ok;
     std::memcpy(answer.data() + 1, &length, 4);
-    if (!writeAll(fd, answer.data(), answer.size()) || !persistent) return;
+    const bool written = writeAll(fd, answer.data(), answer.size());
+    runDeferred(&after_answer);
+    lock.unlock();
+    if (!written || !persistent) return;
   }
 }
 

@@ -60,6 +60,11 @@ class TcprosServiceServer {
 
   const std::string& uri() const { return uri_; }  // rosrpc://host:port
 
+  // Runs `work` once the answer to the request this thread is handling has been written (still before the next
+  // request is handled), or at once on a thread that is not handling a server's request: what the client need
+  // not wait for (notifications, freeing what the request built). An exception it throws is logged.
+  static void afterAnswer(std::function<void()> work);
+
  private:
   struct Connection {
     int fd = -1;
@@ -72,6 +77,8 @@ class TcprosServiceServer {
   // Reads and checks the connection header and sends the server's; false when the connection is to be closed.
   bool handshake(int fd, std::string* caller, bool* persistent) const;
   void reap(bool all);
+  // The answer's work deferred by afterAnswer, run under handling_.
+  static void runDeferred(std::vector<std::function<void()>>* work);
 
   const std::string name_;
   const TcprosServiceType type_;

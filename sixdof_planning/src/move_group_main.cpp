@@ -50,8 +50,12 @@ int main(int argc, char** argv) {
   } catch (const sixdof_planning::ConfigError& e) {
     ROS_FATAL_STREAM("move_group: bad configuration: " << e.what());
     return 1;
+  } catch (const std::runtime_error& e) {  // a service that cannot listen or register
+    ROS_FATAL_STREAM("move_group: " << e.what());
+    return 1;
   }
-  // Each service has a thread of its own; goals and topics share these (executions block their action's thread).
+  // Services are served by threads of their own; goals and topics share these (executions block their action's
+  // thread).
   node->start();
   ros::AsyncSpinner spinner(4);
   spinner.start();

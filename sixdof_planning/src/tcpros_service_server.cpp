@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 
@@ -92,46 +93,63 @@ thread_local std::vector<std::function<void()>>* t_after_answer = nullptr;
 
 }  // namespace
 
+namespace {
+
+void runLogged(const std::function<void()>& work) {
+  try {
+    work();
+  } catch (const std::exception& e) {
+    ROS_ERROR_STREAM("work after a service's answer failed: " << e.what());
+  }
+}
+
+}  // namespace
+
 void TcprosServiceServer::afterAnswer(std::function<void()> work) {
   if (t_after_answer) {
     t_after_answer->push_back(std::move(work));
-    return;
+  } else {
+    runLogged(work);
   }
-  std::vector<std::function<void()>> now{std::move(work)};
-  runDeferred(&now);
 }
 
 void TcprosServiceServer::runDeferred(std::vector<std::function<void()>>* work) {
-  for (auto& item : *work) {
-    try {
-      item();
-    } catch (const std::exception& e) {
-      ROS_ERROR_STREAM("work after a service's answer failed: " << e.what());
-    }
-  }
+  for (const auto& item : *work) runLogged(item);
   work->clear();
 }
 
 TcprosServiceServer::TcprosServiceServer(const std::string& resolved_name, TcprosServiceType type, Handler handler)
     : name_(resolved_name), type_(std::move(type)), handler_(std::move(handler)) {
-  listen_fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (listen_fd_ < 0) throw std::runtime_error("service " + name_ + ": socket: " + errnoText());
   const std::string& host = ros::network::getHost();
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  // As roscpp: a node whose host is the loopback accepts only local connections.
-  const bool local_only = host == "localhost" || host.rfind("127.", 0) == 0;
-  address.sin_addr.s_addr = htonl(local_only ? INADDR_LOOPBACK : INADDR_ANY);
-  address.sin_port = 0;
-  socklen_t length = sizeof(address);
-  if (::bind(listen_fd_, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0 ||
-      ::listen(listen_fd_, 64) != 0 ||
+  // As roscpp: IPv6 (dual stack) when ROS_IPV6 is on, and a node whose host is the loopback accepts only local
+  // connections.
+  const char* ipv6_setting = std::getenv("ROS_IPV6");
+  const bool ipv6 = ipv6_setting && std::string(ipv6_setting) == "on";
+  const bool local_only = host == "localhost" || host.rfind("127.", 0) == 0 || host == "::1";
+  listen_fd_ = ::socket(ipv6 ? AF_INET6 : AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (listen_fd_ < 0) throw std::runtime_error("service " + name_ + ": socket: " + errnoText());
+  sockaddr_storage address{};
+  socklen_t length = 0;
+  if (ipv6) {
+    auto* in6 = reinterpret_cast<sockaddr_in6*>(&address);
+    in6->sin6_family = AF_INET6;
+    in6->sin6_addr = local_only ? in6addr_loopback : in6addr_any;
+    length = sizeof(sockaddr_in6);
+  } else {
+    auto* in4 = reinterpret_cast<sockaddr_in*>(&address);
+    in4->sin_family = AF_INET;
+    in4->sin_addr.s_addr = htonl(local_only ? INADDR_LOOPBACK : INADDR_ANY);
+    length = sizeof(sockaddr_in);
+  }
+  if (::bind(listen_fd_, reinterpret_cast<sockaddr*>(&address), length) != 0 || ::listen(listen_fd_, 64) != 0 ||
       ::getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
     const std::string why = errnoText();
     ::close(listen_fd_);
     throw std::runtime_error("service " + name_ + ": cannot listen: " + why);
   }
-  uri_ = "rosrpc://" + host + ":" + std::to_string(ntohs(address.sin_port));
+  const uint16_t port = ipv6 ? reinterpret_cast<sockaddr_in6*>(&address)->sin6_port
+                             : reinterpret_cast<sockaddr_in*>(&address)->sin_port;
+  uri_ = "rosrpc://" + host + ":" + std::to_string(ntohs(port));
   XmlRpc::XmlRpcValue request, response, payload;
   request[0] = ros::this_node::getName();
   request[1] = name_;

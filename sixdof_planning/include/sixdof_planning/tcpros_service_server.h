@@ -13,7 +13,8 @@
 // answer an ok byte, a length and the serialized response (ok 1) or an error text (ok 0, for a request the handler
 // could not read). A connection whose header asked for persistent=1 is kept for further requests, any other is
 // closed after its answer. Requests to one server are handled one at a time (in the order their connections'
-// threads reach it); a request longer than 1 GB ends the connection, as in roscpp.
+// threads reach it); a request longer than 1 GB ends the connection, as in roscpp. It listens on every address of
+// the host (only the loopback when the node's host is it), over IPv6 when ROS_IPV6 is on.
 
 #include <atomic>
 #include <cstdint>

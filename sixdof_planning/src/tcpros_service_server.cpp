@@ -138,7 +138,11 @@ TcprosServiceServer::TcprosServiceServer(const std::string& resolved_name, Tcpro
   } else {
     auto* in4 = reinterpret_cast<sockaddr_in*>(&address);
     in4->sin_family = AF_INET;
-    in4->sin_addr.s_addr = htonl(local_only ? INADDR_LOOPBACK : INADDR_ANY);
+    in4->sin_addr.s_addr = htonl(INADDR_ANY);
+    // A loopback host listens on that address itself (127.0.0.1 for "localhost").
+    if (local_only && ::inet_pton(AF_INET, host.c_str(), &in4->sin_addr) != 1) {
+      in4->sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    }
     length = sizeof(sockaddr_in);
   }
   if (::bind(listen_fd_, reinterpret_cast<sockaddr*>(&address), length) != 0 || ::listen(listen_fd_, 64) != 0 ||

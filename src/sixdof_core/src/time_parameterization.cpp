@@ -2,8 +2,10 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "time_parameterization_inputs.h"
 #include "time_parameterization_lines.h"
@@ -102,19 +104,20 @@ class Solver {
       line_limits_.push_back(seg.circular ? 0.0 : directionSpeedLimit(seg.x));
       line_accelerations_.push_back(seg.circular ? 0.0 : directionAccelerationLimit(seg.x));
     }
-    std::size_t arc_intervals = 0;
+    // Inside an arc an interval starts where the previous one ends: both read the same record.
+    std::size_t records = 0;
     for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
-      if (segmentOf(i).circular) slots_[i] = arc_intervals++;
+      if (!segmentOf(i).circular) continue;
+      const bool continues = i > 0 && grid_[i - 1].segment == grid_[i].segment;
+      const std::size_t start = continues ? slots_[i - 1][1] : records++;
+      slots_[i] = {start, records++};
     }
-    ends_.resize(4 * joints_ * arc_intervals);
+    // Every value is written below before it is read: no initial values.
+    ends_.reset(new double[2 * joints_ * records]);
     for (std::size_t i = 0; i + 1 < grid_.size(); ++i) {
       const Segment& seg = segmentOf(i);
       if (!seg.circular) continue;
-      // Inside the arc an interval starts where the previous one ends.
-      if (i > 0 && grid_[i - 1].segment == grid_[i].segment) {
-        slot(i, 0, kTangent) = slot(i - 1, 1, kTangent);
-        slot(i, 0, kCurvature) = slot(i - 1, 1, kCurvature);
-      } else {
+      if (i == 0 || grid_[i - 1].segment != grid_[i].segment) {
         seg.derivatives(std::clamp(grid_[i].s - seg.start, 0.0, seg.length), slot(i, 0, kTangent),
                         slot(i, 0, kCurvature));
       }
@@ -123,8 +126,8 @@ class Solver {
     }
   }
 
-  // Fills x_ (squared path speed per grid point), and per interval the path acceleration u_ (arcs) or the motion
-  // (lines).
+  // Fills x_ (squared path speed per grid point), per arc interval the path acceleration u_, and per straight
+  // segment (one interval) its motion.
   void solve() {
     const std::size_t n = grid_.size();
     std::vector<double> limit(n);
@@ -136,7 +139,7 @@ class Solver {
     // Forward pass: accelerate as hard as allowed below the backward bound.
     x_.assign(n, 0.0);
     u_.assign(n - 1, 0.0);
-    lines_.assign(n - 1, LineMotion());
+    lines_.assign(segments_.size(), LineMotion());
     for (std::size_t i = 0; i + 1 < n; ++i) {
       // The feasible set of (x_i, x_i+1) is convex and holds (0, 0) and (upper_i, some x_i+1 <= upper_i+1),
       // so from any x_i <= upper_i the largest x_i+1 is >= 0 (up to rounding).
@@ -146,7 +149,7 @@ class Solver {
         u_[i] = (x_[i + 1] - x_[i]) / (2.0 * step(i));
       } else {
         const int k = grid_[i].segment;
-        lines_[i] = LineMotion(x_[i], x_[i + 1], step(i), line_accelerations_[k], line_limits_[k]);
+        lines_[k] = LineMotion(x_[i], x_[i + 1], step(i), line_accelerations_[k], line_limits_[k]);
       }
     }
   }
@@ -154,13 +157,15 @@ class Solver {
   Trajectory sample(const std::vector<std::string>& names, double period) const {
     const std::size_t n = grid_.size();
     std::vector<double> times(n, 0.0);
+    double speed = std::sqrt(x_[0]);  // path speed at the start of interval i
     for (std::size_t i = 0; i + 1 < n; ++i) {
+      const double next_speed = std::sqrt(x_[i + 1]);
       if (!segmentOf(i).circular) {
-        times[i + 1] = times[i] + lines_[i].duration();
-        continue;
+        times[i + 1] = times[i] + lines_[grid_[i].segment].duration();
+      } else {
+        times[i + 1] = times[i] + 2.0 * step(i) / (speed + next_speed);
       }
-      const double v = std::sqrt(x_[i]) + std::sqrt(x_[i + 1]);
-      times[i + 1] = times[i] + 2.0 * step(i) / v;
+      speed = next_speed;
     }
     Trajectory trajectory;
     trajectory.joint_names = names;
@@ -186,10 +191,10 @@ class Solver {
   static constexpr int kTangent = 0;
   static constexpr int kCurvature = 1;
   Eigen::Map<Eigen::VectorXd> slot(std::size_t i, int e, int which) {
-    return Eigen::Map<Eigen::VectorXd>(ends_.data() + (4 * slots_[i] + 2 * e + which) * joints_, joints_);
+    return Eigen::Map<Eigen::VectorXd>(ends_.get() + (2 * slots_[i][e] + which) * joints_, joints_);
   }
   Eigen::Map<const Eigen::VectorXd> end(std::size_t i, int e, int which) const {
-    return Eigen::Map<const Eigen::VectorXd>(ends_.data() + (4 * slots_[i] + 2 * e + which) * joints_, joints_);
+    return Eigen::Map<const Eigen::VectorXd>(ends_.get() + (2 * slots_[i][e] + which) * joints_, joints_);
   }
 
   const Segment& segmentOf(std::size_t interval) const { return segments_[grid_[interval].segment]; }
@@ -328,7 +333,7 @@ class Solver {
       sd = std::max(0.0, sd0 + u_[i] * tau);
       u = u_[i];
     } else {
-      lines_[i].at(tau, &ds, &sd, &u);
+      lines_[grid_[i].segment].at(tau, &ds, &sd, &u);
     }
     ds = std::clamp(ds, 0.0, step(i));
     const double s = std::clamp(grid_[i].s + ds - seg.start, 0.0, seg.length);
@@ -336,11 +341,10 @@ class Solver {
     point->positions.resize(joints_);
     point->velocities.resize(joints_);
     point->accelerations.resize(joints_);
-    seg.position(s, Eigen::Map<Eigen::VectorXd>(point->positions.data(), joints_));
     // The tangent into velocities and the curvature into accelerations, then each scaled in place.
     Eigen::Map<Eigen::VectorXd> d1(point->velocities.data(), joints_);
     Eigen::Map<Eigen::VectorXd> d2(point->accelerations.data(), joints_);
-    seg.derivatives(s, d1, d2);
+    seg.state(s, Eigen::Map<Eigen::VectorXd>(point->positions.data(), joints_), d1, d2);
     d2 = d1 * u + d2 * sd * sd;
     d1 *= sd;
   }
@@ -351,12 +355,13 @@ class Solver {
   Eigen::Index joints_;
   std::vector<double> line_limits_;         // per segment: a line's speed limit
   std::vector<double> line_accelerations_;  // per segment: a line's path acceleration limit
-  std::vector<std::size_t> slots_;          // per interval on an arc: its place in ends_
-  // Per arc interval, the start's tangent and curvature then the end's: 4 * joints_ values, contiguous.
-  std::vector<double> ends_;
+  std::vector<std::array<std::size_t, 2>> slots_;  // per interval on an arc: its start's and end's records in ends_
+  // Records of a tangent then a curvature (2 * joints_ values, contiguous): an arc's first interval has a start
+  // record of its own, every other starts on the previous interval's end record.
+  std::unique_ptr<double[]> ends_;
   std::vector<double> x_;
   std::vector<double> u_;                               // per arc interval: its constant path acceleration
-  std::vector<LineMotion> lines_;                       // per line interval: its motion
+  std::vector<LineMotion> lines_;                       // per straight segment (one interval): its motion
   Lines lower_lines_;  // speedLimit's and maxStart's scratch space
   Lines upper_lines_;
   ActivePair speed_hint_, start_hint_;  // speedLimit's and maxStart's last active pairs

@@ -48,6 +48,7 @@ void buildPath(const std::vector<Eigen::VectorXd>& points, double max_deviation,
     blended[i] = true;
   }
   double s = 0.0;
+  segments->reserve(segments->size() + 2 * m);  // at most a line and a blend per waypoint
   for (std::size_t i = 0; i + 1 < m; ++i) {
     const Eigen::VectorXd dir = (points[i + 1] - points[i]).normalized();
     const Eigen::VectorXd from = points[i] + dir * trim[i];

@@ -23,15 +23,21 @@ struct Segment {
 
   // An arc is written from its start point, not its centre: a nearly straight corner has a huge radius, and
   // centre + radius * (...) would lose every digit of the small difference (positions went astray by 10^4).
-  // The point at s, written into `point` (x.size() values).
-  void position(double s, Eigen::Ref<Eigen::VectorXd> point) const {
+  // The point, tangent and curvature at s, written into `point`, `tangent` and `curvature` (x.size() values each).
+  void state(double s, Eigen::Ref<Eigen::VectorXd> point, Eigen::Ref<Eigen::VectorXd> tangent,
+             Eigen::Ref<Eigen::VectorXd> curvature) const {
     if (!circular) {
       point = a + x * s;
+      tangent = x;
+      curvature.setZero();
       return;
     }
     const double angle = s / radius;
+    const double c = std::cos(angle), sn = std::sin(angle);
     const double half_sin = std::sin(0.5 * angle);
-    point = a + y * (radius * std::sin(angle)) + x * (2.0 * radius * half_sin * half_sin);
+    point = a + y * (radius * sn) + x * (2.0 * radius * half_sin * half_sin);
+    tangent = y * c + x * sn;
+    curvature = (x * c - y * sn) / radius;
   }
   // Tangent and curvature at s, written into `tangent` and `curvature` (x.size() values each).
   void derivatives(double s, Eigen::Ref<Eigen::VectorXd> tangent, Eigen::Ref<Eigen::VectorXd> curvature) const {

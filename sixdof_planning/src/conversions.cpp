@@ -37,24 +37,24 @@ sensor_msgs::JointState toJointState(const sixdof_core::RobotState& state) {
 }
 
 namespace {
-// A point's positions, velocities and accelerations, which the message and the core name alike; the time is
-// converted by the caller.
+// A point's positions, velocities and accelerations, which the message and the core name alike, appended to `to`;
+// the time is converted by the caller.
 template <class From, class To>
-To copyMotion(const From& from) {
-  To to;
-  to.positions = from.positions;
-  to.velocities = from.velocities;
-  to.accelerations = from.accelerations;
-  return to;
+To& appendMotion(const From& from, std::vector<To>* to) {
+  To& point = to->emplace_back();
+  point.positions = from.positions;
+  point.velocities = from.velocities;
+  point.accelerations = from.accelerations;
+  return point;
 }
 }  // namespace
 
 trajectory_msgs::JointTrajectory toJointTrajectory(const sixdof_core::Trajectory& trajectory) {
   trajectory_msgs::JointTrajectory msg;
   msg.joint_names = trajectory.joint_names;
+  msg.points.reserve(trajectory.points.size());
   for (const auto& point : trajectory.points) {
-    msg.points.push_back(copyMotion<sixdof_core::TrajectoryPoint, trajectory_msgs::JointTrajectoryPoint>(point));
-    msg.points.back().time_from_start = ros::Duration(point.time_from_start);
+    appendMotion(point, &msg.points).time_from_start = ros::Duration(point.time_from_start);
   }
   return msg;
 }
@@ -62,10 +62,8 @@ trajectory_msgs::JointTrajectory toJointTrajectory(const sixdof_core::Trajectory
 sixdof_core::Trajectory fromJointTrajectory(const trajectory_msgs::JointTrajectory& trajectory) {
   sixdof_core::Trajectory result;
   result.joint_names = trajectory.joint_names;
-  for (const auto& p : trajectory.points) {
-    result.points.push_back(copyMotion<trajectory_msgs::JointTrajectoryPoint, sixdof_core::TrajectoryPoint>(p));
-    result.points.back().time_from_start = p.time_from_start.toSec();
-  }
+  result.points.reserve(trajectory.points.size());
+  for (const auto& p : trajectory.points) appendMotion(p, &result.points).time_from_start = p.time_from_start.toSec();
   return result;
 }
 

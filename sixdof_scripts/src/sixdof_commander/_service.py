@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import io
+import math
+import select
 import socket
 import struct
 import threading
@@ -107,23 +109,47 @@ class _ConnectionClosedError(Exception):
     """The server closed the kept connection."""
 
 
-def _receive_answer(sock: socket.socket, deadline: float | None) -> tuple[bool, bytes]:
-    """A TCPROS service answer from sock before the deadline (time.monotonic(); None: no deadline): its ok byte and
-    its bytes; _NoAnswerError after the deadline, rospy.ServiceException for bytes beyond the answer (the socket is
-    closed). The first read takes whatever has arrived, up to _FIRST_READ bytes (most often the whole answer); the
-    rest is read to the length the answer's header names."""
-    data = bytearray()
-    size = None
-    while size is None or len(data) < size:
-        if deadline is not None:
+def _wait(sock: socket.socket, events: int, deadline: float | None) -> None:
+    """Returns once sock is ready for `events` (select.POLLIN or POLLOUT; an error or a hang-up is ready too: the
+    read or write that follows reports it), _NoAnswerError once the deadline (time.monotonic(); None: none) passed."""
+    poller = select.poll()
+    poller.register(sock, events)
+    while True:
+        if deadline is None:
+            timeout = None
+        else:
             remaining = deadline - time.monotonic()
             if remaining <= 0.0:
                 raise _NoAnswerError
-            sock.settimeout(remaining)
+            timeout = math.ceil(remaining * 1e3)
+        if poller.poll(timeout):
+            return
+
+
+def _send_request(sock: socket.socket, data: bytes, deadline: float | None) -> None:
+    """All of data written to the non-blocking sock before the deadline (_NoAnswerError after it)."""
+    view = memoryview(data)
+    while view:
+        try:
+            view = view[sock.send(view) :]
+        except BlockingIOError:
+            _wait(sock, select.POLLOUT, deadline)
+
+
+def _receive_answer(sock: socket.socket, deadline: float | None) -> tuple[bool, bytes]:
+    """A TCPROS service answer from the non-blocking sock before the deadline (time.monotonic(); None: no
+    deadline): its ok byte and its bytes; _NoAnswerError after the deadline, rospy.ServiceException for bytes beyond
+    the answer (the socket is closed). Each read waits for data first (poll), then takes whatever has arrived: the
+    first up to _FIRST_READ bytes (most often the whole answer), the rest up to the length the answer's header
+    names."""
+    data = bytearray()
+    size = None
+    while size is None or len(data) < size:
+        _wait(sock, select.POLLIN, deadline)
         try:
             chunk = sock.recv(_FIRST_READ if size is None else size - len(data))
-        except TimeoutError:
-            raise _NoAnswerError from None
+        except BlockingIOError:
+            continue
         if not chunk:
             raise _ConnectionClosedError
         data += chunk
@@ -140,19 +166,18 @@ def _call_kept(
 ) -> object:
     """proxy(request) on its open persistent connection, read before the deadline (None: no deadline): TCPROS's
     service framing (the request's length and bytes out; an ok byte, the length and the response's bytes, or an
-    error text, back), with rospy's own message serialization (or `decode`). A broken connection raises OSError or
-    _ConnectionClosedError, the server's error answer rospy.ServiceException."""
+    error text, back), with rospy's own message serialization (or `decode`). The kept socket is non-blocking, every
+    wait a poll bounded by the time left. A broken connection raises OSError or _ConnectionClosedError, the
+    server's error answer rospy.ServiceException."""
     request = rospy.msg.args_kwds_to_message(proxy.request_class, (request,), {})
     transport = proxy.transport
     proxy.seq += 1
     buffer = io.BytesIO()
     rospy.msg.serialize_message(buffer, proxy.seq, request)
     sock = transport.socket
-    sock.settimeout(None if deadline is None else max(deadline - time.monotonic(), 1e-3))
-    try:
-        sock.sendall(buffer.getvalue())
-    except TimeoutError:
-        raise _NoAnswerError from None
+    if sock.gettimeout() != 0.0:
+        sock.setblocking(False)
+    _send_request(sock, buffer.getvalue(), deadline)
     ok, data = _receive_answer(sock, deadline)
     if not ok:
         raise rospy.ServiceException(

@@ -154,12 +154,7 @@ TcprosServiceServer::TcprosServiceServer(const std::string& resolved_name, Tcpro
   const uint16_t port = ipv6 ? reinterpret_cast<sockaddr_in6*>(&address)->sin6_port
                              : reinterpret_cast<sockaddr_in*>(&address)->sin_port;
   uri_ = "rosrpc://" + host + ":" + std::to_string(ntohs(port));
-  XmlRpc::XmlRpcValue request, response, payload;
-  request[0] = ros::this_node::getName();
-  request[1] = name_;
-  request[2] = uri_;
-  request[3] = ros::XMLRPCManager::instance()->getServerURI();
-  if (!ros::master::execute("registerService", request, response, payload, true)) {
+  if (!callMaster("registerService", true, true)) {
     ::close(listen_fd_);
     throw std::runtime_error("service " + name_ + ": the master refused its registration");
   }
@@ -168,15 +163,18 @@ TcprosServiceServer::TcprosServiceServer(const std::string& resolved_name, Tcpro
 
 TcprosServiceServer::~TcprosServiceServer() {
   stop();
-  if (registered_) {
-    XmlRpc::XmlRpcValue request, response, payload;
-    request[0] = ros::this_node::getName();
-    request[1] = name_;
-    request[2] = uri_;
-    // Without a master (shut down first) the registration is gone with it.
-    ros::master::execute("unregisterService", request, response, payload, false);
-  }
+  // Without a master (shut down first) the registration is gone with it.
+  if (registered_) callMaster("unregisterService", false, false);
   if (listen_fd_ >= 0) ::close(listen_fd_);
+}
+
+bool TcprosServiceServer::callMaster(const char* method, bool with_node_api, bool wait_for_master) const {
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  request[1] = name_;
+  request[2] = uri_;
+  if (with_node_api) request[3] = ros::XMLRPCManager::instance()->getServerURI();
+  return ros::master::execute(method, request, response, payload, wait_for_master);
 }
 
 void TcprosServiceServer::start() {

@@ -78,6 +78,9 @@ class TcprosServiceServer {
   // Reads and checks the connection header and sends the server's; false when the connection is to be closed.
   bool handshake(int fd, std::string* caller, bool* persistent) const;
   void reap(bool all);
+  // The master call `method` (registerService, unregisterService) for this service: the node's name, the service's
+  // name and URI, and to register the node's XML-RPC URI; waits for the master when asked. True when it answered.
+  bool callMaster(const char* method, bool with_node_api, bool wait_for_master) const;
   // The answer's work deferred by afterAnswer, run under handling_.
   static void runDeferred(std::vector<std::function<void()>>* work);
 

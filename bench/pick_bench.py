@@ -22,7 +22,8 @@ package through move_group (ArmDriver).
 
 With --rss, every ROS node's resident set size is sampled after each trial (the soak): the report gives each
 node's growth from the end of the warm-up to the end, and the run fails when any grows by more than
---max-growth-mb.
+--max-growth-mb. --rss-series FILE also writes every sample (CSV: trial, node, RSS in kB), to see whether a growth
+levels off or keeps on.
 
     bench/pick_bench.py --trials 100 --seed 1 --report report.md
     bench/pick_bench.py --seed 1 --only 35 220     # replay trials 35 and 220 of that sequence
@@ -114,6 +115,14 @@ class RssTracker:
             kb = self.rss_kb(pid)
             if kb is not None:
                 self.samples.setdefault(node, []).append(kb)
+
+    def write_series(self, path: str) -> None:
+        """Every sample as CSV: trial (1-based, in sampling order), node, RSS in kB."""
+        with open(path, "w", encoding="utf-8") as out:
+            out.write("trial,node,rss_kb\n")
+            for node, kb in sorted(self.samples.items()):
+                for trial, value in enumerate(kb, 1):
+                    out.write(f"{trial},{node},{value}\n")
 
     def growth_mb(self, warmup: int) -> dict[str, tuple[float, float]]:
         """node -> (RSS at the end of the warm-up, growth since then), MB."""
@@ -390,6 +399,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--rss", action="store_true", help="sample every node's RSS after each trial (soak)")
     parser.add_argument("--warmup", type=int, default=20, help="trials before the RSS baseline (default: 20)")
     parser.add_argument("--max-growth-mb", type=float, default=5.0, help="allowed RSS growth per node (MB)")
+    parser.add_argument("--rss-series", help="with --rss, write every sample here (CSV: trial, node, rss_kb)")
     parser.add_argument("--report", help="write the markdown report here too")
     parser.add_argument(
         "--label", default="", help="the robot's config package, named in the report's title (scripts/bench_pick.sh)"
@@ -415,6 +425,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
             parser.error(f"--{name.replace('_', '-')} must be > 0, got {value}")
     if math.hypot(xmax - xmin, ymax - ymin) < args.min_separation:
         parser.error("--region is smaller than --min-separation: no target can be drawn")
+    if args.rss_series and not args.rss:
+        parser.error("--rss-series needs --rss")
     if args.rss and not 0 <= args.warmup < args.trials:
         parser.error(f"--warmup must be in [0, --trials), got {args.warmup}")
     return args
@@ -455,6 +467,8 @@ def main() -> int:
             )
         robot = bench.driver.arm.robot_description.name
         text, passed = report(args, trials, time.monotonic() - start, rss, bench.recoveries, robot)
+        if rss is not None and args.rss_series:
+            rss.write_series(args.rss_series)
     except (SixdofCommanderError, rospy.ROSException, rospy.ServiceException) as err:
         print(f"error: {err}", file=sys.stderr)
         return 2

@@ -169,8 +169,10 @@ class Rig {
       each();
     }
   }
+  // A new goal, as the simulator's gripper controller sets it (with the fingers' contacts found afresh).
   void setFinger(double position) {
     EXPECT_TRUE(gripper_.setGoal({position, 0.0}, world_.simTime()).ok());
+    EXPECT_TRUE(world_.refreshContacts(g_.finger).ok());
     finished_at_ = -1.0;
   }
   // Sim time at which the gripper controller ended the last goal (reached or stalled), -1 while it is active.
@@ -405,6 +407,55 @@ TEST(FixtureGripper, TheAdaptiveGrippersMasterStaysWithinItsLimitsWhenASqueezedO
   EXPECT_GE(lowest, info.lower - 0.01);
   EXPECT_LE(highest, info.upper + 0.01);
   EXPECT_LT(rig.mimicGap(), 1e-3);
+}
+
+// World::refreshContacts (the simulator's gripper controller calls it on each new goal): the contact points between
+// the fingers and the object they hold are gone until the next step, which finds them again from the poses, each
+// normal pushing its finger away from the object's centre; the object's other contacts (the ground) stay. A normal
+// kept from the closing (Bullet keeps points while the bodies stay close, and the grasp fix keeps them close) once
+// held a hand's fingers shut against their opening effort (bench-pick, seven_dof_hand: 1 open in about 150).
+TEST(FixtureGripper, ARefreshFindsTheFingersContactsWithAHeldObjectAfresh) {
+  const GantryGripper g = gantryGripper("parallel_hand.urdf");
+  const ObjectSpec spec = object(Kind::kCube, 0.03);
+  Rig rig(g, spec);
+  const double grasp_z = std::max(spec.pose.translation().z(), g.grasp.reach + 0.003);
+  rig.teleport(Eigen::Vector3d(0, 0, grasp_z), g.grasp.open.at(g.finger));
+  rig.run(0.2);
+  rig.setFinger(g.grasp.closed.at(g.finger));
+  for (int i = 0; i < 3000 && !rig.holding(); ++i) rig.run(0.001);
+  ASSERT_TRUE(rig.holding()) << "never attached";
+  rig.run(0.2);
+  const auto fingers = [&](const World& world, int* others) {
+    int count = 0;
+    *others = 0;
+    for (const Contact& c : world.contacts()) {
+      const bool finger_a = std::count(g.grasp.finger_links.begin(), g.grasp.finger_links.end(), c.body_a) > 0;
+      const bool finger_b = std::count(g.grasp.finger_links.begin(), g.grasp.finger_links.end(), c.body_b) > 0;
+      if ((finger_a && c.body_b == "object") || (finger_b && c.body_a == "object")) {
+        ++count;
+        // normal_on_b points from b to a: from the object towards the finger when the finger is a.
+        const Eigen::Vector3d towards_finger = finger_a ? c.normal_on_b : Eigen::Vector3d(-c.normal_on_b);
+        const Eigen::Vector3d outwards = c.position_on_b - rig.objectPosition();
+        EXPECT_GT(towards_finger.dot(outwards), 0.0) << "a normal pushing " << (finger_a ? c.body_a : c.body_b)
+                                                     << " into the object: " << towards_finger.transpose();
+      } else {
+        ++*others;
+      }
+    }
+    return count;
+  };
+  int others_before = 0, others = 0;
+  ASSERT_GT(fingers(rig.world(), &others_before), 0);
+  EXPECT_GT(others_before, 0) << "the cube on the ground";
+  ASSERT_TRUE(rig.world().refreshContacts(g.finger).ok());
+  EXPECT_EQ(fingers(rig.world(), &others), 0);
+  EXPECT_EQ(others, others_before);
+  rig.run(0.001);
+  EXPECT_GT(fingers(rig.world(), &others), 0);
+  EXPECT_TRUE(rig.holding());
+  const Result unknown = rig.world().refreshContacts("no_such_joint");
+  EXPECT_EQ(unknown.status, Status::kUnknownJoint);
+  EXPECT_NE(unknown.message.find("no_such_joint"), std::string::npos) << unknown.message;
 }
 
 // The jaw gripper closing on an upright 3 cm x 6 cm cylinder, squeezed from its middle: held with opposed, level

@@ -132,6 +132,13 @@ class World {
   std::vector<GraspEvent> takeGraspEvents();
   // Objects currently attached by the grasp fix.
   std::vector<std::string> attachedObjects() const;
+  // Drops the contact points kept between objects and the bodies `joint` moves (its child body, those of the joints
+  // mimicking it and everything they carry): the next step finds them afresh from the bodies' poses. Bullet keeps a
+  // contact point, with the normal of the step that found it, for as long as the bodies stay within its breaking
+  // threshold; while the grasp fix welds an object to the palm nothing moves them apart, so a normal found at the
+  // object's edge as the fingers closed can outlast the grip and hold the fingers shut against their opening
+  // effort. The simulator's gripper controller calls this on each new goal. kUnknownJoint for an unknown joint.
+  Result refreshContacts(const std::string& joint);
 
   // ---- conveyors, sources, sinks (sixdof_sim/conveyor.h) ----
   // Sets a belt's speed (m/s along its direction; 0 stops it) and wakes the objects. kUnknownObject for an unknown

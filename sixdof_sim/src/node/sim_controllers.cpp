@@ -173,6 +173,8 @@ GripperResult SimControllers::setGripperGoal(const std::string& gripper, const G
   if (!check.ok()) return check;
   claim(-1 - index, {g.controller.config().joint});
   g.controller.setGoal(goal, clock_());
+  // The fingers start from the contacts of the bodies' present poses (World::refreshContacts).
+  world_.refreshContacts(g.controller.config().joint);
   endGripper(g, GoalState::kCanceled, "preempted by a new goal");
   g.done = std::move(done);
   return check;

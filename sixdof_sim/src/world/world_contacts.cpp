@@ -110,6 +110,38 @@ void World::Impl::detach(const std::string& name) {
   pushEvent(GraspEvent::Type::kDetached, name);
 }
 
+Result World::refreshContacts(const std::string& joint) {
+  Impl& d = *impl_;
+  const auto found = d.joint_index.find(joint);
+  if (found == d.joint_index.end()) return {Status::kUnknownJoint, "unknown joint '" + joint + "'"};
+  std::vector<char> moved(d.bodies.size(), 0);
+  for (size_t j = 0; j < d.joints.size(); ++j) {
+    if (static_cast<int>(j) == found->second || d.joints[j].master == found->second) moved[d.joints[j].body] = 1;
+  }
+  for (bool grew = true; grew;) {  // and the bodies downstream of those
+    grew = false;
+    for (size_t j = 0; j < d.joints.size(); ++j) {
+      if (moved[d.joint_parent_body[j]] && !moved[d.joints[j].body]) {
+        moved[d.joints[j].body] = 1;
+        grew = true;
+      }
+    }
+  }
+  const int manifolds = d.dispatcher->getNumManifolds();
+  for (int m = 0; m < manifolds; ++m) {
+    btPersistentManifold* manifold = d.dispatcher->getManifoldByIndexInternal(m);
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    const btCollisionObject* robot = a->getUserIndex() == kRobotBody ? a : b;
+    const btCollisionObject* object = robot == a ? b : a;
+    if (robot->getUserIndex() == kRobotBody && object->getUserIndex() == kObjectBody &&
+        moved[static_cast<size_t>(robot->getUserIndex2())]) {
+      manifold->clearManifold();
+    }
+  }
+  return Result::success();
+}
+
 bool World::graspFixAvailable() const { return impl_->grasp_fix != nullptr; }
 bool World::graspFixEnabled() const { return impl_->grasp_enabled; }
 

@@ -118,15 +118,7 @@ Result World::refreshContacts(const std::string& joint) {
   for (size_t j = 0; j < d.joints.size(); ++j) {
     if (static_cast<int>(j) == found->second || d.joints[j].master == found->second) moved[d.joints[j].body] = 1;
   }
-  for (bool grew = true; grew;) {  // and the bodies downstream of those
-    grew = false;
-    for (size_t j = 0; j < d.joints.size(); ++j) {
-      if (moved[d.joint_parent_body[j]] && !moved[d.joints[j].body]) {
-        moved[d.joints[j].body] = 1;
-        grew = true;
-      }
-    }
-  }
+  d.markBodiesBelow(&moved);
   const int manifolds = d.dispatcher->getNumManifolds();
   for (int m = 0; m < manifolds; ++m) {
     btPersistentManifold* manifold = d.dispatcher->getManifoldByIndexInternal(m);

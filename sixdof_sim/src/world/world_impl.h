@@ -323,6 +323,7 @@ struct World::Impl {
   void releaseSuction();
   void setCupContacts(ObjectRuntime* object, bool on);  // contacts between the cup's body and the object
   Result checkJointCommand(const std::string& joint, int* index);
+  void markBodiesBelow(std::vector<char>* marked) const;  // per body: also every body below a marked one
   double dt() const { return options.time_step; }
 };
 

@@ -64,15 +64,7 @@ void World::Impl::addMimicConstraints() {
       }
     }
   }
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (size_t j = 0; j < joints.size(); ++j) {
-      if (linkage_bodies[joint_parent_body[j]] && !linkage_bodies[joints[j].body]) {
-        linkage_bodies[joints[j].body] = 1;
-        grew = true;
-      }
-    }
-  }
+  markBodiesBelow(&linkage_bodies);
   static_cast<DynamicsWorld*>(world.get())->after_solve =
       mimic_rows.empty() ? std::function<void()>() : [this] { projectMimicMotion(); };
 }
@@ -182,6 +174,18 @@ void World::Impl::rampLinkage(JointRuntime& runtime, double max_velocity, double
   runtime.ramp_setpoint += std::copysign(step, remaining);
   *position = runtime.ramp_setpoint;
   *velocity = std::copysign(max_velocity, remaining);
+}
+
+void World::Impl::markBodiesBelow(std::vector<char>* marked) const {
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (size_t j = 0; j < joints.size(); ++j) {
+      if ((*marked)[joint_parent_body[j]] && !(*marked)[joints[j].body]) {
+        (*marked)[joints[j].body] = 1;
+        grew = true;
+      }
+    }
+  }
 }
 
 int World::Impl::linkageSolverIterations() const {

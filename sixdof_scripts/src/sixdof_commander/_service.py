@@ -2,17 +2,17 @@
 
 from __future__ import annotations
 
-import io
 import math
 import select
 import socket
 import struct
 import threading
 import time
-from collections.abc import Callable
 
 import genpy
 import rospy
+
+from ._wire import WireCodec, codec
 
 # Hang guard (wall clock) for service calls: a dead node fails at once, this only bounds a node that hangs.
 SERVICE_TIMEOUT = 30.0
@@ -26,14 +26,14 @@ class PersistentService:
     fails or the server closed it) is made once more on a new connection. A server's error answer (TCPROS's ok byte
     0) raises rospy.ServiceException and is never made again, so the service may have side effects. A failure on a
     new connection raises as rospy's ServiceProxy does. Calls from several threads at once are served one at a time
-    on the kept connection, the others on connections of their own (as rospy's non-persistent proxies).
-    `decode` (the response's bytes -> the response) replaces genpy's deserializer on the kept connection.
+    on the kept connection, the others on connections of their own (as rospy's non-persistent proxies). On the kept
+    connection requests and responses go through _wire's codecs (genpy's bytes and objects, made in C++).
     """
 
-    def __init__(self, name: str, service_class: type, decode: Callable[[bytes], object] | None = None) -> None:
+    def __init__(self, name: str, service_class: type) -> None:
         self.resolved_name = rospy.resolve_name(name)
         self._service_class = service_class
-        self._decode = decode
+        self._codecs = (codec(service_class._request_class), codec(service_class._response_class))
         self._busy = threading.Lock()
         self._proxy: rospy.ServiceProxy | None = None
 
@@ -44,7 +44,7 @@ class PersistentService:
             proxy = self._kept()
             if proxy is not None:
                 try:
-                    return _call_kept(proxy, request, None, self._decode)
+                    return _call_kept(proxy, request, None, self._codecs)
                 except (OSError, _ConnectionClosedError):
                     if self._proxy is not proxy:  # reset() while waiting: the caller gave up on this call
                         raise rospy.ServiceException(f"service [{self.resolved_name}]: connection closed") from None
@@ -71,7 +71,7 @@ class PersistentService:
                 proxy = self._kept()
                 if proxy is not None:
                     try:
-                        return _call_kept(proxy, request, time.monotonic() + timeout, self._decode)
+                        return _call_kept(proxy, request, time.monotonic() + timeout, self._codecs)
                     except _NoAnswerError:
                         self.reset()
                         raise rospy.ROSException(
@@ -96,6 +96,8 @@ class PersistentService:
             return proxy
         return None
 
+
+_LENGTH = struct.Struct("<I")
 
 # The first read of an answer: most answers (a planned trajectory is ~10 KB) arrive whole in one read.
 _FIRST_READ = 65536
@@ -154,7 +156,7 @@ def _receive_answer(sock: socket.socket, deadline: float | None) -> tuple[bool, 
             raise _ConnectionClosedError
         data += chunk
         if size is None and len(data) >= 5:
-            size = 5 + struct.unpack_from("<I", data, 1)[0]
+            size = 5 + _LENGTH.unpack_from(data, 1)[0]
     if len(data) > size:
         sock.close()  # the stream is out of step: the next call opens a new connection
         raise rospy.ServiceException(f"a service answered {len(data) - size} bytes more than its answer's length")
@@ -162,29 +164,35 @@ def _receive_answer(sock: socket.socket, deadline: float | None) -> tuple[bool, 
 
 
 def _call_kept(
-    proxy: rospy.ServiceProxy, request: object, deadline: float | None, decode: Callable[[bytes], object] | None
+    proxy: rospy.ServiceProxy, request: object, deadline: float | None, codecs: tuple[WireCodec, WireCodec]
 ) -> object:
     """proxy(request) on its open persistent connection, read before the deadline (None: no deadline): TCPROS's
     service framing (the request's length and bytes out; an ok byte, the length and the response's bytes, or an
-    error text, back), with rospy's own message serialization (or `decode`). The kept socket is non-blocking, every
-    wait a poll bounded by the time left. A broken connection raises OSError or _ConnectionClosedError, the
-    server's error answer rospy.ServiceException."""
+    error text, back), the messages written and read by `codecs` (the request's and the response's) as rospy's
+    serialization would. The kept socket is non-blocking, every wait a poll bounded by the time left. A broken
+    connection raises OSError or _ConnectionClosedError, the server's error answer rospy.ServiceException."""
     request = rospy.msg.args_kwds_to_message(proxy.request_class, (request,), {})
     transport = proxy.transport
     proxy.seq += 1
-    buffer = io.BytesIO()
-    rospy.msg.serialize_message(buffer, proxy.seq, request)
+    if getattr(request.__class__, "_has_header", False):  # as rospy.msg.serialize_message
+        request.header.seq = proxy.seq
+        if request.header.frame_id is None:
+            request.header.frame_id = "0"
+    try:
+        body = codecs[0].encode(request)
+    except struct.error as err:
+        raise rospy.exceptions.ROSSerializationException(err) from err
     sock = transport.socket
     if sock.gettimeout() != 0.0:
         sock.setblocking(False)
-    _send_request(sock, buffer.getvalue(), deadline)
+    _send_request(sock, _LENGTH.pack(len(body)) + body, deadline)
     ok, data = _receive_answer(sock, deadline)
     if not ok:
         raise rospy.ServiceException(
             f"service [{proxy.resolved_name}] responded with an error: {data.decode('utf-8', 'replace')}"
         )
     try:
-        response = decode(data) if decode is not None else proxy.response_class().deserialize(data)
+        response = codecs[1].decode(data)
     except genpy.DeserializationError as err:
         raise rospy.ServiceException(f"service [{proxy.resolved_name}]: {err}") from err
     response._connection_header = transport.header

@@ -20,7 +20,6 @@ from moveit_msgs.msg import (
 
 from sixdof_msgs.srv import RetimeTrajectory, RetimeTrajectoryRequest
 
-from ._plan_response import decode_plan_response
 from ._ros import ActionClient, ServerWaiter, resolve, wait_for_done
 from ._service import SERVICE_TIMEOUT, PersistentService, call_service
 from .error_reports import SUCCESS, CallError, ErrorReports
@@ -72,12 +71,9 @@ class MoveGroupClients:
             waiter.service(resolve(ns, name))
         waiter.check(who)
         self._reports = ErrorReports(ns)
-        self._plan_service = PersistentService(
-            resolve(ns, "plan_kinematic_path"), MOVE_GROUP_SERVICES["plan_kinematic_path"], decode_plan_response
-        )
-        self._fk_service, self._ik_service, self._cartesian_service = (
+        self._plan_service, self._fk_service, self._ik_service, self._cartesian_service = (
             PersistentService(resolve(ns, name), MOVE_GROUP_SERVICES[name])
-            for name in ("compute_fk", "compute_ik", "compute_cartesian_path")
+            for name in ("plan_kinematic_path", "compute_fk", "compute_ik", "compute_cartesian_path")
         )
         self._retime_service = PersistentService(resolve(ns, "retime_trajectory"), RetimeTrajectory)
         self.last_error: CallError = SUCCESS

@@ -65,9 +65,9 @@ elif [ ${#benches[@]} -gt 0 ]; then
     done
   } | tee "$out.tmp"
   # Sections written by scripts (this one's bindings section, `make bench-build`, `make bench-pick`, ...) name the
-  # script in their header, "## <name> (scripts/<script>.sh)": keep them.
+  # script in their header, "## <name> (scripts/<script>.sh[ <arguments>])": keep them.
   if [ -f "$out" ]; then
-    awk '/^## /{keep = ($0 ~ /^## .* \(scripts\/[a-z_]+\.sh\)$/)} keep' "$out" | sed '1s/^/\n/' >> "$out.tmp"
+    awk '/^## /{keep = ($0 ~ /^## .* \(scripts\/[a-z_]+\.sh( [^)]*)?\)$/)} keep' "$out" | sed '1s/^/\n/' >> "$out.tmp"
   fi
   mv "$out.tmp" "$out"
 fi

@@ -299,17 +299,11 @@ class MessageCodec {
     if (field.kind == Kind::kUInt8) {  // uint8[] and char[]: bytes
       return steal(PyBytes_FromStringAndSize(reader.take(count), static_cast<Py_ssize_t>(count)));
     }
-    if (field.kind == Kind::kFloat64) {  // most of a trajectory
+    if (isNumber(field.kind)) {  // struct.unpack's tuple, from the bytes checked above
+      const ReadValue read = info(field.kind).read;
       py::object values = steal(PyTuple_New(static_cast<Py_ssize_t>(count)));
       for (size_t i = 0; i < count; ++i) {
-        PyTuple_SET_ITEM(values.ptr(), i, steal(PyFloat_FromDouble(reader.raw<double>())).release().ptr());
-      }
-      return values;
-    }
-    if (isNumber(field.kind)) {  // struct.unpack's tuple
-      py::object values = steal(PyTuple_New(static_cast<Py_ssize_t>(count)));
-      for (size_t i = 0; i < count; ++i) {
-        PyTuple_SET_ITEM(values.ptr(), i, decodeValue(node, field, reader).release().ptr());
+        PyTuple_SET_ITEM(values.ptr(), i, steal(read(reader.take(field.element_size))).release().ptr());
       }
       return values;
     }

@@ -100,18 +100,26 @@ stack_rviz_screenshot() {
   # rviz and the marker node on their own display; the screenshot waits until the rviz window is mapped and has
   # had a few seconds to draw. It is of rviz's main window, whose size the rviz config sets: the virtual screen
   # around it (no window manager) would show as a black band. rviz's output goes to $ROS_LOG_DIR/rviz.out.
+  # rviz on Mesa's software renderer dies in some starts (in its first frames): it is started again
+  # (rviz_respawn), and the shot is taken of a window that is still there after the wait, up to four starts.
   stack_start rviz_screenshot xvfb-run -a -s "-screen 0 1280x1024x24" bash -c '
-    roslaunch sixdof_bringup rviz.launch.xml >"$1/rviz.out" 2>&1 &
+    roslaunch sixdof_bringup rviz.launch.xml rviz_respawn:=true >"$1/rviz.out" 2>&1 &
     pid=$!
-    window=""
-    for _ in $(seq 150); do
-      window=$(xwininfo -root -children 2>/dev/null | awk "/ - RViz\":/ {print \$1; exit}")
-      [ -n "$window" ] && break
-      sleep 0.2
+    status=1
+    for _ in 1 2 3 4; do
+      window=""
+      for _ in $(seq 300); do
+        window=$(xwininfo -root -children 2>/dev/null | awk "/ - RViz\":/ {print \$1; exit}")
+        [ -n "$window" ] && break
+        sleep 0.2
+      done
+      [ -n "$window" ] || break
+      sleep 8
+      xwininfo -id "$window" >/dev/null 2>&1 || continue
+      import -window "$window" "$2"
+      status=$?
+      break
     done
-    sleep 8
-    import -window "${window:-root}" "$2"
-    status=$?
     kill -INT $pid
     wait $pid
     exit $status

@@ -5,7 +5,8 @@ Starts rviz itself (after subscribing to /rosout, so that no early message is mi
 plugin is live on the ROS graph, that a published DisplayTrajectory is drawn by the ghost robot at the
 trajectory's final state, the planning scene's objects and the goal robot's colours, and that rviz logged no error.
 
-The tests share one rviz (started once: each start costs seconds under llvmpipe) and run in their names' order
+The tests share one rviz (started once, as each start costs seconds under llvmpipe; again only when Mesa kills it
+in its first seconds: sixdof_rviz.rviz_process) and run in their names' order
 (unittest sorts them), which is the fixture: test_0 needs no rviz; test_1..test_4 each wait for the subscriptions they
 use and compare screenshots against a baseline taken in the test itself, so they do not depend on each other's
 drawing, except that test_2 expects no ghost robot yet (no trajectory published before it); test_5 runs last and checks
@@ -13,10 +14,10 @@ the log of the whole session.
 """
 
 import os
-import subprocess
 import tempfile
 import unittest
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import rosgraph
@@ -45,12 +46,15 @@ from shape_msgs.msg import Mesh, MeshTriangle, SolidPrimitive
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 from sixdof_msgs.msg import ErrorReport
+from sixdof_rviz.rviz_process import RvizProcess
 from sixdof_rviz.screenshots import channels, marker_sphere_mask, screenshot, settled_screenshot
 
 ARM_JOINTS = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
 ALL_JOINTS = ARM_JOINTS + ["finger1_joint", "finger2_joint"]
 # rviz prints this when the optional package media_export is missing; it is harmless.
 HARMLESS = ("no such package media_export", "error while executing command")
+# Hang guard only: rviz under llvmpipe maps its main window within seconds when healthy.
+RVIZ_UP_TIMEOUT = 120.0
 
 
 def ghost_mask(image: np.ndarray) -> np.ndarray:
@@ -183,19 +187,15 @@ class RvizPluginsTest(unittest.TestCase):
         else:
             raise AssertionError("the /rosout subscription never reached the master")
         cls.rviz_log_path = os.path.join(cls.shot_dir, "rviz.log")
-        cls.rviz_log = open(cls.rviz_log_path, "w")
-        cls.rviz = subprocess.Popen(
-            ["rosrun", "rviz", "rviz", "-d", rospy.get_param("~rviz_config"), "__name:=rviz"],
-            stdout=cls.rviz_log,
-            stderr=subprocess.STDOUT,
+        cls.rviz = RvizProcess(
+            ["rosrun", "rviz", "rviz", "-d", rospy.get_param("~rviz_config"), "__name:=rviz"], Path(cls.rviz_log_path)
         )
+        cls.rviz.wait_up(RVIZ_UP_TIMEOUT)
 
     @classmethod
     def tearDownClass(cls) -> None:
         cls.timer.shutdown()
-        cls.rviz.terminate()
-        cls.rviz.wait()
-        cls.rviz_log.close()
+        cls.rviz.stop()
 
     @classmethod
     def publish_joint_states(cls, _event) -> None:
@@ -207,7 +207,7 @@ class RvizPluginsTest(unittest.TestCase):
 
     def wait_for(self, condition, what: str, tries: int = 600) -> None:
         for _ in range(tries):
-            self.assertIsNone(self.rviz.poll(), "rviz exited; see " + self.rviz_log_path)
+            self.assertTrue(self.rviz.alive(), self.rviz.exited())
             if condition():
                 return
             rospy.sleep(0.1)

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 import re
-import subprocess
 import threading
 import time
 from collections.abc import Iterator
@@ -21,7 +20,7 @@ import numpy as np
 import pytest
 import rospy
 from e2e import STARTUP_TIMEOUT, settled_joint_state
-from generated import generate_package, launch_demo, stop, stop_demo, workspace_fixture
+from generated import generate_package, launch_demo, stop_demo, workspace_fixture
 from geometry_msgs.msg import PoseStamped
 from moveit_msgs.msg import RobotState
 from moveit_msgs.srv import GetPositionFK, GetStateValidity
@@ -31,6 +30,7 @@ from sensor_msgs.msg import JointState
 from sixdof_commander import ArmDriver, Gripper, MoveGroup, SixdofCommanderError
 from urdf_parser_py.urdf import URDF
 
+from sixdof_rviz.rviz_process import RvizProcess
 from sixdof_rviz.screenshots import marker_sphere_mask, settled_screenshot
 
 # robot name -> (description file in sixdof_test_robots, has a gripper)
@@ -45,11 +45,6 @@ POSITION_TOLERANCE = 0.005  # m
 ANGLE_TOLERANCE = 0.02  # rad
 # rviz logs these when the optional package media_export is missing; they are harmless.
 HARMLESS = ("no such package media_export", "error while executing command")
-# rviz's OpenGL start-up under Xvfb and Mesa's llvmpipe crashed once (SIGSEGV) in a fresh-clone CI run (not in 70
-# starts run to reproduce it), after "Forcing OpenGl version" and before its render window existed: before it reads
-# the config's displays or loads a sixdof plugin. Such a start is retried once; a crash after GL_READY (the config,
-# our plugins) fails the test.
-GL_READY = "OpenGL device:"
 
 
 workspace = workspace_fixture("any_arm")
@@ -163,26 +158,14 @@ def test_gripper_works_or_names_what_is_missing(stack: Stack) -> None:
 
 
 class Rviz:
-    """rviz with a config on this process's X display; collects what its nodes log as errors."""
+    """rviz with a config on this process's X display (started again when Mesa kills it in its first seconds:
+    sixdof_rviz.rviz_process); collects what its nodes log as errors."""
 
     def __init__(self, config: Path, log: Path) -> None:
         self.errors: list[str] = []
         self.lock = threading.Lock()
         self.sub = rospy.Subscriber("/rosout", Log, self.on_log, queue_size=100)
-        self.config, self.log = config, log
-        self.log.write_text("")
-        self.gl_restarted = False
-        self.start()
-
-    def start(self) -> None:
-        with open(self.log, "a") as out:
-            self.process = subprocess.Popen(
-                ["rviz", "-d", str(self.config)], stdout=out, stderr=subprocess.STDOUT, start_new_session=True
-            )
-
-    def died_in_gl_startup(self) -> bool:
-        """True when rviz was killed by a signal before its render window existed (no GL_READY line yet)."""
-        return self.process.returncode < 0 and GL_READY not in self.log.read_text()
+        self.process = RvizProcess(["rviz", "-d", str(config)], log)
 
     def on_log(self, msg: Log) -> None:
         if msg.level >= Log.ERROR and "rviz" in msg.name and not any(h in msg.msg for h in HARMLESS):
@@ -190,23 +173,11 @@ class Rviz:
                 self.errors.append(msg.msg)
 
     def window(self) -> str:
-        """The id of rviz's main window, once it is mapped."""
-        deadline = time.monotonic() + STARTUP_TIMEOUT
-        while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                if not self.gl_restarted and self.died_in_gl_startup():
-                    self.gl_restarted = True
-                    print(f"rviz died of signal {-self.process.returncode} in its GL start-up; started again")
-                    self.start()
-                    deadline = time.monotonic() + STARTUP_TIMEOUT
-                    continue
-                raise AssertionError(f"rviz exited ({self.process.returncode}); see {self.log}")
-            tree = subprocess.run(["xwininfo", "-root", "-children"], capture_output=True, text=True).stdout
-            match = re.search(r'^\s*(0x[0-9a-f]+) "[^"]* - RViz"', tree, re.MULTILINE)
-            if match:
-                return match.group(1)
-            time.sleep(0.5)
-        raise AssertionError("no rviz window on the display")
+        """The id of rviz's main window, once rviz has stayed up with it mapped."""
+        try:
+            return self.process.wait_up(STARTUP_TIMEOUT)
+        except RuntimeError as e:
+            raise AssertionError(str(e)) from e
 
     def yellow_pixels(self, window: str) -> int:
         """Pixels of the Goal State marker's yellow drag sphere in the 3D view of the window, once rviz's drawing is
@@ -215,7 +186,7 @@ class Rviz:
         return int(marker_sphere_mask(image[:, 400:]).sum())  # right of the Displays panel
 
     def close(self) -> list[str]:
-        stop(self.process, timeout=20.0)
+        self.process.stop()
         self.sub.unregister()
         with self.lock:
             return list(self.errors)

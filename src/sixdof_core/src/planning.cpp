@@ -123,13 +123,15 @@ void simplifySteps(const ob::SpaceInformationPtr& si, og::PathGeometric* path) {
 // The simplifier runs first on a copy of the path whose motions are checked simplify_coarse_factor times
 // coarser, and the result is then checked at the planning resolution; if any segment fails there, it runs
 // again at the planning resolution. The returned path is thus always valid at the planning resolution.
-og::PathGeometric simplifyPath(Session* session, const og::PathGeometric& raw, bool* fell_back) {
+og::PathGeometric simplifyPath(Session* session, const std::vector<JointBounds>& joints, const og::PathGeometric& raw,
+                               bool* fell_back) {
   const ob::SpaceInformationPtr& fine = session->si;
   *fell_back = false;
-  if (session->coarse_si) {
-    og::PathGeometric coarse(session->coarse_si);
+  if (session->coarse_fraction > 0.0) {
+    const ob::SpaceInformationPtr& coarse_si = session->coarseSpaceInformation(joints);
+    og::PathGeometric coarse(coarse_si);
     for (std::size_t k = 0; k < raw.getStateCount(); ++k) coarse.append(raw.getState(k));
-    simplifySteps(session->coarse_si, &coarse);
+    simplifySteps(coarse_si, &coarse);
     og::PathGeometric out(fine);
     for (std::size_t k = 0; k < coarse.getStateCount(); ++k) out.append(coarse.getState(k));
     if (pathValid(fine, out)) return out;
@@ -171,7 +173,7 @@ Attempt runAttempt(const PlanningProblem& p, Session* session, const PlannerFact
   og::PathGeometric path = *pdef->getSolutionPath()->as<og::PathGeometric>();
   if (p.options.simplify) {
     const Clock::time_point t0 = Clock::now();
-    path = simplifyPath(session, path, &attempt.simplify_fallback);
+    path = simplifyPath(session, p.joints, path, &attempt.simplify_fallback);
     attempt.simplify_time = secondsSince(t0);
   }
   for (std::size_t k = 0; k < path.getStateCount(); ++k) {
@@ -275,11 +277,7 @@ PlanningResult plan(const PlanningProblem& p) {
   // already that coarse (MoveIt's default), shortcuts accepted coarser fail their re-check too often to pay.
   const double coarse_fraction =
       std::min(fraction * options.simplify_coarse_factor, std::max(fraction, kCoarsestSimplifyFraction));
-  if (options.simplify && coarse_fraction > fraction) {
-    // A state space owns its check resolution, so the coarse checks need a space of their own.
-    session.coarse_space = std::make_shared<JointSpace>(p.joints);
-    session.coarse_si = session.spaceInformation(session.coarse_space, coarse_fraction);
-  }
+  if (options.simplify && coarse_fraction > fraction) session.coarse_fraction = coarse_fraction;
 
   err = boundsViolation(p.joints, p.start);
   if (!err.empty()) return finish(result, PlanningStatus::kInvalidStart, "start state: " + err, t0, &session);

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -211,8 +212,7 @@ std::string canonicalPlannerId(const std::string& id);
 struct Session {
   std::shared_ptr<const JointSpace> joint_space;
   ob::SpaceInformationPtr si;
-  std::shared_ptr<const JointSpace> coarse_space;
-  ob::SpaceInformationPtr coarse_si;  // same space, coarser motion checks: see simplifyPath()
+  double coarse_fraction = 0.0;  // > 0: the simplification checks motions this coarse first (see simplifyPath())
   std::atomic<std::size_t> checks{0};
   std::atomic<std::size_t> precheck_calls{0};
   std::atomic<std::size_t> precheck_states{0};
@@ -253,11 +253,28 @@ struct Session {
     return si;
   }
 
+  // Space information over a space of its own (a state space owns its check resolution) with motions checked at
+  // coarse_fraction. Made on first use, after the planner has drawn its random seeds (setting up a space information
+  // samples states, which draws one), so that a seeded plan's path before simplification is the same whatever the
+  // simplification options.
+  const ob::SpaceInformationPtr& coarseSpaceInformation(const std::vector<JointBounds>& joints) {
+    std::call_once(coarse_once_, [&] {
+      coarse_space_ = std::make_shared<JointSpace>(joints);
+      coarse_si_ = spaceInformation(coarse_space_, coarse_fraction);
+    });
+    return coarse_si_;
+  }
+
   std::string reason(const Eigen::VectorXd& q) const {
     if (!explain) return "";
     const std::string why = explain(q);
     return why.empty() ? "" : ": " + why;
   }
+
+ private:
+  std::once_flag coarse_once_;
+  std::shared_ptr<const JointSpace> coarse_space_;
+  ob::SpaceInformationPtr coarse_si_;
 };
 
 }  // namespace detail

@@ -36,6 +36,27 @@ void collectNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& pa
   for (unsigned int c = 0; c < node->mNumChildren; ++c) collectNode(scene, node->mChildren[c], transform, scale, out);
 }
 
+// Vertices at the same position become one, and the triangles index it: STL files (and assimp, keeping a vertex per
+// face normal) give every triangle corners of its own. A convex mesh is then a closed hull whose edges FCL walks to
+// find support points, instead of scanning three copies of every corner.
+void weldVertices(MeshData* mesh) {
+  auto less = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
+  };
+  std::map<Eigen::Vector3d, int, decltype(less)> index(less);
+  std::vector<Eigen::Vector3d> welded;
+  std::vector<int> remap(mesh->vertices.size());
+  for (std::size_t v = 0; v < mesh->vertices.size(); ++v) {
+    const auto [it, added] = index.emplace(mesh->vertices[v], static_cast<int>(welded.size()));
+    if (added) welded.push_back(mesh->vertices[v]);
+    remap[v] = it->second;
+  }
+  for (auto& t : mesh->triangles) {
+    for (int& k : t) k = remap[k];
+  }
+  mesh->vertices = std::move(welded);
+}
+
 struct CacheKey {
   std::string path;
   double sx, sy, sz;
@@ -102,6 +123,7 @@ MeshLoadResult loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
     result.fail(MeshLoadStatus::kNoTriangles, "mesh '" + path + "': contains no triangles");
     return result;
   }
+  weldVertices(mesh.get());
   mesh->convex = isConvexMesh(*mesh);
   {
     std::lock_guard<std::mutex> lock(mutex);

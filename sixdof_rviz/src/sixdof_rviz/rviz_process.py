@@ -15,12 +15,12 @@ exit, or one more death, is an error naming the log.
 
 from __future__ import annotations
 
-import os
 import re
-import signal
 import subprocess
 import time
 from pathlib import Path
+
+from sixdof_test_support import processes
 
 # rviz processes at most: the first and up to five restarts.
 STARTS = 6
@@ -98,10 +98,4 @@ class RvizProcess:
 
     def stop(self, timeout: float = 20.0) -> None:
         """Ends rviz (SIGINT, then SIGKILL after `timeout` seconds) and waits for it."""
-        if self.alive():
-            os.killpg(self.process.pid, signal.SIGINT)
-            try:
-                self.process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.process.pid, signal.SIGKILL)
-                self.process.wait()
+        processes.stop(self.process, timeout)

@@ -117,8 +117,16 @@ class FirstJointsProjection : public ob::ProjectionEvaluator {
       const double extent = joint.continuous ? kTwoPi : joint.upper - joint.lower;
       cells.push_back(std::max(extent, 1e-6) / kProjectionCellsPerJoint);
     }
-    // Set here so the state space's own default projection does not replace this one in setup().
+    // Set here so the state space's own default projection does not replace this one in setup(), and the bounds so
+    // that setup() does not estimate them by sampling states (which would draw a seed from OMPL's generator).
     setCellSizes(cells);
+    ob::RealVectorBounds bounds(getDimension());
+    for (unsigned int i = 0; i < getDimension(); ++i) {
+      const JointBounds& joint = joint_space_->joints()[i];
+      bounds.setLow(i, joint.continuous ? -M_PI : joint.lower);
+      bounds.setHigh(i, joint.continuous ? M_PI : joint.upper);
+    }
+    setBounds(bounds);
   }
 
   unsigned int getDimension() const override {
@@ -254,12 +262,14 @@ struct Session {
   }
 
   // Space information over a space of its own (a state space owns its check resolution) with motions checked at
-  // coarse_fraction. Made on first use, after the planner has drawn its random seeds (setting up a space information
-  // samples states, which draws one), so that a seeded plan's path before simplification is the same whatever the
-  // simplification options.
+  // coarse_fraction. Made on first use, after the planner has been set up: nothing its setup draws from OMPL's seed
+  // generator can then shift the planner's seeds, so a seeded plan's path before simplification is the same whatever
+  // the simplification options.
   const ob::SpaceInformationPtr& coarseSpaceInformation(const std::vector<JointBounds>& joints) {
     std::call_once(coarse_once_, [&] {
-      coarse_space_ = std::make_shared<JointSpace>(joints);
+      auto space = std::make_shared<JointSpace>(joints);
+      space->space()->registerDefaultProjection(std::make_shared<FirstJointsProjection>(space.get()));
+      coarse_space_ = space;
       coarse_si_ = spaceInformation(coarse_space_, coarse_fraction);
     });
     return coarse_si_;

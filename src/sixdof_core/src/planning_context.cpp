@@ -146,18 +146,25 @@ std::uint64_t newScratchId() {
   return next++;
 }
 
-// The calling thread's scratch state for the callbacks with id `scratch`, made from `reference`. The callbacks run
-// concurrently in parallel planning attempts, hence one per thread; it is reset to the reference when another
-// callback used it last, and otherwise keeps all but the group's values, which every call sets.
-RobotState& scratchState(std::uint64_t scratch, const RobotState& reference) {
+// The calling thread's scratch state for the callbacks with id `scratch`, made from `reference`, with the group's
+// variables (`indices`) at `q`. The callbacks run concurrently in parallel planning attempts, hence one per thread; it
+// is reset to the reference when another callback used it last, and otherwise keeps all but the group's values. Those
+// set to the values they already hold leave the state (and its forward kinematics) as it is: the validity check of a
+// state the pre-check has just failed to prove finds its link poses computed.
+RobotState& scratchState(std::uint64_t scratch, const RobotState& reference, const std::vector<int>& indices,
+                         const Eigen::VectorXd& q) {
   thread_local std::optional<RobotState> state;
   thread_local std::uint64_t state_scratch = 0;
+  thread_local Eigen::VectorXd values;  // the group's values set last
+  if (state && state_scratch == scratch && values.size() == q.size() && values == q) return *state;
   if (!state) {
     state.emplace(reference);
   } else if (state_scratch != scratch) {
     *state = reference;
   }
   state_scratch = scratch;
+  state->setVariablePositions(indices, q);
+  values = q;
   return *state;
 }
 
@@ -177,8 +184,7 @@ JointValidityFn PlanningContext::makeValidityFn(const RobotState& reference, std
         if (!j.continuous && (q[i] < j.lower || q[i] > j.upper)) return false;
       }
     }
-    RobotState& state = scratchState(scratch, reference);
-    state.setVariablePositions(self.variable_indices_, q);
+    const RobotState& state = scratchState(scratch, reference, self.variable_indices_, q);
     if (self.state_constraint_ && !self.state_constraint_(state)) return false;
     self.sceneLinkPoses(state, &poses);
     return !scene->isColliding(poses);
@@ -209,8 +215,7 @@ MotionPrecheckFn PlanningContext::makePrecheckFn(const RobotState& reference, st
                                                             double cap, double tolerance) -> MotionPrecheck {
     thread_local std::vector<Eigen::Isometry3d> poses;
     thread_local LinkMotionBound bound;
-    RobotState& state = scratchState(scratch, reference);
-    state.setVariablePositions(self.variable_indices_, q);
+    const RobotState& state = scratchState(scratch, reference, self.variable_indices_, q);
     self.sceneLinkPoses(state, &poses);
     // A revolute joint moves the link's origin at its step times the origin's distance from the joint's axis: now
     // at most the distance to the joint's child frame, growing by at most what the joints in between move it.

@@ -27,11 +27,16 @@ GoalSet fail(PlanningStatus status, std::string message) {
   return g;
 }
 
-void addDistinct(const std::vector<JointBounds>& joints, const Eigen::VectorXd& q, std::vector<Eigen::VectorXd>* out) {
-  for (const Eigen::VectorXd& s : *out) {
-    if (jointDistance(joints, s, q) < kDuplicateGoalDistance) return;
+bool distinct(const std::vector<JointBounds>& joints, const Eigen::VectorXd& q,
+              const std::vector<Eigen::VectorXd>& states) {
+  for (const Eigen::VectorXd& s : states) {
+    if (jointDistance(joints, s, q) < kDuplicateGoalDistance) return false;
   }
-  out->push_back(q);
+  return true;
+}
+
+void addDistinct(const std::vector<JointBounds>& joints, const Eigen::VectorXd& q, std::vector<Eigen::VectorXd>* out) {
+  if (distinct(joints, q, *out)) out->push_back(q);
 }
 
 }  // namespace
@@ -176,6 +181,7 @@ GoalSet sampledGoalStates(const PlanningProblem& p, Session* session) {
   }
   const std::size_t n = p.joints.size();
   GoalSet set;
+  std::vector<Eigen::VectorXd> rejected;
   int produced = 0;
   std::string first_reason;
   for (int call = 0; call < goal.max_calls && static_cast<int>(set.states.size()) < goal.max_states; ++call) {
@@ -186,10 +192,13 @@ GoalSet sampledGoalStates(const PlanningProblem& p, Session* session) {
     if (!err.empty()) return fail(PlanningStatus::kInvalidRequest, "goal sampler returned a state that " + err);
     err = boundsViolation(p.joints, q);
     if (!err.empty()) return fail(PlanningStatus::kInvalidGoal, "goal sampler returned a state where " + err);
+    // The sampler (IK from random seeds) often returns a state it returned before: its validity is known.
+    if (!distinct(p.joints, q, set.states) || !distinct(p.joints, q, rejected)) continue;
     if (session->valid(q)) {
-      addDistinct(p.joints, q, &set.states);
-    } else if (produced == 1) {
-      first_reason = session->reason(q);
+      set.states.push_back(q);
+    } else {
+      rejected.push_back(q);
+      if (produced == 1) first_reason = session->reason(q);
     }
   }
   if (produced == 0) {

@@ -425,8 +425,8 @@ TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
   EXPECT_GT(r.simplification_time, 0.0);
   EXPECT_LE(r.simplification_time, r.planning_time);
 
-  // The default factor (whether or not its coarse result passes the re-check here).
-  p.options.simplify_coarse_factor = PlanningOptions().simplify_coarse_factor;
+  // A factor of 4 (whether or not its coarse result passes the re-check here).
+  p.options.simplify_coarse_factor = 4.0;
   r = plan(p);
   expectValidPath(w, r);
 
@@ -437,12 +437,12 @@ TEST_F(PlanningTest, CoarseSimplificationIsRecheckedAtThePlanningResolution) {
   // Both detour through the gap (y > 0.6) and are about as short (simplification quality is kept).
   EXPECT_NEAR(r.path_length, fine.path_length, 0.1 * fine.path_length);
 
-  // At MoveIt's default resolution (0.005 of the extent) there is no coarser pass: the default factor then
-  // plans exactly as factor 1 (same seed, same checks, same path).
+  // At MoveIt's default resolution (0.005 of the extent) there is no coarser pass: a factor of 4 then plans
+  // exactly as factor 1 (same seed, same checks, same path).
   p.options.longest_valid_segment_length = 0.0;
   p.options.longest_valid_segment_fraction = 0.005;
   const PlanningResult capped = plan(p);
-  p.options.simplify_coarse_factor = PlanningOptions().simplify_coarse_factor;
+  p.options.simplify_coarse_factor = 4.0;
   const PlanningResult defaulted = plan(p);
   ASSERT_TRUE(capped.ok()) << capped.message;
   ASSERT_TRUE(defaulted.ok()) << defaulted.message;

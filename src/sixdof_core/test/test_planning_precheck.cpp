@@ -210,7 +210,7 @@ TEST_F(PrecheckPlanningTest, SimplifiedPathsAreFclValidAndNoLongerThanTheRawPath
     if (!raw.ok()) continue;
     ++solved;
     p.options.simplify = true;
-    for (const double factor : {PlanningOptions().simplify_coarse_factor, 1.0}) {
+    for (const double factor : {4.0, 1.0}) {
       p.options.simplify_coarse_factor = factor;
       const PlanningResult r = p.plan(p.options);
       ASSERT_TRUE(r.ok()) << "problem " << problem << ", factor " << factor << ": " << r.message;

@@ -93,12 +93,12 @@ struct PlanningOptions {
   // ... or, when > 0, at this joint-space distance (rad / m) instead.
   double longest_valid_segment_length = 0.0;
   bool simplify = true;  // bounded rounds of OMPL PathSimplifier's vertex reduction and shortcutting
-  // The simplifier first checks its shortcuts this many times coarser than the planning resolution (but
+  // > 1: the simplifier first checks its shortcuts this many times coarser than the planning resolution (but
   // never coarser than 0.005 of the space's maximum extent, MoveIt's default resolution), then re-checks the
   // simplified path at the planning resolution and, if any segment fails there, simplifies again at the
-  // planning resolution. The path is valid at the planning resolution either way; the coarse pass only saves
-  // checks (most shortcuts it validates are replaced by later ones). 1 = off.
-  double simplify_coarse_factor = 4.0;
+  // planning resolution. The path is valid at the planning resolution either way. 1 (the default) = off: with
+  // the motion pre-check, the coarse pass and its re-check cost more than they save (plan_bench measures both).
+  double simplify_coarse_factor = 1.0;
   // After simplification, points are inserted so no joint moves more than this between points (0 = off).
   double max_joint_step = 0.0;
   // Motions are checked at the same states either way; with the problem's pre-check, runs of them that it proves

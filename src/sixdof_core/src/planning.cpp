@@ -266,8 +266,6 @@ PlanningResult plan(const PlanningProblem& p) {
   session.explain = p.explain_invalid;
   if (options.precheck) session.precheck = p.precheck;
   session.joint_space = std::make_shared<JointSpace>(p.joints);
-  session.joint_space->space()->registerDefaultProjection(
-      std::make_shared<FirstJointsProjection>(session.joint_space.get()));
   const double extent = session.joint_space->space()->getMaximumExtent();
   const double fraction = options.longest_valid_segment_length > 0.0
                               ? std::min(1.0, options.longest_valid_segment_length / extent)

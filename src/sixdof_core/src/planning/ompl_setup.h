@@ -249,9 +249,11 @@ struct Session {
     return calls < kPrecheckTrial || precheck_proofs.load() * kPrecheckMinShare >= calls;
   }
 
-  // Space information over `space` whose validity checker counts its checks here, with motions checked at
-  // `fraction` of the space's maximum extent (with the pre-check when the session has one).
+  // Space information over `space` (given FirstJointsProjection as its default projection) whose validity checker
+  // counts its checks here, with motions checked at `fraction` of the space's maximum extent (with the pre-check when
+  // the session has one).
   ob::SpaceInformationPtr spaceInformation(const std::shared_ptr<const JointSpace>& space, double fraction) {
+    space->space()->registerDefaultProjection(std::make_shared<FirstJointsProjection>(space.get()));
     auto si = std::make_shared<ob::SpaceInformation>(space->space());
     si->setStateValidityChecker(std::make_shared<CallbackValidityChecker>(
         si, space, [this](const Eigen::VectorXd& q) { return valid(q); }));
@@ -267,9 +269,7 @@ struct Session {
   // the simplification options.
   const ob::SpaceInformationPtr& coarseSpaceInformation(const std::vector<JointBounds>& joints) {
     std::call_once(coarse_once_, [&] {
-      auto space = std::make_shared<JointSpace>(joints);
-      space->space()->registerDefaultProjection(std::make_shared<FirstJointsProjection>(space.get()));
-      coarse_space_ = space;
+      coarse_space_ = std::make_shared<JointSpace>(joints);
       coarse_si_ = spaceInformation(coarse_space_, coarse_fraction);
     });
     return coarse_si_;

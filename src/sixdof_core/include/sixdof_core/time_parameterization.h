@@ -21,7 +21,7 @@ struct TimeParameterizationOptions {
   // Time between output points (s).
   double sample_period = 0.01;
   // Longest grid step along the blends (joint-space arc length, rad) of the phase-plane solution; a step also
-  // turns the path's tangent by at most 0.01 rad.
+  // turns the path's tangent by at most 0.02 rad.
   double path_resolution = 1e-2;
 };
 
@@ -36,7 +36,7 @@ struct TimeParameterizationResult : Result<TimeParameterizationStatus> {
 // RSS 2012). The phase plane (path speed squared over arc length) is solved on a grid by a backward
 // pass of maximal deceleration and a forward pass of maximal acceleration. A straight segment is one
 // interval solved in closed form (full acceleration, cruise at its speed limit, full deceleration: exact);
-// a blend is split into equal steps no longer than path_resolution nor turning by more than 0.01 rad, each
+// a blend is split into equal steps no longer than path_resolution nor turning by more than 0.02 rad, each
 // with a constant path acceleration chosen so that every joint's velocity and acceleration limit holds at both
 // ends of the step (within the grid's curvature error, which a 0.1% margin on the limits absorbs). The output
 // starts and ends at rest, passes through the first and last waypoints exactly, stops exactly at waypoints

@@ -9,7 +9,15 @@
 #include <stdexcept>
 #include <utility>
 
+#include "sixdof_core/ik_analytic.h"
+
 namespace sixdof_core {
+namespace {
+
+// Two IK solutions closer than this in every joint are the same solution.
+constexpr double kSameSolution = 1e-9;
+
+}  // namespace
 
 PlanningContext::PlanningContext(RobotModelConstPtr model, std::shared_ptr<const CollisionScene> scene,
                                  const std::string& group, std::shared_ptr<const IkSolver> ik)
@@ -282,18 +290,38 @@ SampledGoal PlanningContext::poseSampler(const RobotState& start, const Eigen::I
   struct SamplerState {
     std::mt19937_64 rng;
     int calls = 0;
+    // A closed-form solver's other solutions, nearest the start first, handed out one per later call.
+    std::vector<Eigen::VectorXd> others;
+    std::size_t next = 0;
   };
   auto state = std::make_shared<SamplerState>();
   state->rng.seed(options.seed ? *options.seed : std::random_device()());
   SampledGoal goal;
   goal.max_states = pose_goal.max_states;
   goal.max_calls = pose_goal.max_calls;
-  goal.sampler = [ik = ik_, joints = joints_, seed0 = start.groupPositions(group_), tip_pose, ik_options = pose_goal.ik,
-                  state](Eigen::VectorXd* out) {
+  // Path constraints may narrow the joints below their limits, which the solver keeps to.
+  const auto within = [joints = joints_](const Eigen::VectorXd& q) {
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      if (!joints[i].continuous && (q[i] < joints[i].lower || q[i] > joints[i].upper)) return false;
+    }
+    return true;
+  };
+  // The closed-form solver gives every solution of a pose in one call, so after the first its others are handed
+  // out in turn (random seeds would find the same few branches again and again). A position-only goal samples
+  // orientations: random seeds, as with the other solvers.
+  const auto* analytic = pose_goal.ik.position_only ? nullptr : dynamic_cast<const AnalyticIkSolver*>(ik_.get());
+  goal.sampler = [ik = ik_, analytic, within, joints = joints_, seed0 = start.groupPositions(group_), tip_pose,
+                  ik_options = pose_goal.ik, state](Eigen::VectorXd* out) {
+    const bool first = state->calls++ == 0;
+    if (analytic && !first) {
+      if (state->next == state->others.size()) return false;
+      *out = state->others[state->next++];
+      return true;
+    }
     IkOptions o = ik_options;
     // The first solution is the one nearest the start; later ones start from random seeds to find other branches.
     o.seed = seed0;
-    if (state->calls > 0) {
+    if (!first) {
       for (std::size_t i = 0; i < joints.size(); ++i) {
         const double lo = joints[i].continuous ? -M_PI : joints[i].lower;
         const double hi = joints[i].continuous ? M_PI : joints[i].upper;
@@ -301,13 +329,20 @@ SampledGoal PlanningContext::poseSampler(const RobotState& start, const Eigen::I
       }
     }
     o.random_seed = state->rng();
-    ++state->calls;
     const IkResult r = ik->solve(tip_pose, o);
     if (!r.ok()) return false;
-    // Path constraints may narrow the joints below their limits, which the solver keeps to.
-    for (std::size_t i = 0; i < joints.size(); ++i) {
-      if (!joints[i].continuous && (r.solution[i] < joints[i].lower || r.solution[i] > joints[i].upper)) return false;
+    if (analytic) {
+      std::vector<std::pair<double, Eigen::VectorXd>> others;
+      for (const Eigen::VectorXd& q : analytic->solveAll(tip_pose, seed0).solutions) {
+        if ((q - r.solution).cwiseAbs().maxCoeff() > kSameSolution && within(q)) {
+          others.emplace_back((q - seed0).squaredNorm(), q);
+        }
+      }
+      std::stable_sort(others.begin(), others.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (auto& [distance, q] : others) state->others.push_back(std::move(q));
     }
+    if (!within(r.solution)) return false;
     *out = r.solution;
     return true;
   };

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <ompl/util/Console.h>
 
+#include "sixdof_core/ik_analytic.h"
 #include "sixdof_core/planning_context.h"
 #include "test_description.h"
 #include "test_planning_table_top.h"
@@ -142,6 +144,31 @@ TEST_F(PlanningContextTest, InvalidStartsAndGoalsAreReported) {
 
   r = t_.context->planToPose(home, t_.tipFor(TableTop::topDown(1.5, 0.0, 0.2)), PoseGoalOptions(), options_);
   EXPECT_EQ(r.status, PlanningStatus::kNoIkSolution) << r.message;
+}
+
+// With the closed-form solver a pose goal's states are its IK solutions, each handed out once: the first nearest
+// the start, then the others nearest-first.
+TEST_F(PlanningContextTest, AnalyticPoseGoalsTryEverySolutionOnce) {
+  const auto* analytic = dynamic_cast<const AnalyticIkSolver*>(t_.ik.get());
+  ASSERT_NE(analytic, nullptr) << t_.ik_note;
+  const RobotState home = stateAt(Eigen::VectorXd::Zero(6));
+  // Every solution of a tcp inside the post collides: each is sampled, once.
+  const Eigen::Isometry3d in_post = t_.tipFor(TableTop::topDown(0.42, 0.03, 0.15));
+  const std::size_t solutions = analytic->solveAll(in_post, Eigen::VectorXd::Zero(6)).solutions.size();
+  ASSERT_GT(solutions, 1u);
+  PlanningResult r = t_.context->planToPose(home, in_post, PoseGoalOptions(), options_);
+  EXPECT_EQ(r.status, PlanningStatus::kGoalInCollision) << r.message;
+  EXPECT_NE(r.message.find("all " + std::to_string(solutions) + " sampled goal states are invalid"), std::string::npos)
+      << r.message;
+  // A reachable pose ends on one of its solutions.
+  const Eigen::Isometry3d above = t_.tipFor(TableTop::topDown(0.30, -0.30, 0.25));
+  r = t_.context->planToPose(home, above, PoseGoalOptions(), options_);
+  ASSERT_EQ(r.status, PlanningStatus::kSuccess) << r.message;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Eigen::VectorXd& q : analytic->solveAll(above, Eigen::VectorXd::Zero(6)).solutions) {
+    nearest = std::min(nearest, (q - r.path.back()).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(nearest, 1e-6);
 }
 
 TEST_F(PlanningContextTest, CartesianDescentStopsAtTheTable) {

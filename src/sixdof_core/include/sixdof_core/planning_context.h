@@ -82,7 +82,8 @@ class PlanningContext {
   PlanningResult planToNamed(const RobotState& start, const std::string& name, double tolerance,
                              const PlanningOptions& options) const;
   // Pose of the group's tip link in the chain base frame, goal states sampled with IK (first seeded with the
-  // start, then with random seeds). pose_goal.ik.position_only makes it a position goal.
+  // start, then with random seeds; the closed-form solver's other solutions instead, nearest the start first).
+  // pose_goal.ik.position_only makes it a position goal.
   PlanningResult planToPose(const RobotState& start, const Eigen::Isometry3d& tip_pose,
                             const PoseGoalOptions& pose_goal, const PlanningOptions& options) const;
   PlanningResult planToPosition(const RobotState& start, const Eigen::Vector3d& tip_position,

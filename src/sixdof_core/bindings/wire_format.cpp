@@ -16,6 +16,9 @@
 
 #include "common.h"
 
+// After Python.h (common.h): PyMemberDef, the slots of genpy's message classes.
+#include <structmember.h>
+
 namespace sixdof_core::python {
 
 namespace {
@@ -105,6 +108,10 @@ const KindInfo& info(Kind kind) { return kKinds[static_cast<size_t>(kind)]; }
 
 bool isNumber(Kind kind) { return kind <= Kind::kFloat64 && kind != Kind::kBool; }
 
+// Where a decoded value is stored in its object: the offset of the instance's slot for it (see slotOffset), or -1:
+// through setattr.
+using SlotOffset = Py_ssize_t;
+
 struct Field {
   py::str name;
   Kind kind = Kind::kFloat64;
@@ -112,6 +119,8 @@ struct Field {
   size_t node = 0;        // kMessage: the nested message's node
   py::object type;        // kTime, kDuration: the class of the values (genpy.Time, genpy.Duration)
   size_t element_size = 0;  // bytes one value takes at least on the wire
+  SlotOffset offset = -1;   // the field's slot in the message's instances
+  SlotOffset secs_offset = -1, nsecs_offset = -1;  // kTime, kDuration: the value's slots
 };
 
 struct Node {
@@ -138,6 +147,33 @@ py::object bare(PyObject* type) {
 
 void setField(const py::object& object, PyObject* name, const py::object& value) {
   if (PyObject_SetAttr(object.ptr(), name, value.ptr()) != 0) throw py::error_already_set();
+}
+
+// The offset of the slot in which setattr(instance, name, value) stores value for instances of `type`: found when
+// setattr is the generic one and the attribute a writable object slot (a __slots__ entry, as every field of genpy's
+// message classes and genpy.Time's secs and nsecs), -1 otherwise. Storing there is what setattr does then, without
+// the attribute's lookup on every call.
+SlotOffset slotOffset(PyObject* type, PyObject* name) {
+  auto* kind = reinterpret_cast<PyTypeObject*>(type);
+  if (kind->tp_setattro != PyObject_GenericSetAttr) return -1;
+  PyObject* descriptor = _PyType_Lookup(kind, name);  // borrowed; the attribute setattr finds through the MRO
+  if (descriptor == nullptr || Py_TYPE(descriptor) != &PyMemberDescr_Type) return -1;
+  const PyMemberDef* member = reinterpret_cast<PyMemberDescrObject*>(descriptor)->d_member;
+  if (member->type != T_OBJECT_EX || (member->flags & READONLY) != 0) return -1;
+  return member->offset;
+}
+
+// setattr(object, name, value) through the slot at `offset` when there is one (object is an instance of the type
+// the offset was found for).
+void store(const py::object& object, SlotOffset offset, PyObject* name, py::object value) {
+  if (offset < 0) {
+    setField(object, name, value);
+    return;
+  }
+  PyObject** slot = reinterpret_cast<PyObject**>(reinterpret_cast<char*>(object.ptr()) + offset);
+  PyObject* old = *slot;
+  *slot = value.release().ptr();
+  Py_XDECREF(old);
 }
 
 // The names of a time's fields (interned, kept for the process's life).
@@ -247,6 +283,7 @@ class MessageCodec {
       if (parts.size() != 4) throw py::value_error(node.type_name + ": a field's layout is (name, kind, count, sub)");
       Field field;
       field.name = parts[0].cast<py::str>();
+      field.offset = slotOffset(type.ptr(), field.name.ptr());
       const auto kind_name = parts[1].cast<std::string>();
       const KindInfo* kind = nullptr;
       for (const KindInfo& known : kKinds) {
@@ -267,6 +304,8 @@ class MessageCodec {
         if (!PyType_Check(field.type.ptr())) {
           throw py::type_error(node.type_name + "." + std::string(field.name) + ": a time's layout names its class");
         }
+        field.secs_offset = slotOffset(field.type.ptr(), secsName());
+        field.nsecs_offset = slotOffset(field.type.ptr(), nsecsName());
       }
       node.min_size += field.count == kScalar     ? field.element_size
                        : field.count == kVariable ? 4
@@ -282,7 +321,7 @@ class MessageCodec {
 
   py::object decodeMessage(const Node& node, Reader& reader) const {
     py::object message = bare(node.type.ptr());
-    for (const Field& field : node.fields) setField(message, field.name.ptr(), decodeField(node, field, reader));
+    for (const Field& field : node.fields) store(message, field.offset, field.name.ptr(), decodeField(node, field, reader));
     return message;
   }
 
@@ -329,11 +368,11 @@ class MessageCodec {
       case Kind::kDuration: {  // the values as read: genpy normalizes only a message's own time fields
         py::object stamp = bare(field.type.ptr());
         if (field.kind == Kind::kTime) {
-          setField(stamp, secsName(), steal(PyLong_FromUnsignedLong(reader.raw<uint32_t>())));
-          setField(stamp, nsecsName(), steal(PyLong_FromUnsignedLong(reader.raw<uint32_t>())));
+          store(stamp, field.secs_offset, secsName(), steal(PyLong_FromUnsignedLong(reader.raw<uint32_t>())));
+          store(stamp, field.nsecs_offset, nsecsName(), steal(PyLong_FromUnsignedLong(reader.raw<uint32_t>())));
         } else {
-          setField(stamp, secsName(), steal(PyLong_FromLong(reader.raw<int32_t>())));
-          setField(stamp, nsecsName(), steal(PyLong_FromLong(reader.raw<int32_t>())));
+          store(stamp, field.secs_offset, secsName(), steal(PyLong_FromLong(reader.raw<int32_t>())));
+          store(stamp, field.nsecs_offset, nsecsName(), steal(PyLong_FromLong(reader.raw<int32_t>())));
         }
         return stamp;
       }

@@ -103,6 +103,44 @@ def test_messages_are_read_with_their_types():
     assert (second.time_from_start.secs, second.time_from_start.nsecs) == (-2, -5)
 
 
+class LoggedStamp(Made):
+    """Fields set through its own __setattr__, which the codec must call."""
+
+    __slots__ = ("secs", "nsecs", "log")
+
+    def __setattr__(self, name: str, value: object) -> None:
+        if name != "log":
+            if not hasattr(self, "log"):
+                object.__setattr__(self, "log", [])
+            self.log.append(name)
+        object.__setattr__(self, name, value)
+
+
+class Clamped(Made):
+    """A field that is a property (not a slot): set through it."""
+
+    __slots__ = ("_count", "name")
+
+    @property
+    def count(self) -> int:
+        return self._count
+
+    @count.setter
+    def count(self, value: int) -> None:
+        self._count = value * 10
+
+
+def test_fields_that_are_not_plain_slots_are_set_through_setattr():
+    stamp = _MessageCodec((LoggedStamp, (("secs", "uint32", -2, None), ("nsecs", "uint32", -2, None)))).decode(
+        struct.pack("<2I", 3, 4)
+    )
+    assert (stamp.secs, stamp.nsecs, stamp.log) == (3, 4, ["secs", "nsecs"])
+    clamped = _MessageCodec((Clamped, (("count", "int32", -2, None), ("name", "string", -2, None)))).decode(
+        struct.pack("<i", 7) + string("x")
+    )
+    assert (clamped.count, clamped.name) == (70, "x")
+
+
 def test_a_bool_is_any_byte_but_zero():
     codec = _MessageCodec(POINT)
     assert codec.decode(point_bytes([], [], [0, 1, 2, 255], b"", 0, 0)).flags == [False, True, True, True]

@@ -178,32 +178,47 @@ RobotState& scratchState(std::uint64_t scratch, const RobotState& reference, con
 
 }  // namespace
 
-JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
-  return makeValidityFn(reference, newScratchId());
+struct PlanningContext::Bound {
+  PlanningContext self;
+  RobotState reference;
+};
+
+std::shared_ptr<const PlanningContext::Bound> PlanningContext::bind(const RobotState& reference) const {
+  return std::make_shared<const Bound>(Bound{*this, reference});
 }
 
-JointValidityFn PlanningContext::makeValidityFn(const RobotState& reference, std::uint64_t scratch) const {
-  // Copies keep the callback valid after this context or the reference state are gone.
-  return [scene = scene_, self = *this, reference, scratch](const Eigen::VectorXd& q) {
+JointValidityFn PlanningContext::validityFn(const RobotState& reference) const {
+  return makeValidityFn(bind(reference), newScratchId());
+}
+
+JointValidityFn PlanningContext::makeValidityFn(std::shared_ptr<const Bound> bound, std::uint64_t scratch) {
+  return [bound = std::move(bound), scratch](const Eigen::VectorXd& q) {
     thread_local std::vector<Eigen::Isometry3d> poses;
+    const PlanningContext& self = bound->self;
     if (self.constrained_joints_) {
       for (std::size_t i = 0; i < self.joints_.size(); ++i) {
         const JointBounds& j = self.joints_[i];
         if (!j.continuous && (q[i] < j.lower || q[i] > j.upper)) return false;
       }
     }
-    const RobotState& state = scratchState(scratch, reference, self.variable_indices_, q);
+    const RobotState& state = scratchState(scratch, bound->reference, self.variable_indices_, q);
     if (self.state_constraint_ && !self.state_constraint_(state)) return false;
     self.sceneLinkPoses(state, &poses);
-    return !scene->isColliding(poses);
+    return !self.scene_->isColliding(poses);
   };
 }
 
 JointValidityExplainFn PlanningContext::explainFn(const RobotState& reference) const {
-  return [scene = scene_, self = *this, reference](const Eigen::VectorXd& q) -> std::string {
-    std::string why = self.pathConstraintViolation(reference, q);
+  return makeExplainFn(bind(reference));
+}
+
+JointValidityExplainFn PlanningContext::makeExplainFn(std::shared_ptr<const Bound> bound) {
+  return [bound = std::move(bound)](const Eigen::VectorXd& q) -> std::string {
+    const PlanningContext& self = bound->self;
+    std::string why = self.pathConstraintViolation(bound->reference, q);
     if (!why.empty()) return why;
-    const CollisionReport report = scene->checkCollision(self.sceneLinkPoses(self.withGroup(reference, q)));
+    const CollisionReport report =
+        self.scene_->checkCollision(self.sceneLinkPoses(self.withGroup(bound->reference, q)));
     std::set<std::pair<std::string, std::string>> pairs;
     for (const Contact& c : report.contacts) {
       if (pairs.insert({c.body1, c.body2}).second) {
@@ -215,36 +230,37 @@ JointValidityExplainFn PlanningContext::explainFn(const RobotState& reference) c
 }
 
 MotionPrecheckFn PlanningContext::precheckFn(const RobotState& reference) const {
-  return makePrecheckFn(reference, newScratchId());
+  return makePrecheckFn(bind(reference), newScratchId());
 }
 
-MotionPrecheckFn PlanningContext::makePrecheckFn(const RobotState& reference, std::uint64_t scratch) const {
-  return [scene = scene_, self = *this, reference, scratch](const Eigen::VectorXd& q, const Eigen::VectorXd& step,
-                                                            double cap, double tolerance) -> MotionPrecheck {
+MotionPrecheckFn PlanningContext::makePrecheckFn(std::shared_ptr<const Bound> bound, std::uint64_t scratch) {
+  return [bound = std::move(bound), scratch](const Eigen::VectorXd& q, const Eigen::VectorXd& step, double cap,
+                                             double tolerance) -> MotionPrecheck {
     thread_local std::vector<Eigen::Isometry3d> poses;
-    thread_local LinkMotionBound bound;
-    const RobotState& state = scratchState(scratch, reference, self.variable_indices_, q);
+    thread_local LinkMotionBound motion;
+    const PlanningContext& self = bound->self;
+    const RobotState& state = scratchState(scratch, bound->reference, self.variable_indices_, q);
     self.sceneLinkPoses(state, &poses);
     // A revolute joint moves the link's origin at its step times the origin's distance from the joint's axis: now
     // at most the distance to the joint's child frame, growing by at most what the joints in between move it.
-    bound.links.resize(poses.size());
+    motion.links.resize(poses.size());
     for (std::size_t i = 0; i < poses.size(); ++i) {
-      bound.links[i].clear();
+      motion.links[i].clear();
       double inner_speed = 0.0;  // how fast the joints below the current one may move the link's origin, at most
       for (const MotionGain& gain : self.motion_gains_[i]) {
         const double amount = gain.factor * std::abs(step[gain.variable]);
         if (amount == 0.0) continue;
         if (gain.prismatic) {
-          bound.links[i].push_back({gain.joint, amount, 0.0, 0.0});
+          motion.links[i].push_back({gain.joint, amount, 0.0, 0.0});
           inner_speed += amount;
         } else {
           const double lever = (poses[i].translation() - state.linkTransform(gain.child_link).translation()).norm();
-          bound.links[i].push_back({gain.joint, amount * lever, amount, amount * inner_speed});
+          motion.links[i].push_back({gain.joint, amount * lever, amount, amount * inner_speed});
           inner_speed += amount * gain.lever;
         }
       }
     }
-    const SphereCertificate certificate = scene->precheckMotion(poses, bound, cap, tolerance);
+    const SphereCertificate certificate = self.scene_->precheckMotion(poses, motion, cap, tolerance);
     return MotionPrecheck{certificate.proven, certificate.unprovable};
   };
 }
@@ -252,11 +268,12 @@ MotionPrecheckFn PlanningContext::makePrecheckFn(const RobotState& reference, st
 PlanningProblem PlanningContext::problem(const RobotState& start, const PlanningOptions& options) const {
   PlanningProblem p;
   p.joints = joints_;
+  const std::shared_ptr<const Bound> bound = bind(start);
   const std::uint64_t scratch = newScratchId();  // one scratch state for both: they alternate
-  p.is_valid = makeValidityFn(start, scratch);
-  p.explain_invalid = explainFn(start);
+  p.is_valid = makeValidityFn(bound, scratch);
+  p.explain_invalid = makeExplainFn(bound);
   // The pre-check proves collision-freedom only: not a state constraint (joint bounds hold between bounded ends).
-  if (!state_constraint_) p.precheck = makePrecheckFn(start, scratch);
+  if (!state_constraint_) p.precheck = makePrecheckFn(bound, scratch);
   p.start = start.groupPositions(group_);
   p.options = options;
   return p;

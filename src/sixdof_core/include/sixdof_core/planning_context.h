@@ -101,9 +101,15 @@ class PlanningContext {
 
  private:
   void computeMotionGains();
-  // validityFn and precheckFn working on the scratch state `scratch` (see planning_context.cpp).
-  JointValidityFn makeValidityFn(const RobotState& reference, std::uint64_t scratch) const;
-  MotionPrecheckFn makePrecheckFn(const RobotState& reference, std::uint64_t scratch) const;
+  // A copy of this context and of a reference state, shared by the callbacks made from them: they stay valid after
+  // this context or the state are gone, and copying a callback copies a pointer.
+  struct Bound;
+  std::shared_ptr<const Bound> bind(const RobotState& reference) const;
+  // validityFn, explainFn and precheckFn of a bound context; the first and last work on the scratch state `scratch`
+  // (see planning_context.cpp).
+  static JointValidityFn makeValidityFn(std::shared_ptr<const Bound> bound, std::uint64_t scratch);
+  static JointValidityExplainFn makeExplainFn(std::shared_ptr<const Bound> bound);
+  static MotionPrecheckFn makePrecheckFn(std::shared_ptr<const Bound> bound, std::uint64_t scratch);
   RobotState withGroup(const RobotState& reference, const Eigen::VectorXd& values) const;
   SampledGoal poseSampler(const RobotState& start, const Eigen::Isometry3d& tip_pose, const PoseGoalOptions& pose_goal,
                           const PlanningOptions& options) const;

@@ -321,7 +321,9 @@ class MessageCodec {
 
   py::object decodeMessage(const Node& node, Reader& reader) const {
     py::object message = bare(node.type.ptr());
-    for (const Field& field : node.fields) store(message, field.offset, field.name.ptr(), decodeField(node, field, reader));
+    for (const Field& field : node.fields) {
+      store(message, field.offset, field.name.ptr(), decodeField(node, field, reader));
+    }
     return message;
   }
 

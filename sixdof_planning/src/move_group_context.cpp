@@ -127,11 +127,17 @@ ErrorCode MoveGroupContext::resolveRobotState(const moveit_msgs::RobotState& msg
     }
     warnIfStale(source);
   }
+  // The given joints' values, set at once (one forward kinematics update for them all).
+  std::vector<int> variables;
+  Eigen::VectorXd values(static_cast<Eigen::Index>(joint_state.name.size()));
   for (size_t i = 0; i < joint_state.name.size(); ++i) {
-    if (model_->joint(joint_state.name[i]).isActive()) {
-      state->setJointPosition(joint_state.name[i], joint_state.position[i]);
-    }
+    const int variable = model_->joint(joint_state.name[i]).variable_index;
+    if (variable < 0) continue;  // a mimic joint: checked against its source below
+    values[static_cast<Eigen::Index>(variables.size())] = joint_state.position[i];
+    variables.push_back(variable);
   }
+  values.conservativeResize(static_cast<Eigen::Index>(variables.size()));
+  state->setVariablePositions(variables, values);
   for (size_t i = 0; i < joint_state.name.size(); ++i) {
     const double derived = state->jointPosition(joint_state.name[i]);
     if (std::abs(derived - joint_state.position[i]) > kMimicTolerance) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <shape_msgs/SolidPrimitive.h>
 #include <sixdof_core/primitive_dimensions.h>
@@ -113,7 +115,7 @@ ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_
                          std::to_string(joint_state.position.size()) + " positions",
                      source);
   }
-  std::set<std::string> seen;
+  std::vector<char> seen(model.joints().size(), 0);  // by joint index
   for (size_t i = 0; i < joint_state.name.size(); ++i) {
     const std::string& name = joint_state.name[i];
     const int index = model.jointIndex(name);
@@ -121,7 +123,7 @@ ErrorCode validateJointState(const sixdof_core::RobotModel& model, const sensor_
     if (model.joints()[index].type == sixdof_core::JointType::kFixed) {
       return makeError(ErrorCode::INVALID_ROBOT_STATE, "joint '" + name + "' is fixed and has no position", source);
     }
-    if (!seen.insert(name).second) {
+    if (std::exchange(seen[index], 1) != 0) {
       return makeError(ErrorCode::INVALID_ROBOT_STATE, "joint '" + name + "' appears twice", source);
     }
     if (!std::isfinite(joint_state.position[i])) {

@@ -24,8 +24,8 @@ using Points = std::vector<Eigen::Vector3d>;
 // The grid's cell edge (m) where a shape allows it, and the most cells one shape gets (larger cells then). A sphere
 // around a cell part overshoots the surface by a fraction of the cell: this trades the pre-check's tightness
 // against its cost.
-constexpr double kCellSize = 0.015;
-constexpr int kMaxCells = 300;
+constexpr double kCellSize = 0.010;
+constexpr int kMaxCells = 1000;
 // Added to every radius (m): rounding in the section points and the 2D hulls.
 constexpr double kRadiusSafety = 1e-9;
 // Sides of the prism around a cylinder.

@@ -144,23 +144,27 @@ def _receive_answer(sock: socket.socket, deadline: float | None) -> tuple[bool, 
     the answer (the socket is closed). Each read waits for data first (poll), then takes whatever has arrived: the
     first up to _FIRST_READ bytes (most often the whole answer), the rest up to the length the answer's header
     names."""
-    data = bytearray()
+    chunks: list[bytes] = []
+    received = 0
     size = None
-    while size is None or len(data) < size:
+    while size is None or received < size:
         _wait(sock, select.POLLIN, deadline)
         try:
-            chunk = sock.recv(_FIRST_READ if size is None else size - len(data))
+            chunk = sock.recv(_FIRST_READ if size is None else size - received)
         except BlockingIOError:
             continue
         if not chunk:
             raise _ConnectionClosedError
-        data += chunk
-        if size is None and len(data) >= 5:
-            size = 5 + _LENGTH.unpack_from(data, 1)[0]
-    if len(data) > size:
+        chunks.append(chunk)
+        received += len(chunk)
+        if size is None and received >= 5:
+            head = chunks[0] if len(chunks[0]) >= 5 else b"".join(chunks)
+            size = 5 + _LENGTH.unpack_from(head, 1)[0]
+    if received > size:
         sock.close()  # the stream is out of step: the next call opens a new connection
-        raise rospy.ServiceException(f"a service answered {len(data) - size} bytes more than its answer's length")
-    return data[0] != 0, bytes(data[5:])
+        raise rospy.ServiceException(f"a service answered {received - size} bytes more than its answer's length")
+    data = chunks[0] if len(chunks) == 1 else b"".join(chunks)  # most answers arrive in one read: no copy
+    return data[0] != 0, data[5:]
 
 
 def _call_kept(

@@ -101,6 +101,8 @@ class ErrorReports:
     def forget(self, interface: str) -> None:
         """Drops the reports about `interface` nobody took (call before a request, so that its failure is not
         described by an earlier one's late report)."""
+        if not self._reports:  # nothing queued, the common case
+            return
         resolved = rospy.resolve_name(interface)
         with self._condition:
             kept = [r for r in self._reports if r.interface != resolved]

@@ -63,10 +63,11 @@ class MovingPick(unittest.TestCase):
         with self.lock:
             self.detections.clear()
         self.put_cube("tracked_cube", -0.35, speed)
-        # The cube rides the belt for 3 s (60 cm): the estimates of its last 1.5 s.
+        # The cube rides the belt for 3.75 s (75 cm, stopping 10 cm before its end): the estimates of its last 2.5 s
+        # (a slow host renders and detects a few frames a second).
         deadline = time.monotonic() + 60.0
-        while rospy.get_time() < 1e-9 or object_state("tracked_cube").object.pose.position.y < 0.25:
-            self.assertLess(time.monotonic(), deadline, "the cube did not ride the belt to y = 0.25")
+        while rospy.get_time() < 1e-9 or object_state("tracked_cube").object.pose.position.y < 0.4:
+            self.assertLess(time.monotonic(), deadline, "the cube did not ride the belt to y = 0.4")
             time.sleep(0.05)
         with self.lock:
             frames = list(self.detections)

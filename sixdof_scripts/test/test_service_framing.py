@@ -4,6 +4,7 @@ bytes beyond the answer's length."""
 
 from __future__ import annotations
 
+import itertools
 import socket
 import struct
 import threading
@@ -52,7 +53,7 @@ def test_one_read():
 def test_pieces(cuts):
     data = answer(True, BODY)
     bounds = [0, *cuts, len(data)]
-    assert receive([data[a:b] for a, b in zip(bounds, bounds[1:], strict=False)]) == (True, BODY)
+    assert receive([data[a:b] for a, b in itertools.pairwise(bounds)]) == (True, BODY)
 
 
 def test_empty_body_and_error_answer():

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import rospy
+import yaml
 from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import FollowJointTrajectoryActionResult
 from e2e import STARTUP_TIMEOUT
@@ -20,11 +21,26 @@ from std_srvs.srv import SetBool, Trigger
 # Bounds are outcomes (the error came, nothing hung), not speed claims.
 FAULT_BOUND = 1.0  # s from a hardware fault or an e-stop to the driver's aborted goal (docs/real_robot.md)
 MOTION_TIMEOUT = 120.0
+# The dynamixel plugin's status packet timeout (s) against the emulator, and the loop's read_timeout twice that: the
+# emulator is a Python process on the two cores the whole stack shares, and in two fresh clones one of its answers
+# waited longer than the 20 ms a servo gets by default (a hardware fault). A servo that stops answering is still
+# found within FAULT_BOUND.
+EMULATOR_TIMEOUT = 0.1
 
 
 def launch(args: list[str], log: Path) -> subprocess.Popen:
     """roslaunch ARGS in a process group of its own, its output into log."""
     return start(["roslaunch", *args], log)
+
+
+def emulator_hardware_file(source: Path, dest: Path) -> Path:
+    """The hardware.yaml `source` with the dynamixel block's timeout EMULATOR_TIMEOUT and read_timeout twice it,
+    written to `dest`."""
+    config = yaml.safe_load(source.read_text())
+    config["dynamixel"]["timeout"] = EMULATOR_TIMEOUT
+    config["read_timeout"] = 2.0 * EMULATOR_TIMEOUT
+    dest.write_text(yaml.safe_dump(config, sort_keys=False))
+    return dest
 
 
 class Emulator:

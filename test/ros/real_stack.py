@@ -22,9 +22,9 @@ from std_srvs.srv import SetBool, Trigger
 FAULT_BOUND = 1.0  # s from a hardware fault or an e-stop to the driver's aborted goal (docs/real_robot.md)
 MOTION_TIMEOUT = 120.0
 # The dynamixel plugin's status packet timeout (s) against the emulator, and the loop's read_timeout twice that: the
-# emulator is a Python process on the two cores the whole stack shares, and in two fresh clones one of its answers
-# waited longer than the 20 ms a servo gets by default (a hardware fault). A servo that stops answering is still
-# found within FAULT_BOUND.
+# emulator is a Python process on the two cores the whole stack shares, and its answers can wait for the scheduler
+# longer than the 20 ms a servo gets by default (a hardware fault). A servo that stops answering is still found
+# within FAULT_BOUND.
 EMULATOR_TIMEOUT = 0.1
 
 

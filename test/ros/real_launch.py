@@ -24,7 +24,7 @@ import rospy
 import yaml
 from e2e import STARTUP_TIMEOUT
 from generated import arm_commander, generate_package, plan_and_execute_joint_goal, start, stop, workspace_fixture
-from real_stack import Emulator, emulator_hardware_file, launch
+from real_stack import Emulator, launch
 from sensor_msgs.msg import JointState
 
 ROBOT, DESCRIPTION = "seven_dof", "urdf/seven_dof.urdf.xacro"
@@ -97,10 +97,8 @@ def test_mock(package: Package) -> None:
 
 def test_dynamixel_on_the_emulator(package: Package) -> None:
     emulator = Emulator(package.servos)
-    hardware = emulator_hardware_file(package.path / "config" / "hardware.yaml",
-                                      package.root / "hardware_emulator.yaml")
-    stack = launch([package.name, "real.launch", "driver:=dynamixel", f"port:={emulator.port}",
-                    f"hardware_file:={hardware}", "rviz:=false"], package.root / "dynamixel.log")
+    driver = emulator.driver_args(package.path / "config" / "hardware.yaml", package.root)
+    stack = launch([package.name, "real.launch", *driver, "rviz:=false"], package.root / "dynamixel.log")
     try:
         plan_and_execute()
     finally:

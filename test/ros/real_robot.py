@@ -19,16 +19,7 @@ from pathlib import Path
 
 import rospkg
 from generated import stop, workspace_fixture
-from real_stack import (
-    FAULT_BOUND,
-    DriverServices,
-    Emulator,
-    arm_driver,
-    emulator_hardware_file,
-    launch,
-    pick_sequence,
-    run_script,
-)
+from real_stack import FAULT_BOUND, DriverServices, Emulator, arm_driver, launch, pick_sequence, run_script
 from sixdof_commander import ArmDriver
 
 SERVOS = list(range(1, 8))  # sixdof_description's hardware.yaml: joint1..6 and finger1_joint
@@ -93,12 +84,8 @@ def test_sixdof_arm_on_the_mock(workspace: Path) -> None:
 def test_sixdof_arm_on_dynamixel_servos(workspace: Path) -> None:
     emulator = Emulator(SERVOS)
     try:
-        hardware = emulator_hardware_file(
-            Path(rospkg.RosPack().get_path("sixdof_description")) / "config" / "hardware.yaml",
-            workspace / "hardware_emulator.yaml",
-        )
-        args = ["driver:=dynamixel", f"port:={emulator.port}", f"hardware_file:={hardware}"]
-        with real_launch(args, workspace / "dynamixel.log") as (
+        hardware = Path(rospkg.RosPack().get_path("sixdof_description")) / "config" / "hardware.yaml"
+        with real_launch(emulator.driver_args(hardware, workspace), workspace / "dynamixel.log") as (
             arm,
             services,
         ):

@@ -33,16 +33,6 @@ def launch(args: list[str], log: Path) -> subprocess.Popen:
     return start(["roslaunch", *args], log)
 
 
-def emulator_hardware_file(source: Path, dest: Path) -> Path:
-    """The hardware.yaml `source` with the dynamixel block's timeout EMULATOR_TIMEOUT and read_timeout twice it,
-    written to `dest`."""
-    config = yaml.safe_load(source.read_text())
-    config["dynamixel"]["timeout"] = EMULATOR_TIMEOUT
-    config["read_timeout"] = 2.0 * EMULATOR_TIMEOUT
-    dest.write_text(yaml.safe_dump(config, sort_keys=False))
-    return dest
-
-
 class Emulator:
     """sixdof_control's Dynamixel Protocol 2.0 servo emulator on a pseudo-terminal, driven by its stdin commands."""
 
@@ -54,6 +44,16 @@ class Emulator:
         first = self.process.stdout.readline().strip()
         assert first.startswith("port "), f"the emulator did not start: {first!r}"
         self.port = first.removeprefix("port ")
+
+    def driver_args(self, hardware: Path, scratch: Path) -> list[str]:
+        """real.launch's arguments for the dynamixel plugin on this emulator: the hardware.yaml `hardware` copied into
+        the folder `scratch` with the dynamixel block's timeout EMULATOR_TIMEOUT and read_timeout twice it."""
+        config = yaml.safe_load(hardware.read_text())
+        config["dynamixel"]["timeout"] = EMULATOR_TIMEOUT
+        config["read_timeout"] = 2.0 * EMULATOR_TIMEOUT
+        copy = scratch / "hardware_emulator.yaml"
+        copy.write_text(yaml.safe_dump(config, sort_keys=False))
+        return ["driver:=dynamixel", f"port:={self.port}", f"hardware_file:={copy}"]
 
     def send(self, command: str) -> str:
         self.process.stdin.write(command + "\n")

@@ -61,8 +61,8 @@ int main(int argc, char** argv) {
   options.max_joint_step = 0.05;
   const Run ours = runQueries(t, queries, options);
   print("default: sphere pre-check of motions; simplification (up to 3 rounds of OMPL's vertex reduction, then up to 5 "
-        "of its shortcutting; no better-goal search or B-spline smoothing, unlike MoveIt's simplifySolution) checked at "
-        "the planning resolution",
+        "of shortcutting; no better-goal search or B-spline smoothing, unlike MoveIt's simplifySolution) checked at the "
+        "planning resolution",
         ours);
   // Baseline, same queries in the same run: every motion state checked with FCL (no pre-check).
   options.precheck = false;

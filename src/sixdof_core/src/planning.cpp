@@ -106,17 +106,108 @@ bool pathValid(const ob::SpaceInformationPtr& si, const og::PathGeometric& path)
 // that changes nothing.
 constexpr int kReduceRounds = 3;
 constexpr int kShortcutRounds = 5;
+// A shortcutting round makes at least this many tries (or one per vertex of the path, if more) and ends after as
+// many in a row that change nothing. The planner's path usually reduces to three vertices, so one try per vertex
+// (OMPL's shortcutPath) would leave the result to three draws: summed path length over plan_bench's queries 233 rad
+// that way, 184 rad with 12 tries and the gain below, in a fifth fewer instructions.
+constexpr int kMinShortcutTries = 12;
+// A shortcut is checked only if it would shorten the path by at least this share of its length. Motions along the
+// obstacles the path already hugs cost the most to check and gain the least.
+constexpr double kMinShortcutGain = 0.05;
+// Random points closer than this share of the path's length to a vertex are taken at the vertex.
+constexpr double kShortcutSnap = 0.005;
 
-// A bounded sequence of OMPL PathSimplifier's steps (in place of its simplify(), which repeats rounds while they
-// improve and time remains, and adds better-goal search, B-spline smoothing and a repair pass): vertex reduction
-// and then shortcutting, both trying connections anywhere along the path (range ratio 1), with close vertices
-// collapsed in between.
+// A point along a path: vertex `vertex`, or (vertex < 0) the point `t` of the way along segment `segment`, at arc
+// length `at`.
+struct PathPoint {
+  int segment = 0;
+  int vertex = -1;
+  double t = 0.0;
+  double at = 0.0;
+};
+
+PathPoint pointAt(const std::vector<double>& arc, double at) {
+  PathPoint p;
+  const int after = static_cast<int>(std::upper_bound(arc.begin(), arc.end(), at) - arc.begin());
+  p.segment = std::clamp(after - 1, 0, static_cast<int>(arc.size()) - 2);
+  const double snap = kShortcutSnap * arc.back();
+  if (at - arc[p.segment] < snap) {
+    p.vertex = p.segment;
+  } else if (arc[p.segment + 1] - at < snap) {
+    p.vertex = p.segment + 1;
+  }
+  if (p.vertex >= 0) {
+    p.at = arc[p.vertex];
+  } else {
+    p.t = (at - arc[p.segment]) / (arc[p.segment + 1] - arc[p.segment]);
+    p.at = at;
+  }
+  return p;
+}
+
+// One round of shortcutting: two random points anywhere along the path, and the stretch between them replaced by
+// the straight motion when that is valid and shortens the path by at least kMinShortcutGain of its length.
+bool shortcutRound(const ob::SpaceInformationPtr& si, og::PathGeometric* path, ompl::RNG* rng) {
+  std::vector<ob::State*>& states = path->getStates();
+  if (states.size() < 3) return false;
+  const int tries = std::max(kMinShortcutTries, static_cast<int>(states.size()));
+  std::vector<double> arc;  // arc length from the start at each vertex
+  const auto measure = [&] {
+    arc.assign(states.size(), 0.0);
+    for (std::size_t k = 1; k < states.size(); ++k) arc[k] = arc[k - 1] + si->distance(states[k - 1], states[k]);
+  };
+  measure();
+  if (!(arc.back() > 0.0)) return false;
+  ob::State* scratch[2] = {si->allocState(), si->allocState()};
+  bool changed = false;
+  for (int i = 0, idle = 0; i < tries && idle < tries; ++i, ++idle) {
+    double u = rng->uniformReal(0.0, arc.back()), v = rng->uniformReal(0.0, arc.back());
+    if (u > v) std::swap(u, v);
+    const PathPoint ends[2] = {pointAt(arc, u), pointAt(arc, v)};
+    // The vertices strictly between the two points: first..last.
+    const int first = ends[0].vertex >= 0 ? ends[0].vertex + 1 : ends[0].segment + 1;
+    const int last = ends[1].vertex >= 0 ? ends[1].vertex - 1 : ends[1].segment;
+    if (last < first) continue;
+    const ob::State* s[2];
+    for (int e = 0; e < 2; ++e) {
+      const PathPoint& p = ends[e];
+      if (p.vertex >= 0) {
+        s[e] = states[p.vertex];
+      } else {
+        si->getStateSpace()->interpolate(states[p.segment], states[p.segment + 1], p.t, scratch[e]);
+        s[e] = scratch[e];
+      }
+    }
+    if ((ends[1].at - ends[0].at) - si->distance(s[0], s[1]) < kMinShortcutGain * arc.back()) continue;
+    if (!si->checkMotion(s[0], s[1])) continue;
+    std::vector<ob::State*> next(states.begin(), states.begin() + first);
+    for (int e = 0; e < 2; ++e) {
+      if (ends[e].vertex < 0) next.push_back(si->cloneState(scratch[e]));
+    }
+    for (int k = first; k <= last; ++k) si->freeState(states[k]);
+    next.insert(next.end(), states.begin() + last + 1, states.end());
+    states.swap(next);
+    measure();
+    idle = -1;
+    changed = true;
+  }
+  si->freeState(scratch[0]);
+  si->freeState(scratch[1]);
+  return changed;
+}
+
+// A bounded sequence of simplification steps (in place of OMPL's simplify(), which repeats rounds while they
+// improve and time remains, and adds better-goal search, B-spline smoothing and a repair pass): OMPL's vertex
+// reduction, trying connections anywhere along the path (range ratio 1), close vertices collapsed, then our
+// shortcutting.
 void simplifySteps(const ob::SpaceInformationPtr& si, og::PathGeometric* path) {
   og::PathSimplifier simplifier(si);
   for (int r = 0; r < kReduceRounds && simplifier.reduceVertices(*path, 0, 0, 1.0); ++r) {
   }
   simplifier.collapseCloseVertices(*path);
-  for (int r = 0; r < kShortcutRounds && simplifier.shortcutPath(*path, 0, 0, 1.0); ++r) {
+  // Drawn from OMPL's seed generator after the simplifier's own: a seeded plan stays repeatable.
+  ompl::RNG rng;
+  for (int r = 0; r < kShortcutRounds && shortcutRound(si, path, &rng); ++r) {
   }
 }
 

@@ -92,7 +92,7 @@ struct PlanningOptions {
   double longest_valid_segment_fraction = 0.005;
   // ... or, when > 0, at this joint-space distance (rad / m) instead.
   double longest_valid_segment_length = 0.0;
-  bool simplify = true;  // bounded rounds of OMPL PathSimplifier's vertex reduction and shortcutting
+  bool simplify = true;  // bounded rounds of OMPL PathSimplifier's vertex reduction, then of shortcutting
   // > 1: the simplifier first checks its shortcuts this many times coarser than the planning resolution (but
   // never coarser than 0.005 of the space's maximum extent, MoveIt's default resolution), then re-checks the
   // simplified path at the planning resolution and, if any segment fails there, simplifies again at the
